@@ -1,0 +1,240 @@
+// pbrlab: the command line. Sub-commands share one vocabulary of options with the GUI
+// (--module/--submission/--set/--size/--scene), so what a student does in the window can be
+// repeated in a script.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+
+#include "check.h"
+#include "gl/context.h"
+#include "pbrlab/contract.h"
+#include "pbrlab/error.h"
+#include "pbrlab/log.h"
+#include "plugins.h"
+#include "renderer.h"
+
+namespace fs = std::filesystem;
+using namespace pbrlab;
+
+namespace {
+
+fs::path executableDir() {
+    std::error_code ec;
+    fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? fs::current_path() : exe.parent_path();
+}
+
+struct Options {
+    std::string modulesDir;
+    bool verbose = false;
+    bool stats = false;
+};
+
+// What every command that renders needs, made in the right order (context before GL use).
+struct Session {
+    std::unique_ptr<GlContext> context;
+    DataPaths paths = DataPaths::locate();
+    std::unique_ptr<ModuleRegistry> modules;
+    std::unique_ptr<LabRenderer> renderer;
+
+    explicit Session(const Options& o, bool needGl = true) {
+        fs::path dir = o.modulesDir;
+        if (dir.empty()) {
+            const char* env = std::getenv("PBRLAB_MODULES");
+            dir = env && *env ? fs::path(env) : executableDir() / "modules";
+        }
+        modules = std::make_unique<ModuleRegistry>(dir, paths.labs());
+        for (const auto& f : modules->failures())
+            std::cerr << "warning: module " << f.library.string() << " not loaded: " << f.reason
+                      << "\n";
+        if (!needGl) return;
+        context = createHeadlessContext();
+        logLine("gl", context->description());
+        renderer = std::make_unique<LabRenderer>(paths);
+    }
+};
+
+struct Size {
+    int width = 512, height = 512;
+};
+
+Size parseSize(const std::string& text) {
+    Size s;
+    char x = 0;
+    std::istringstream in(text);
+    if (!(in >> s.width >> x >> s.height) || x != 'x' || s.width < 2 || s.height < 2 ||
+        s.width > 8192 || s.height > 8192 || !in.eof())
+        throw Error("--size " + text + ": expected WxH, e.g. 512x512 (2..8192)");
+    return s;
+}
+
+ParamValues parseSets(const ModuleDesc& m, const std::vector<std::string>& sets) {
+    ParamValues values(m.params);
+    for (const auto& s : sets) applyAssignment(m.params, values, s);
+    return values;
+}
+
+StudentSource studentSource(const std::string& dir, bool cumulative, const std::string& id) {
+    StudentSource s{dir, cumulative};
+    if (!dir.empty()) {
+        if (!fs::is_directory(dir)) throw Error("--submission " + dir + ": not a directory");
+        if (!fs::exists(fs::path(dir) / (id + ".glsl")))
+            std::cerr << "note: " << (fs::path(dir) / (id + ".glsl")).string()
+                      << " does not exist; using the reference solution\n";
+    }
+    return s;
+}
+
+void writeOutput(LabRenderer& renderer, const ModuleDesc& m, const RenderResult& r,
+                 const fs::path& out) {
+    std::string ext = out.extension().string();
+    if (ext == ".exr") {
+        writeImage(out, r.value, FileDepth::Float32);
+    } else if (ext == ".png") {
+        writeImage(out, renderer.display(m), FileDepth::Uint8, true);
+    } else {
+        throw Error("--out " + out.string() + ": use a .png (display) or .exr (linear) file");
+    }
+}
+
+void printStats() {
+    for (int c = 0; c < int(Counter::Count); ++c)
+        std::cout << counterName(Counter(c)) << ": " << eventCount(Counter(c)) << "\n";
+    std::cout << journal();
+}
+
+int runList(const Options& o) {
+    Session session(o, false);
+    for (const auto& m : session.modules->modules())
+        std::cout << m.desc->id << "\t" << m.desc->step << "\t" << m.desc->lab << "\t"
+                  << m.desc->title << "\n";
+    return 0;
+}
+
+int runRender(const Options& o, const std::string& id, const std::string& submission,
+              bool cumulative, const std::vector<std::string>& sets, const std::string& size,
+              const std::string& sceneName, bool probe, const std::string& out) {
+    Session session(o);
+    const LoadedModule& m = session.modules->find(id);
+    ParamValues values = parseSets(*m.desc, sets);
+    Size s = parseSize(size);
+    Scene scene = loadScene(session.paths.scene(sceneName.empty() ? m.desc->scene : sceneName));
+    StudentSource source = studentSource(submission, cumulative, id);
+    RenderResult r = probe ? session.renderer->renderProbe(*&m, values, scene, source)
+                           : session.renderer->renderScene(m, values, scene, source, s.width,
+                                                           s.height, false);
+    writeOutput(*session.renderer, *m.desc, r, out);
+    std::cout << "wrote " << out << " (" << r.value.width << "x" << r.value.height << ", view "
+              << r.milliseconds << " ms)\n";
+    if (o.stats) printStats();
+    return 0;
+}
+
+int runCheck(const Options& o, const std::string& id, const std::string& submission,
+             bool cumulative, const std::vector<std::string>& sets, const std::string& size,
+             const std::string& sceneName) {
+    Session session(o);
+    const LoadedModule& m = session.modules->find(id);
+    ParamValues values = parseSets(*m.desc, sets);
+    Size s = parseSize(size);
+    Scene scene = loadScene(session.paths.scene(sceneName.empty() ? m.desc->scene : sceneName));
+    CheckResult r = checkModule(*session.renderer, m, values, scene,
+                                studentSource(submission, cumulative, id), s.width, s.height);
+    const Tolerance& t = m.desc->tolerance;
+    std::cout << id << " scene (" << scene.file.filename().string() << "): "
+              << describe(r.scene, t) << "\n"
+              << id << " probe (x: " << m.desc->probe.xAxis << "; y: " << m.desc->probe.yAxis
+              << "): " << describe(r.probe, t) << "\n"
+              << id << ": " << (r.passed ? "PASS" : "FAIL") << "\n";
+    if (o.stats) printStats();
+    return r.passed ? 0 : 1;
+}
+
+int runGallery(const Options& o, const std::string& outDir, const std::string& size) {
+    Session session(o);
+    Size s = parseSize(size);
+    fs::create_directories(outDir);
+    std::ofstream html(fs::path(outDir) / "index.html");
+    html << "<!doctype html><meta charset=utf-8><title>pbrlab gallery</title>"
+            "<style>body{font-family:sans-serif;background:#222;color:#ddd}"
+            "figure{display:inline-block;margin:8px}</style><h1>pbrlab: every step</h1>\n";
+    int failures = 0;
+    for (const auto& m : session.modules->modules()) {
+        std::string name = findContractStep(m.desc->id)->folder() + ".png";
+        try {
+            Scene scene = loadScene(session.paths.scene(m.desc->scene));
+            auto r = session.renderer->renderScene(m, ParamValues(m.desc->params), scene, {},
+                                                   s.width, s.height, false);
+            writeOutput(*session.renderer, *m.desc, r, fs::path(outDir) / name);
+            html << "<figure><img src=\"" << name << "\" width=256><figcaption>"
+                 << m.desc->step << ". " << m.desc->title << "</figcaption></figure>\n";
+            std::cout << "wrote " << (fs::path(outDir) / name).string() << "\n";
+        } catch (const Error& e) {
+            ++failures;
+            std::cerr << "error: " << m.desc->id << ": " << e.what() << "\n";
+        }
+    }
+    std::cout << "gallery: " << (fs::path(outDir) / "index.html").string() << "\n";
+    return failures ? 1 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"pbrlab: a step-by-step lab for physically based rendering"};
+    app.require_subcommand(1);
+    Options o;
+    app.add_option("--modules", o.modulesDir,
+                   "Directory of module libraries (default: $PBRLAB_MODULES, else beside the "
+                   "executable)");
+    app.add_flag("--verbose,-v", o.verbose, "Log compiles, texture loads and passes to stderr");
+
+    auto* list = app.add_subcommand("list", "List the modules, one a line, id first, lab order");
+
+    std::string id, submission, size = "512x512", scene, out;
+    std::vector<std::string> sets;
+    bool cumulative = false, probe = false;
+    auto addCommon = [&](CLI::App* cmd) {
+        cmd->add_option("id", id, "Module id (see `pbrlab list`)")->required();
+        cmd->add_option("--submission", submission,
+                        "Folder with the student's <id>.glsl files (replaces the solution)");
+        cmd->add_flag("--cumulative", cumulative,
+                      "Also use the student's files for the other steps (default: stepwise)");
+        cmd->add_option("--set", sets, "Parameter name=value (repeatable)");
+        cmd->add_option("--size", size, "Image size WxH (default 512x512)");
+        cmd->add_option("--scene", scene, "Scene name in assets/scenes or a .json file");
+        cmd->add_flag("--stats", o.stats, "Print what was compiled, loaded and precomputed");
+    };
+    auto* render = app.add_subcommand("render", "Render a module's view to PNG or EXR");
+    addCommon(render);
+    render->add_flag("--probe", probe, "Render the probe grid instead of the scene");
+    render->add_option("--out", out, "Output .png (display-encoded) or .exr (linear)")->required();
+    auto* check = app.add_subcommand(
+        "check", "Compare a module on the GPU with its CPU reference (scene and probe)");
+    addCommon(check);
+    std::string galleryDir = "gallery";
+    auto* gallery = app.add_subcommand("gallery", "Render every module's default view");
+    gallery->add_option("--out", galleryDir, "Output folder (default: gallery)");
+    gallery->add_option("--size", size, "Image size WxH (default 512x512)");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+    setVerbose(o.verbose);
+    try {
+        if (*list) return runList(o);
+        if (*render) return runRender(o, id, submission, cumulative, sets, size, scene, probe, out);
+        if (*check) return runCheck(o, id, submission, cumulative, sets, size, scene);
+        if (*gallery) return runGallery(o, galleryDir, size);
+    } catch (const std::exception& e) {
+        std::cerr << "error: " << e.what() << "\n";
+        return 2;
+    }
+    return 0;
+}

@@ -1,0 +1,43 @@
+// Images on the CPU: float pixels plus what the file said about them, read and written with
+// OpenImageIO. Errors are thrown as pbrlab::Error naming the file and what is wrong.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace pbrlab {
+
+struct Image {
+    int width = 0;
+    int height = 0;
+    int channels = 0;
+    // Row 0 is the top row of the picture (as in files; OpenGL read-back is flipped on copy).
+    std::vector<float> pixels;  // width * height * channels, channel-interleaved
+
+    // What the source file held, so loaders can honour it (not used when writing).
+    int sourceBitsPerChannel = 32;  // 8, 16 or 32
+    bool sourceIsSrgb = false;      // colour-space metadata, or an 8-bit PNG/JPEG without any
+
+    float& at(int x, int y, int c) { return pixels[(size_t(y) * width + x) * channels + c]; }
+    float at(int x, int y, int c) const { return pixels[(size_t(y) * width + x) * channels + c]; }
+};
+
+// Reads any file OpenImageIO knows. Values are the stored code values scaled to [0, 1] for
+// integer formats (16-bit stays 16-bit precise: no detour through 8 bits) and unchanged for
+// float formats; no colour conversion is applied (sourceIsSrgb says how to interpret them).
+Image readImage(const std::filesystem::path& path);
+
+enum class FileDepth { Uint8, Uint16, Float32 };
+
+// Writes the pixels as they are. Integer depths clamp to [0, 1] and round to nearest; the
+// caller applies any display encoding first. Writes to a temporary file and renames it, so a
+// failed write never leaves a half-written file behind.
+void writeImage(const std::filesystem::path& path, const Image& image, FileDepth depth,
+                bool markSrgb = false);
+
+// The depth a file extension implies: .exr/.hdr -> Float32, otherwise Uint8.
+FileDepth defaultDepthFor(const std::filesystem::path& path);
+
+}  // namespace pbrlab

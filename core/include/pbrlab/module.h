@@ -1,0 +1,117 @@
+// What a lab module is: a descriptor the host reads (id, step, contract function, parameters,
+// how its value is displayed and compared) plus a CPU reference in double precision. The
+// module's GLSL lives beside it: solution.glsl (the student function) and view.glsl
+// (`vec3 view(Surface s)`: what the step shows, evaluated per pixel).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+#include "pbrlab/params.h"
+#include "pbrlab/reference.h"
+
+namespace pbrlab {
+
+// Bump when ModuleDesc or anything it contains changes layout.
+constexpr int kModuleAbiVersion = 1;
+
+// Everything a contract function may take, per pixel. The GPU fills the same fields in
+// GLSL (shaders/surface.glsl) from the G-buffer (scene) or from uploaded textures (probe), so
+// the CPU reference sees exactly the float inputs the shader saw.
+struct Surface {
+    bool covered = false;  // false: background, nothing to evaluate
+    glm::dvec3 position{0}, normal{0, 0, 1};
+    glm::dvec4 tangent{1, 0, 0, 1};
+    glm::dvec2 uv{0};
+    glm::dvec3 view{0, 0, 1};   // V: towards the camera
+    glm::dvec3 light{0, 0, 1};  // L: towards the first light (zero when on it)
+    glm::dvec3 lightPosition{0}, lightColor{0};
+    glm::dvec3 albedoTexel{0};  // the base colour as stored (sRGB-encoded)
+    glm::dvec3 albedo{0};       // linear
+    double metallic = 0, roughness = 0.5, ao = 1;
+    glm::dvec3 normalTexel{0.5, 0.5, 1};  // tangent-space normal map texel in [0, 1]
+    glm::dvec4 extra{0};                  // probe-only inputs; meaning given by the module
+};
+
+// What a CPU reference may read besides the surface.
+struct ReferenceContext {
+    const ParamValues& params;
+    std::vector<ref::PointLight> lights;  // the scene's point lights
+    glm::dvec3 cameraPosition{0};
+};
+
+using ReferenceFn = std::function<glm::dvec3(const Surface&, const ReferenceContext&)>;
+
+enum class DisplayMode {
+    Grey,          // (v - lo) / (hi - lo), shown as it is (as the assignment's images are)
+    LinearColor,   // a linear colour, sRGB-encoded for the screen
+    HdrColor,      // linear radiance: Reinhard, then gamma 1/2.2
+    SignedVector,  // a direction: 0.5 + 0.5 v
+    FalseColor,    // (v.x - lo) / (hi - lo) through a colour map with a legend
+    Encoded,       // already display-encoded (the tonemap step): shown as it is
+};
+
+struct Display {
+    DisplayMode mode = DisplayMode::Grey;
+    double lo = 0, hi = 1;
+    bool logScale = false;  // FalseColor: map log10(v) between log10(lo) and log10(hi)
+};
+
+// Pass/fail rule: per component, error = |gpu - ref| / max(|ref|, floor). The floor turns the
+// measure into an absolute error where the reference is small. Numbers and their measured
+// reason are written in the module's handout.
+struct Tolerance {
+    double floor = 1e-3;
+    double maxError = 1e-3;
+};
+
+// A full-screen grid whose pixels map to the function's inputs, domain ends included:
+// x and y run over [0, 1] with both ends hit exactly (pixel i -> i / (size - 1)).
+struct Probe {
+    std::string xAxis, yAxis;  // what x and y mean, for plots and reports
+    int width = 65, height = 65;
+    std::function<Surface(double x, double y)> at;
+};
+
+// Which surface inputs the module's view reads, so that nothing else is loaded or compiled.
+enum SurfaceNeeds : unsigned {
+    NeedsGeometry = 0,  // position, normal, tangent, uv, V, L: always available
+    NeedsAlbedo = 1u << 0,
+    NeedsMetallic = 1u << 1,
+    NeedsRoughness = 1u << 2,
+    NeedsAo = 1u << 3,
+    NeedsNormalMap = 1u << 4,
+    NeedsMaterial = NeedsAlbedo | NeedsMetallic | NeedsRoughness | NeedsAo,
+};
+
+struct ModuleDesc {
+    int abiVersion = kModuleAbiVersion;
+    std::string id;     // contract id, e.g. "ndotl"
+    int step = 0;       // contract step number (1..21): the lab order
+    std::string lab;    // "direct" or "ibl"
+    std::string title;  // one line for lists
+    std::string function;  // the GLSL signature students implement
+    std::vector<ParamDecl> params;
+    int components = 1;        // meaningful channels of the value: 1 (float), 2, or 3
+    bool nonNegative = true;   // a negative value is an error
+    Display display;
+    std::string scene = "sphere";      // default scene (assets/scenes/<name>.json)
+    unsigned needs = NeedsGeometry;    // SurfaceNeeds flags
+    std::vector<std::string> uses;     // other contract ids the view calls
+    Tolerance tolerance;
+    ReferenceFn reference;
+    Probe probe;
+};
+
+}  // namespace pbrlab
+
+// Exports the module from its shared library. `makeDesc` is a function returning ModuleDesc.
+#define PBRLAB_MODULE(makeDesc)                                                           \
+    extern "C" int pbrlab_module_abi() { return pbrlab::kModuleAbiVersion; }              \
+    extern "C" const pbrlab::ModuleDesc* pbrlab_module() {                                \
+        static const pbrlab::ModuleDesc desc = makeDesc();                                \
+        return &desc;                                                                     \
+    }

@@ -1,0 +1,288 @@
+#include "renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "pbrlab/contract.h"
+#include "pbrlab/error.h"
+#include "pbrlab/log.h"
+#include "surface_io.h"
+
+#ifndef PBRLAB_SOURCE_DIR
+#error "PBRLAB_SOURCE_DIR must name the source tree"
+#endif
+
+namespace fs = std::filesystem;
+
+namespace pbrlab {
+
+namespace {
+
+// A linear factor as an 8-bit-free sRGB texture would store it (exact curve).
+glm::dvec3 srgbEncode(const glm::dvec3& linear) {
+    glm::dvec3 e;
+    for (int c = 0; c < 3; ++c) {
+        double v = std::clamp(linear[c], 0.0, 1.0);
+        e[c] = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
+    }
+    return e;
+}
+
+}  // namespace
+
+fs::path DataPaths::scene(const std::string& name) const {
+    if (name.find('/') != std::string::npos || fs::path(name).extension() == ".json") return name;
+    return assets() / "scenes" / (name + ".json");
+}
+
+DataPaths DataPaths::locate() {
+    if (const char* env = std::getenv("PBRLAB_DATA"); env && *env) return {env};
+    return {PBRLAB_SOURCE_DIR};
+}
+
+Scene applyParamBindings(Scene scene, const ModuleDesc& module, const ParamValues& values) {
+    for (const auto& p : module.params)
+        if (p.binding == ParamBinding::LightDirection && !scene.lights.empty()) {
+            double distance = glm::length(scene.lights[0].position);
+            scene.lights[0].position = values.vector(p.name) * (distance > 0 ? distance : 10.0);
+        }
+    return scene;
+}
+
+LabRenderer::LabRenderer(const DataPaths& paths)
+    : paths_(paths), programs_(ShaderPreprocessor({paths.shaders(), paths.labs()})) {}
+
+ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentSource& source,
+                                      bool probe, int lightCount) const {
+    ProgramRecipe r;
+    r.vertex = {paths_.shaders() / "fullscreen.vert"};
+    r.fragment.push_back(paths_.shaders() / "common.glsl");
+    const ModuleDesc& d = *module.desc;
+    for (const ContractStep* step : contractClosure(d.id, d.uses)) {
+        fs::path file = paths_.labs() / step->folder() / "solution.glsl";
+        if (!source.dir.empty() && (step->id == d.id || source.cumulative)) {
+            fs::path student = source.dir / (step->id + ".glsl");
+            if (fs::exists(student)) {
+                if (!isInside(student, source.dir))
+                    throw Error(student.string() + ": refused, it points outside " +
+                                source.dir.string());
+                file = student;
+            }
+        }
+        r.fragment.push_back(file);
+    }
+    r.fragment.push_back(paths_.shaders() / "surface.glsl");
+    r.fragment.push_back(module.sourceDir / "view.glsl");
+    r.fragment.push_back(paths_.shaders() / "view_main.frag");
+    r.defines["NUM_LIGHTS"] = std::to_string(std::max(lightCount, 1));
+    if (probe) r.defines["PBRLAB_PROBE"] = "1";
+    return r;
+}
+
+GLuint LabRenderer::texture(const fs::path& file) {
+    auto it = textures_.find(file);
+    if (it != textures_.end()) return it->second.id();
+    auto start = std::chrono::steady_clock::now();
+    Image image = readImage(file);
+    GLuint id = textures_.emplace(file, gl::uploadTexture(image, true)).first->second.id();
+    countEvent(Counter::TextureLoads);
+    double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                    .count();
+    logLine("texture", file.string() + " " + std::to_string(image.width) + "x" +
+                           std::to_string(image.height) + " " +
+                           std::to_string(image.sourceBitsPerChannel) + "-bit, " +
+                           std::to_string(ms) + " ms");
+    return id;
+}
+
+void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int height) {
+    if (!gbuffer_ || gbuffer_->width() != width || gbuffer_->height() != height)
+        gbuffer_ = std::make_unique<gl::RenderTarget>(width, height, kGBufferTextures);
+    gbuffer_->bind();
+    const float zero[4] = {0, 0, 0, 0};
+    for (int i = 0; i < kGBufferTextures; ++i) gl::ClearBufferfv(GL_COLOR, i, zero);
+    gl::Clear(GL_DEPTH_BUFFER_BIT);
+    gl::Enable(GL_DEPTH_TEST);
+    gl::DepthFunc(GL_LESS);
+
+    const Camera& cam = scene.camera;
+    glm::mat4 view = glm::lookAt(glm::vec3(cam.position), glm::vec3(cam.target), glm::vec3(0, 1, 0));
+    glm::mat4 proj = glm::perspective(glm::radians(float(cam.fovY)), float(width) / float(height),
+                                      0.05f, 200.0f);
+    auto& sphere = meshes_["sphere"];
+    if (!sphere) sphere = std::make_unique<gl::GpuMesh>(makeUvSphere(96, 48));
+
+    for (const ObjectDesc& object : scene.objects) {
+        const MaterialDesc& m = scene.materials.at(size_t(object.material));
+        // Only the maps this module reads become part of the permutation (and get loaded).
+        struct Map {
+            unsigned need;
+            const fs::path* file;
+            const char* define;
+            const char* sampler;
+        };
+        const Map maps[] = {{NeedsAlbedo, &m.albedoMap, "HAS_ALBEDO_MAP", "uAlbedoMap"},
+                            {NeedsRoughness, &m.roughnessMap, "HAS_ROUGHNESS_MAP", "uRoughnessMap"},
+                            {NeedsMetallic, &m.metallicMap, "HAS_METALLIC_MAP", "uMetallicMap"},
+                            {NeedsAo, &m.aoMap, "HAS_AO_MAP", "uAoMap"},
+                            {NeedsNormalMap, &m.normalMap, "HAS_NORMAL_MAP", "uNormalMap"}};
+        ProgramRecipe recipe;
+        recipe.vertex = {paths_.shaders() / "gbuffer.vert"};
+        recipe.fragment = {paths_.shaders() / "gbuffer.frag"};
+        for (const Map& map : maps)
+            if ((needs & map.need) && !map.file->empty()) recipe.defines[map.define] = "1";
+        auto program = programs_.get(recipe);
+        program->use();
+        glm::mat4 model = glm::translate(glm::mat4(1), glm::vec3(object.translate)) *
+                          glm::scale(glm::mat4(1), glm::vec3(float(object.scale)));
+        program->set("uModel", model);
+        glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
+        gl::UniformMatrix3fv(program->location("uNormalMatrix"), 1, GL_FALSE, &normalMatrix[0][0]);
+        program->set("uViewProjection", proj * view);
+        program->set("uAlbedo", glm::vec3(m.albedo));
+        program->set("uAlbedoTexel", glm::vec3(srgbEncode(m.albedo)));
+        program->set("uMetallic", float(m.metallic));
+        program->set("uRoughness", float(m.roughness));
+        program->set("uAo", float(m.ao));
+        int unit = 0;
+        for (const Map& map : maps) {
+            if (!program->uses(map.sampler)) continue;  // not compiled in: never loaded
+            gl::ActiveTexture(GL_TEXTURE0 + unit);
+            gl::BindTexture(GL_TEXTURE_2D, texture(*map.file));
+            program->set(map.sampler, unit++);
+        }
+        sphere->draw();
+    }
+    gl::Disable(GL_DEPTH_TEST);
+    gl::checkError("G-buffer pass");
+}
+
+double LabRenderer::runView(const LoadedModule& module, const ParamValues& params,
+                            const Scene& scene, const StudentSource& source, bool probe,
+                            const std::vector<GLuint>& inputs, int width, int height) {
+    auto program = programs_.get(viewRecipe(module, source, probe, int(scene.lights.size())));
+    if (!valueTarget_ || valueTarget_->width() != width || valueTarget_->height() != height)
+        valueTarget_ = std::make_unique<gl::RenderTarget>(width, height, 1, false);
+    valueTarget_->bind();
+    program->use();
+    for (size_t i = 0; i < inputs.size(); ++i) {
+        gl::ActiveTexture(GLenum(GL_TEXTURE0 + i));
+        gl::BindTexture(GL_TEXTURE_2D, inputs[i]);
+        program->set("uSurface" + std::to_string(i), int(i));
+    }
+    std::vector<glm::vec3> positions, colors;
+    for (const auto& l : scene.lights) {
+        positions.emplace_back(l.position);
+        colors.emplace_back(l.color);
+    }
+    program->set("uLightPositions", positions);
+    program->set("uLightColors", colors);
+    if (program->uses("uCameraPosition"))
+        program->set("uCameraPosition", glm::vec3(scene.camera.position));
+    for (const ParamDecl& p : module.desc->params) {
+        glm::dvec3 v = params.vector(p.name);
+        const std::string u = p.uniformName();
+        switch (p.type) {
+            case ParamType::Float: program->set(u, float(v.x)); break;
+            case ParamType::Int:
+            case ParamType::Bool:
+            case ParamType::Enum: program->set(u, int(v.x)); break;
+            case ParamType::Color:
+            case ParamType::Direction: program->set(u, glm::vec3(v)); break;
+        }
+    }
+    gl::Finish();
+    auto start = std::chrono::steady_clock::now();
+    fullscreen_.draw();
+    gl::Finish();
+    double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    gl::checkError("view pass");
+    return ms;
+}
+
+namespace {
+
+// The scene's float-rounded camera and first light: what the shader saw.
+glm::dvec3 asFloat(const glm::dvec3& v) { return glm::dvec3(glm::vec3(v)); }
+
+}  // namespace
+
+RenderResult LabRenderer::renderScene(const LoadedModule& module, const ParamValues& params,
+                                      const Scene& sceneIn, const StudentSource& source,
+                                      int width, int height, bool readSurfaces) {
+    Scene scene = applyParamBindings(sceneIn, *module.desc, params);
+    drawGBuffer(scene, module.desc->needs, width, height);
+    std::vector<GLuint> inputs;
+    for (int i = 0; i < kGBufferTextures; ++i) inputs.push_back(gbuffer_->colorTexture(i));
+    RenderResult result;
+    result.milliseconds = runView(module, params, scene, source, false, inputs, width, height);
+    result.value = valueTarget_->read(0);
+    if (readSurfaces) {
+        std::vector<Image> textures;
+        for (int i = 0; i < kGBufferTextures; ++i) textures.push_back(gbuffer_->read(i));
+        ref::PointLight first{asFloat(scene.lights[0].position), asFloat(scene.lights[0].color)};
+        result.surfaces = unpackSurfaces(textures, asFloat(scene.camera.position), first);
+    }
+    return result;
+}
+
+RenderResult LabRenderer::renderProbe(const LoadedModule& module, const ParamValues& params,
+                                      const Scene& sceneIn, const StudentSource& source) {
+    Scene scene = applyParamBindings(sceneIn, *module.desc, params);
+    const Probe& probe = module.desc->probe;
+    std::vector<Surface> grid;
+    for (int y = 0; y < probe.height; ++y)
+        for (int x = 0; x < probe.width; ++x)
+            // Row 0 is the top: y = 1 there, so larger values are up in pictures.
+            grid.push_back(probe.at(double(x) / (probe.width - 1),
+                                    1.0 - double(y) / (probe.height - 1)));
+    std::vector<Image> packed = packSurfaces(grid, probe.width, probe.height);
+    probeInputs_.clear();
+    std::vector<GLuint> inputs;
+    for (Image image : packed) {
+        // GL texture rows run bottom-up, like gl_FragCoord.
+        Image flipped = image;
+        const size_t row = size_t(image.width) * 4;
+        for (int y = 0; y < image.height; ++y)
+            std::copy_n(image.pixels.data() + size_t(image.height - 1 - y) * row, row,
+                        flipped.pixels.data() + size_t(y) * row);
+        probeInputs_.push_back(gl::uploadTexture(flipped, false, GL_RGBA32F));
+        inputs.push_back(probeInputs_.back().id());
+    }
+    RenderResult result;
+    result.milliseconds =
+        runView(module, params, scene, source, true, inputs, probe.width, probe.height);
+    result.value = valueTarget_->read(0);
+    result.surfaces = unpackSurfaces(packed, {}, {});
+    return result;
+}
+
+Image LabRenderer::display(const ModuleDesc& module) {
+    if (!valueTarget_) throw Error("display: nothing rendered yet");
+    const int w = valueTarget_->width(), h = valueTarget_->height();
+    if (!displayTarget_ || displayTarget_->width() != w || displayTarget_->height() != h)
+        displayTarget_ = std::make_unique<gl::RenderTarget>(w, h, 1, false);
+    ProgramRecipe recipe;
+    recipe.vertex = {paths_.shaders() / "fullscreen.vert"};
+    recipe.fragment = {paths_.shaders() / "display.frag"};
+    auto program = programs_.get(recipe);
+    displayTarget_->bind();
+    program->use();
+    gl::ActiveTexture(GL_TEXTURE0);
+    gl::BindTexture(GL_TEXTURE_2D, valueTarget_->colorTexture(0));
+    program->set("uValue", 0);
+    program->set("uMode", int(module.display.mode));
+    program->set("uLo", float(module.display.lo));
+    program->set("uHi", float(module.display.hi));
+    program->set("uLogScale", module.display.logScale ? 1 : 0);
+    program->set("uComponents", module.components);
+    fullscreen_.draw();
+    gl::checkError("display pass");
+    return displayTarget_->read(0);
+}
+
+}  // namespace pbrlab

@@ -1,0 +1,80 @@
+// Runs a module on the GPU: the G-buffer pass for a scene (or uploaded probe inputs), the
+// module's view over them into a float target, and the display pass for people.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+
+#include "gl/objects.h"
+#include "pbrlab/scene.h"
+#include "plugins.h"
+#include "shader/program.h"
+
+namespace pbrlab {
+
+// Where shaders/, labs/ and assets/ are: $PBRLAB_DATA, else the source tree it was built from.
+struct DataPaths {
+    std::filesystem::path root;
+    std::filesystem::path shaders() const { return root / "shaders"; }
+    std::filesystem::path labs() const { return root / "labs"; }
+    std::filesystem::path assets() const { return root / "assets"; }
+    std::filesystem::path scene(const std::string& name) const;  // a name or a .json path
+    static DataPaths locate();
+};
+
+// Whose code fills the contract functions: the reference solutions, or a student's folder.
+struct StudentSource {
+    std::filesystem::path dir;  // empty: reference solutions only
+    bool cumulative = false;    // use the student's earlier steps too (default: stepwise)
+};
+
+// The scene after the module's parameters that move things (e.g. the light direction).
+Scene applyParamBindings(Scene scene, const ModuleDesc& module, const ParamValues& values);
+
+struct RenderResult {
+    Image value;                    // the view's output, RGBA float, alpha 1 where evaluated
+    std::vector<Surface> surfaces;  // the inputs per pixel (when asked for)
+    double milliseconds = 0;        // view pass, glFinish + steady clock (GPU timer queries
+                                    // are unreliable on llvmpipe)
+};
+
+class LabRenderer {
+public:
+    explicit LabRenderer(const DataPaths& paths);
+
+    // The program recipe for a module's view: contract functions (student or reference),
+    // the surface loader, the view, one permutation per (probe, light count).
+    ProgramRecipe viewRecipe(const LoadedModule& module, const StudentSource& source, bool probe,
+                             int lightCount) const;
+
+    RenderResult renderScene(const LoadedModule& module, const ParamValues& params,
+                             const Scene& scene, const StudentSource& source, int width,
+                             int height, bool readSurfaces);
+    RenderResult renderProbe(const LoadedModule& module, const ParamValues& params,
+                             const Scene& scene, const StudentSource& source);
+
+    // Display-encodes the value produced by the last render (RGBA, [0, 1]).
+    Image display(const ModuleDesc& module);
+    GLuint displayTexture() const { return displayTarget_ ? displayTarget_->colorTexture(0) : 0; }
+
+    ProgramCache& programs() { return programs_; }
+
+private:
+    void drawGBuffer(const Scene& scene, unsigned needs, int width, int height);
+    double runView(const LoadedModule& module, const ParamValues& params, const Scene& scene,
+                   const StudentSource& source, bool probe, const std::vector<GLuint>& inputs,
+                   int width, int height);
+    GLuint texture(const std::filesystem::path& file);
+
+    DataPaths paths_;
+    ProgramCache programs_;
+    gl::FullscreenTriangle fullscreen_;
+    std::unique_ptr<gl::RenderTarget> gbuffer_, valueTarget_, displayTarget_;
+    std::map<std::string, std::unique_ptr<gl::GpuMesh>> meshes_;
+    std::map<std::filesystem::path, gl::Handle> textures_;
+    std::vector<gl::Handle> probeInputs_;
+};
+
+}  // namespace pbrlab

@@ -1,0 +1,54 @@
+// GLSL assembly: #include "..." resolved only inside allowed roots, #define injection, and
+// #line markers so compiler messages can be mapped back to the original file and line.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace pbrlab {
+
+// Name -> value; the map keeps them sorted, which makes the set a stable cache key.
+using Defines = std::map<std::string, std::string>;
+
+// One piece of a shader: a file, or text made by the host (named for error messages).
+struct ShaderPart {
+    ShaderPart(std::filesystem::path f) : file(std::move(f)) {}
+    ShaderPart(std::string partName, std::string partText)
+        : text(std::move(partText)), name(std::move(partName)) {}
+    std::filesystem::path file;  // used when text is empty
+    std::string text;
+    std::string name;  // for generated text: what to call it in messages
+};
+
+struct ExpandedShader {
+    std::string text;
+    // GLSL source-string number -> the file it came from (what #line markers refer to).
+    std::vector<std::string> sourceNames;
+    // Every file read, for hot reload.
+    std::vector<std::filesystem::path> files;
+};
+
+class ShaderPreprocessor {
+public:
+    explicit ShaderPreprocessor(std::vector<std::filesystem::path> roots);
+
+    // "#version 450 core", the defines, then each part with its includes expanded (each file
+    // at most once). Throws pbrlab::Error naming file and line for a missing include or one
+    // that leaves the roots.
+    ExpandedShader expand(const std::vector<ShaderPart>& parts, const Defines& defines) const;
+
+    const std::vector<std::filesystem::path>& roots() const { return roots_; }
+
+private:
+    std::vector<std::filesystem::path> roots_;
+};
+
+// Rewrites "S:L(C)" / "S(L)" source references in a compiler log to "file:L(C)".
+std::string mapCompilerLog(const std::string& log, const std::vector<std::string>& sourceNames);
+
+// True when `path` (made canonical) lies inside `root` (made canonical).
+bool isInside(const std::filesystem::path& path, const std::filesystem::path& root);
+
+}  // namespace pbrlab

@@ -1,0 +1,17 @@
+// Names every pbrlab program sees; part of the student contract (see DESIGN.md).
+// Internal helpers start with pbrlab_ so a student's own helpers cannot collide with them.
+
+const float PI = 3.14159265358979;
+
+#ifndef NUM_LIGHTS
+#define NUM_LIGHTS 1
+#endif
+uniform vec3 uLightPositions[NUM_LIGHTS];
+uniform vec3 uLightColors[NUM_LIGHTS];
+
+// normalize(v), or `fallback` when v is too short to have a direction (avoids 0/0 = NaN).
+vec3 pbrlab_safeNormalize(vec3 v, vec3 fallback)
+{
+    float len2 = dot(v, v);
+    return len2 < 1e-12 ? fallback : v * inversesqrt(len2);
+}

@@ -1,0 +1,85 @@
+// End to end without a display or GPU: OSMesa context, module plugins, shaders, G-buffer,
+// view, CPU reference.
+#include <gtest/gtest.h>
+
+#include "check.h"
+#include "gl/context.h"
+#include "pbrlab/error.h"
+#include "pbrlab/log.h"
+#include "test_support.h"
+
+using namespace pbrlab;
+
+namespace {
+
+struct Headless {
+    std::unique_ptr<GlContext> context = createHeadlessContext();
+    DataPaths paths{PBRLAB_SOURCE_DIR};
+    ModuleRegistry modules{PBRLAB_MODULE_DIR, paths.labs()};
+    LabRenderer renderer{paths};
+
+    CheckResult check(const std::string& id, const StudentSource& source = {}) {
+        const LoadedModule& m = modules.find(id);
+        Scene scene = loadScene(paths.scene(m.desc->scene));
+        return checkModule(renderer, m, ParamValues(m.desc->params), scene, source, 96, 96);
+    }
+};
+
+}  // namespace
+
+TEST(Headless, ContextIsOpenGL45Core) {
+    auto context = createHeadlessContext();
+    EXPECT_NE(context->description().find("4.5"), std::string::npos) << context->description();
+}
+
+TEST(Headless, NdotlSolutionMatchesCpuReference) {
+    Headless h;
+    CheckResult r = h.check("ndotl");
+    EXPECT_TRUE(r.passed) << describe(r.scene, h.modules.find("ndotl").desc->tolerance) << "\n"
+                          << describe(r.probe, h.modules.find("ndotl").desc->tolerance);
+    EXPECT_GT(r.scene.compared, 96 * 96 / 3);  // the sphere covers a good part of the frame
+    EXPECT_EQ(r.probe.compared, 65 * 17);
+}
+
+TEST(Headless, StudentWithoutClampIsCaught) {
+    Headless h;
+    test::TempDir kit;
+    kit.write("ndotl.glsl", "float lambertCosine(vec3 N, vec3 L) { return dot(N, L); }\n");
+    CheckResult r = h.check("ndotl", {kit.path});
+    EXPECT_FALSE(r.passed);
+    EXPECT_GT(r.probe.negativeCount, 0);  // the half of the probe where L is below the surface
+}
+
+TEST(Headless, StudentFileWithSyntaxErrorNamesFileAndLine) {
+    Headless h;
+    test::TempDir kit;
+    auto file = kit.write("ndotl.glsl",
+                          "// my answer\nfloat lambertCosine(vec3 N, vec3 L) {\n"
+                          "    return max(dot(N, L), 0.0)\n}\n");
+    try {
+        h.check("ndotl", {kit.path});
+        FAIL() << "compiled a broken file";
+    } catch (const ShaderError& e) {
+        std::string m = e.what();
+        // Mesa reports the missing ';' on the line of the closing brace.
+        EXPECT_NE(m.find(file.string() + ":4"), std::string::npos) << m;
+    }
+}
+
+TEST(Headless, ProgramsAreCachedByDefineSet) {
+    Headless h;
+    h.check("ndotl");
+    int compiles = h.renderer.programs().compileCount();
+    h.check("ndotl");
+    EXPECT_EQ(h.renderer.programs().compileCount(), compiles);
+    // G-buffer, scene view and probe view (PBRLAB_PROBE): three permutations.
+    EXPECT_EQ(compiles, 3);
+}
+
+TEST(Headless, NdotlLoadsNoTextures) {
+    resetCounters();
+    Headless h;
+    h.check("ndotl");
+    EXPECT_EQ(eventCount(Counter::TextureLoads), 0);
+    EXPECT_EQ(eventCount(Counter::PrecomputePasses), 0);
+}
