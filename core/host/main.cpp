@@ -4,7 +4,9 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -14,8 +16,10 @@
 #include "pbrlab/contract.h"
 #include "pbrlab/error.h"
 #include "pbrlab/log.h"
+#include "pbrlab/texgen.h"
 #include "plugins.h"
 #include "renderer.h"
+#include "stability.h"
 
 namespace fs = std::filesystem;
 using namespace pbrlab;
@@ -154,6 +158,27 @@ int runCheck(const Options& o, const std::string& id, const std::string& submiss
     return r.passed ? 0 : 1;
 }
 
+int runStability(const Options& o, const std::vector<std::string>& ids) {
+    Session session(o);
+    std::printf("%-12s %8s %8s %8s %8s %10s %10s  %s\n", "module", "gpu NaN", "gpu Inf",
+                "gpu neg", "ref bad", "max err", "mean err", "first problem");
+    int bad = 0;
+    for (const auto& m : session.modules->modules()) {
+        if (!ids.empty() && std::find(ids.begin(), ids.end(), m.desc->id) == ids.end()) continue;
+        Scene scene = loadScene(session.paths.scene(m.desc->scene));
+        StabilityResult r = stabilitySweep(*session.renderer, m, scene);
+        int negatives = m.desc->nonNegative ? r.gpu.negativeCount : 0;
+        int refBad = r.referenceNonFinite + r.referenceNegative;
+        bad += r.gpu.nonFinite() + negatives + refBad;
+        std::printf("%-12s %8d %8d %8d %8d %10.3g %10.3g  %s\n", m.desc->id.c_str(),
+                    r.gpu.nanCount, r.gpu.infCount, negatives, refBad, r.gpu.maxError,
+                    r.gpu.meanError, r.firstProblem.empty() ? "-" : r.firstProblem.c_str());
+    }
+    std::printf("(%zu extreme inputs per module; error = |gpu - ref| / max(|ref|, module floor))\n",
+                extremeSurfaces().labels.size());
+    return bad ? 1 : 0;
+}
+
 int runGallery(const Options& o, const std::string& outDir, const std::string& size) {
     Session session(o);
     Size s = parseSize(size);
@@ -216,6 +241,16 @@ int main(int argc, char** argv) {
     auto* check = app.add_subcommand(
         "check", "Compare a module on the GPU with its CPU reference (scene and probe)");
     addCommon(check);
+    std::vector<std::string> stabilityIds;
+    auto* stability = app.add_subcommand(
+        "stability", "Run every module (or the given ids) on the extreme inputs: NaN/Inf/negatives");
+    stability->add_option("ids", stabilityIds, "Module ids (default: all)");
+    std::string texturesDir;
+    int textureSize = 256;
+    auto* textures = app.add_subcommand(
+        "textures", "Write the project's procedural metal-plates texture set (deterministic)");
+    textures->add_option("--out", texturesDir, "Output folder")->required();
+    textures->add_option("--size", textureSize, "Width and height in texels (16..4096)");
     std::string galleryDir = "gallery";
     auto* gallery = app.add_subcommand("gallery", "Render every module's default view");
     gallery->add_option("--out", galleryDir, "Output folder (default: gallery)");
@@ -232,6 +267,13 @@ int main(int argc, char** argv) {
         if (*render) return runRender(o, id, submission, cumulative, sets, size, scene, probe, out);
         if (*check) return runCheck(o, id, submission, cumulative, sets, size, scene);
         if (*gallery) return runGallery(o, galleryDir, size);
+        if (*stability) return runStability(o, stabilityIds);
+        if (*textures) {
+            generateMetalPlates(texturesDir, textureSize);
+            std::cout << "wrote albedo, roughness, metallic, ao and normal maps to " << texturesDir
+                      << "\n";
+            return 0;
+        }
     } catch (const std::exception& e) {
         std::cerr << "error: " << e.what() << "\n";
         return 2;

@@ -108,8 +108,8 @@ dvec3 reflectedRadiance(const dvec3& P, const dvec3& N, const dvec3& V, const dv
     for (int i = 0; i < lightCount; ++i) {
         const dvec3 L = safeNormalize(lights[i].position - P, dvec3(0.0));
         const dvec3 radiance = pointLightRadiance(lights[i].color, lights[i].position, P);
-        Lo += cookTorranceBRDF(N, V, L, albedo, metallic, roughness) * radiance *
-              lambertCosine(N, L);
+        Lo +=
+            cookTorranceBRDF(N, V, L, albedo, metallic, roughness) * radiance * lambertCosine(N, L);
     }
     return Lo + kAmbient * albedo * ao;
 }

@@ -230,20 +230,31 @@ RenderResult LabRenderer::renderScene(const LoadedModule& module, const ParamVal
     return result;
 }
 
-RenderResult LabRenderer::renderProbe(const LoadedModule& module, const ParamValues& params,
-                                      const Scene& sceneIn, const StudentSource& source) {
-    Scene scene = applyParamBindings(sceneIn, *module.desc, params);
-    const Probe& probe = module.desc->probe;
+std::vector<Surface> probeSurfaces(const Probe& probe) {
     std::vector<Surface> grid;
     for (int y = 0; y < probe.height; ++y)
         for (int x = 0; x < probe.width; ++x)
-            // Row 0 is the top: y = 1 there, so larger values are up in pictures.
             grid.push_back(probe.at(double(x) / (probe.width - 1),
                                     1.0 - double(y) / (probe.height - 1)));
-    std::vector<Image> packed = packSurfaces(grid, probe.width, probe.height);
+    return grid;
+}
+
+RenderResult LabRenderer::renderProbe(const LoadedModule& module, const ParamValues& params,
+                                      const Scene& scene, const StudentSource& source) {
+    const Probe& probe = module.desc->probe;
+    return renderSurfaces(module, params, scene, source, probeSurfaces(probe), probe.width,
+                          probe.height);
+}
+
+RenderResult LabRenderer::renderSurfaces(const LoadedModule& module, const ParamValues& params,
+                                         const Scene& sceneIn, const StudentSource& source,
+                                         const std::vector<Surface>& surfaces, int width,
+                                         int height) {
+    Scene scene = applyParamBindings(sceneIn, *module.desc, params);
+    std::vector<Image> packed = packSurfaces(surfaces, width, height);
     probeInputs_.clear();
     std::vector<GLuint> inputs;
-    for (Image image : packed) {
+    for (const Image& image : packed) {
         // GL texture rows run bottom-up, like gl_FragCoord.
         Image flipped = image;
         const size_t row = size_t(image.width) * 4;
@@ -254,8 +265,7 @@ RenderResult LabRenderer::renderProbe(const LoadedModule& module, const ParamVal
         inputs.push_back(probeInputs_.back().id());
     }
     RenderResult result;
-    result.milliseconds =
-        runView(module, params, scene, source, true, inputs, probe.width, probe.height);
+    result.milliseconds = runView(module, params, scene, source, true, inputs, width, height);
     result.value = valueTarget_->read(0);
     result.surfaces = unpackSurfaces(packed, {}, {});
     return result;

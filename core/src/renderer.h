@@ -40,6 +40,9 @@ struct RenderResult {
                                     // are unreliable on llvmpipe)
 };
 
+// The probe's inputs, row 0 = top (y = 1 there, so larger values are up in pictures).
+std::vector<Surface> probeSurfaces(const Probe& probe);
+
 class LabRenderer {
 public:
     explicit LabRenderer(const DataPaths& paths);
@@ -54,6 +57,10 @@ public:
                              int height, bool readSurfaces);
     RenderResult renderProbe(const LoadedModule& module, const ParamValues& params,
                              const Scene& scene, const StudentSource& source);
+    // The view evaluated on arbitrary surfaces (width * height of them, row 0 = top).
+    RenderResult renderSurfaces(const LoadedModule& module, const ParamValues& params,
+                                const Scene& scene, const StudentSource& source,
+                                const std::vector<Surface>& surfaces, int width, int height);
 
     // Display-encodes the value produced by the last render (RGBA, [0, 1]).
     Image display(const ModuleDesc& module);

@@ -1,0 +1,125 @@
+#include "stability.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace pbrlab {
+
+namespace {
+
+std::string vec(const glm::dvec3& v) {
+    std::ostringstream o;
+    o << "(" << v.x << "," << v.y << "," << v.z << ")";
+    return o.str();
+}
+
+}  // namespace
+
+ExtremeSet extremeSurfaces() {
+    ExtremeSet set;
+    auto add = [&](Surface s, std::string label) {
+        s.covered = true;
+        set.surfaces.push_back(s);
+        set.labels.push_back(std::move(label));
+    };
+    const glm::dvec3 up(0, 0, 1), grazing(1, 0, 0), side(0, 1, 0), below(0.6, 0, -0.8);
+    const glm::dvec3 tilted = glm::normalize(glm::dvec3(0.3, 0.2, 1));
+    const double roughnesses[] = {0, 1e-4, 0.05, 0.5, 1};
+    const glm::dvec3 views[] = {up, grazing, tilted, below};
+    // Each light direction relative to the view: the same, opposite (V = -L), grazing, normal,
+    // from below, and the zero vector (light exactly at the point).
+    for (double r : roughnesses)
+        for (const auto& V : views)
+            for (int l = 0; l < 6; ++l) {
+                glm::dvec3 L = l == 0 ? V : l == 1 ? -V : l == 2 ? side : l == 3 ? up
+                             : l == 4 ? below : glm::dvec3(0);
+                for (int m = 0; m < 4; ++m) {
+                    Surface s;
+                    s.normal = up;
+                    s.view = V;
+                    s.light = L;
+                    s.roughness = r;
+                    s.albedo = s.albedoTexel = glm::dvec3(m & 1 ? 1.0 : 0.0);
+                    s.metallic = m & 2 ? 1.0 : 0.0;
+                    s.lightPosition = s.position + L * 2.0;
+                    s.lightColor = glm::dvec3(1);
+                    s.extra = glm::dvec4(glm::dot(up, V), r, 0, 0);
+                    add(s, "roughness " + std::to_string(r) + " V " + vec(V) + " L " + vec(L) +
+                               " albedo " + std::to_string(s.albedo.x) + " metallic " +
+                               std::to_string(s.metallic));
+                }
+            }
+    // Lights: at the point, very close, far; intensity 0 and 1e6.
+    for (double d : {0.0, 1e-6, 1e-3, 1.0, 1e3})
+        for (double intensity : {0.0, 1.0, 1e6}) {
+            Surface s;
+            s.normal = up;
+            s.view = up;
+            s.position = glm::dvec3(0.25, -0.5, 1);
+            s.lightPosition = s.position + tilted * d;
+            s.light = d > 0 ? tilted : glm::dvec3(0);
+            s.lightColor = glm::dvec3(intensity);
+            s.albedo = s.albedoTexel = glm::dvec3(0.5);
+            s.extra = glm::dvec4(d, intensity, 0, 0);
+            add(s, "light at distance " + std::to_string(d) + " intensity " +
+                       std::to_string(intensity));
+        }
+    // Scalar probe inputs (extra.x: a cosine, an HDR value...) at and beyond their ends, and
+    // denormals.
+    for (double x : {-1.0, 0.0, 1e-40, 1e-7, 1.0, 1e6})
+        for (double y : {0.0, 1e-40, 1.0}) {
+            Surface s;
+            s.normal = up;
+            s.view = up;
+            s.light = up;
+            s.extra = glm::dvec4(x, y, 0, 0);
+            s.roughness = y;
+            s.albedo = s.albedoTexel = glm::dvec3(std::max(x, 0.0));
+            add(s, "extra (" + std::to_string(x) + ", " + std::to_string(y) + ")");
+        }
+    // Normal mapping: flat, zero-length decoded normal, tangent parallel to N or zero.
+    const glm::dvec4 tangents[] = {{1, 0, 0, 1}, {1, 0, 0, -1}, {0, 0, 1, 1}, {0, 0, 0, 1}};
+    const glm::dvec3 texels[] = {{0.5, 0.5, 1}, {0.5, 0.5, 0.5}, {0, 0, 0}, {1, 1, 1}, {1, 0.5, 0.5}};
+    for (const auto& t : tangents)
+        for (const auto& n : texels) {
+            Surface s;
+            s.normal = up;
+            s.view = tilted;
+            s.light = tilted;
+            s.tangent = t;
+            s.normalTexel = n;
+            add(s, "tangent " + vec(glm::dvec3(t)) + " w " + std::to_string(t.w) + " texel " +
+                       vec(n));
+        }
+    set.width = 32;
+    set.height = int((set.surfaces.size() + 31) / 32);
+    set.surfaces.resize(size_t(set.width) * set.height);  // padding: not covered
+    return set;
+}
+
+StabilityResult stabilitySweep(LabRenderer& renderer, const LoadedModule& module,
+                               const Scene& scene, const StudentSource& source) {
+    const ModuleDesc& d = *module.desc;
+    ExtremeSet set = extremeSurfaces();
+    ParamValues params(d.params);
+    ReferenceContext context = referenceContext(scene, params);
+    RenderResult r =
+        renderer.renderSurfaces(module, params, scene, source, set.surfaces, set.width, set.height);
+    StabilityResult result;
+    std::vector<glm::dvec3> reference;
+    result.gpu = compareWithReference(r.value, r.surfaces, d, context, &reference);
+    for (size_t i = 0; i < set.labels.size(); ++i) {
+        bool broken = false;
+        for (int c = 0; c < d.components; ++c) {
+            double ref = reference[i][c];
+            double gpu = r.value.pixels[i * 4 + size_t(c)];
+            if (!std::isfinite(ref)) ++result.referenceNonFinite, broken = true;
+            if (d.nonNegative && ref < 0) ++result.referenceNegative, broken = true;
+            if (!std::isfinite(gpu) || (d.nonNegative && gpu < 0)) broken = true;
+        }
+        if (broken && result.firstProblem.empty()) result.firstProblem = set.labels[i];
+    }
+    return result;
+}
+
+}  // namespace pbrlab
