@@ -14,6 +14,7 @@
 #include "check.h"
 #include "gl/context.h"
 #include "pbrlab/contract.h"
+#include "pbrlab/display.h"
 #include "pbrlab/error.h"
 #include "pbrlab/log.h"
 #include "pbrlab/texgen.h"
@@ -93,13 +94,13 @@ StudentSource studentSource(const std::string& dir, bool cumulative, const std::
     return s;
 }
 
-void writeOutput(LabRenderer& renderer, const ModuleDesc& m, const RenderResult& r,
+void writeOutput(const ModuleDesc& m, const RenderResult& r,
                  const fs::path& out) {
     std::string ext = out.extension().string();
     if (ext == ".exr") {
         writeImage(out, r.value, FileDepth::Float32);
     } else if (ext == ".png") {
-        writeImage(out, renderer.display(m), FileDepth::Uint8, true);
+        writeImage(out, displayImage(r.value, m.display, m.components), FileDepth::Uint8, true);
     } else {
         throw Error("--out " + out.string() + ": use a .png (display) or .exr (linear) file");
     }
@@ -131,7 +132,7 @@ int runRender(const Options& o, const std::string& id, const std::string& submis
     RenderResult r = probe ? session.renderer->renderProbe(*&m, values, scene, source)
                            : session.renderer->renderScene(m, values, scene, source, s.width,
                                                            s.height, false);
-    writeOutput(*session.renderer, *m.desc, r, out);
+    writeOutput(*m.desc, r, out);
     std::cout << "wrote " << out << " (" << r.value.width << "x" << r.value.height << ", view "
               << r.milliseconds << " ms)\n";
     if (o.stats) printStats();
@@ -194,7 +195,7 @@ int runGallery(const Options& o, const std::string& outDir, const std::string& s
             Scene scene = loadScene(session.paths.scene(m.desc->scene));
             auto r = session.renderer->renderScene(m, ParamValues(m.desc->params), scene, {},
                                                    s.width, s.height, false);
-            writeOutput(*session.renderer, *m.desc, r, fs::path(outDir) / name);
+            writeOutput(*m.desc, r, fs::path(outDir) / name);
             html << "<figure><img src=\"" << name << "\" width=256><figcaption>"
                  << m.desc->step << ". " << m.desc->title << "</figcaption></figure>\n";
             std::cout << "wrote " << (fs::path(outDir) / name).string() << "\n";

@@ -163,7 +163,10 @@ void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int
 double LabRenderer::runView(const LoadedModule& module, const ParamValues& params,
                             const Scene& scene, const StudentSource& source, bool probe,
                             const std::vector<GLuint>& inputs, int width, int height) {
-    auto program = programs_.get(viewRecipe(module, source, probe, int(scene.lights.size())));
+    // reloadIfChanged: an edited student file is recompiled; if that fails, the error is thrown
+    // and the last good program stays cached for the next call.
+    auto program =
+        programs_.reloadIfChanged(viewRecipe(module, source, probe, int(scene.lights.size())));
     if (!valueTarget_ || valueTarget_->width() != width || valueTarget_->height() != height)
         valueTarget_ = std::make_unique<gl::RenderTarget>(width, height, 1, false);
     valueTarget_->bind();
@@ -269,30 +272,6 @@ RenderResult LabRenderer::renderSurfaces(const LoadedModule& module, const Param
     result.value = valueTarget_->read(0);
     result.surfaces = unpackSurfaces(packed, {}, {});
     return result;
-}
-
-Image LabRenderer::display(const ModuleDesc& module) {
-    if (!valueTarget_) throw Error("display: nothing rendered yet");
-    const int w = valueTarget_->width(), h = valueTarget_->height();
-    if (!displayTarget_ || displayTarget_->width() != w || displayTarget_->height() != h)
-        displayTarget_ = std::make_unique<gl::RenderTarget>(w, h, 1, false);
-    ProgramRecipe recipe;
-    recipe.vertex = {paths_.shaders() / "fullscreen.vert"};
-    recipe.fragment = {paths_.shaders() / "display.frag"};
-    auto program = programs_.get(recipe);
-    displayTarget_->bind();
-    program->use();
-    gl::ActiveTexture(GL_TEXTURE0);
-    gl::BindTexture(GL_TEXTURE_2D, valueTarget_->colorTexture(0));
-    program->set("uValue", 0);
-    program->set("uMode", int(module.display.mode));
-    program->set("uLo", float(module.display.lo));
-    program->set("uHi", float(module.display.hi));
-    program->set("uLogScale", module.display.logScale ? 1 : 0);
-    program->set("uComponents", module.components);
-    fullscreen_.draw();
-    gl::checkError("display pass");
-    return displayTarget_->read(0);
 }
 
 }  // namespace pbrlab

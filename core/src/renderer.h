@@ -1,5 +1,5 @@
 // Runs a module on the GPU: the G-buffer pass for a scene (or uploaded probe inputs), the
-// module's view over them into a float target, and the display pass for people.
+// module's view over them into a float target, read back for comparison and display.
 #pragma once
 
 #include <filesystem>
@@ -62,9 +62,6 @@ public:
                                 const Scene& scene, const StudentSource& source,
                                 const std::vector<Surface>& surfaces, int width, int height);
 
-    // Display-encodes the value produced by the last render (RGBA, [0, 1]).
-    Image display(const ModuleDesc& module);
-    GLuint displayTexture() const { return displayTarget_ ? displayTarget_->colorTexture(0) : 0; }
 
     ProgramCache& programs() { return programs_; }
 
@@ -78,7 +75,7 @@ private:
     DataPaths paths_;
     ProgramCache programs_;
     gl::FullscreenTriangle fullscreen_;
-    std::unique_ptr<gl::RenderTarget> gbuffer_, valueTarget_, displayTarget_;
+    std::unique_ptr<gl::RenderTarget> gbuffer_, valueTarget_;
     std::map<std::string, std::unique_ptr<gl::GpuMesh>> meshes_;
     std::map<std::filesystem::path, gl::Handle> textures_;
     std::vector<gl::Handle> probeInputs_;

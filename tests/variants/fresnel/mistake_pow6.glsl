@@ -1,0 +1,5 @@
+// mistake: exponent typo, (1 - cos)^6 instead of ^5
+vec3 fresnelSchlick(float cosTheta, vec3 F0)
+{
+    return F0 + (1.0 - F0) * pow(clamp(1.0 - cosTheta, 0.0, 1.0), 6.0);
+}

@@ -1,0 +1,5 @@
+// mistake: abs(N.L) lights the surface from both sides
+float lambertCosine(vec3 N, vec3 L)
+{
+    return abs(dot(N, L));
+}

@@ -1,0 +1,5 @@
+// mistake: no clamp on N.L, light from below the surface subtracts energy
+float lambertCosine(vec3 N, vec3 L)
+{
+    return dot(N, L);
+}

@@ -1,0 +1,5 @@
+// mistake: no attenuation at all (treated like a directional light)
+vec3 pointLightRadiance(vec3 lightColor, vec3 lightPos, vec3 worldPos)
+{
+    return lightColor;
+}

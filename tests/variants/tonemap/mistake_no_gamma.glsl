@@ -1,0 +1,6 @@
+// mistake: Reinhard only, the display encoding (gamma 1/2.2) is missing
+vec3 displayEncode(vec3 hdr)
+{
+    vec3 c = max(hdr, vec3(0.0));
+    return c / (c + 1.0);
+}
