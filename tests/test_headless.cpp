@@ -83,3 +83,35 @@ TEST(Headless, NdotlLoadsNoTextures) {
     EXPECT_EQ(eventCount(Counter::TextureLoads), 0);
     EXPECT_EQ(eventCount(Counter::PrecomputePasses), 0);
 }
+
+TEST(Headless, HotReloadKeepsTheLastGoodProgramWhenAnEditBreaksIt) {
+    Headless h;
+    test::TempDir kit;
+    auto file = kit.write("ndotl.glsl",
+                          "float lambertCosine(vec3 N, vec3 L) { return max(dot(N, L), 0.0); }\n");
+    const LoadedModule& m = h.modules.find("ndotl");
+    Scene scene = loadScene(h.paths.scene("sphere"));
+    ParamValues params(m.desc->params);
+    Image good = h.renderer.renderScene(m, params, scene, {kit.path}, 64, 64, false).value;
+
+    // The student saves a broken file (a newer time stamp than the good one).
+    kit.write("ndotl.glsl", "float lambertCosine(vec3 N, vec3 L) {\n  return oops;\n}\n");
+    std::filesystem::last_write_time(
+        file, std::filesystem::last_write_time(file) + std::chrono::seconds(2));
+    try {
+        h.renderer.renderScene(m, params, scene, {kit.path}, 64, 64, false);
+        FAIL() << "broken file compiled";
+    } catch (const ShaderError& e) {
+        EXPECT_NE(std::string(e.what()).find(file.string() + ":2"), std::string::npos) << e.what();
+    }
+    // The next frame renders with the last good program: the same image as before.
+    Image again = h.renderer.renderScene(m, params, scene, {kit.path}, 64, 64, false).value;
+    EXPECT_EQ(again.pixels, good.pixels);
+
+    // A fixed file is picked up again.
+    kit.write("ndotl.glsl", "float lambertCosine(vec3 N, vec3 L) { return 0.5; }\n");
+    std::filesystem::last_write_time(
+        file, std::filesystem::last_write_time(file) + std::chrono::seconds(4));
+    Image fixed = h.renderer.renderScene(m, params, scene, {kit.path}, 64, 64, false).value;
+    EXPECT_NE(fixed.pixels, good.pixels);
+}

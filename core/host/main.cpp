@@ -13,6 +13,7 @@
 
 #include "check.h"
 #include "gl/context.h"
+#include "gui/gui.h"
 #include "pbrlab/contract.h"
 #include "pbrlab/display.h"
 #include "pbrlab/error.h"
@@ -39,6 +40,12 @@ struct Options {
     bool stats = false;
 };
 
+fs::path modulesDir(const Options& o) {
+    if (!o.modulesDir.empty()) return o.modulesDir;
+    const char* env = std::getenv("PBRLAB_MODULES");
+    return env && *env ? fs::path(env) : executableDir() / "modules";
+}
+
 // What every command that renders needs, made in the right order (context before GL use).
 struct Session {
     std::unique_ptr<GlContext> context;
@@ -47,12 +54,7 @@ struct Session {
     std::unique_ptr<LabRenderer> renderer;
 
     explicit Session(const Options& o, bool needGl = true) {
-        fs::path dir = o.modulesDir;
-        if (dir.empty()) {
-            const char* env = std::getenv("PBRLAB_MODULES");
-            dir = env && *env ? fs::path(env) : executableDir() / "modules";
-        }
-        modules = std::make_unique<ModuleRegistry>(dir, paths.labs());
+        modules = std::make_unique<ModuleRegistry>(modulesDir(o), paths.labs());
         for (const auto& f : modules->failures())
             std::cerr << "warning: module " << f.library.string() << " not loaded: " << f.reason
                       << "\n";
@@ -94,8 +96,7 @@ StudentSource studentSource(const std::string& dir, bool cumulative, const std::
     return s;
 }
 
-void writeOutput(const ModuleDesc& m, const RenderResult& r,
-                 const fs::path& out) {
+void writeOutput(const ModuleDesc& m, const RenderResult& r, const fs::path& out) {
     std::string ext = out.extension().string();
     if (ext == ".exr") {
         writeImage(out, r.value, FileDepth::Float32);
@@ -129,9 +130,9 @@ int runRender(const Options& o, const std::string& id, const std::string& submis
     Size s = parseSize(size);
     Scene scene = loadScene(session.paths.scene(sceneName.empty() ? m.desc->scene : sceneName));
     StudentSource source = studentSource(submission, cumulative, id);
-    RenderResult r = probe ? session.renderer->renderProbe(*&m, values, scene, source)
-                           : session.renderer->renderScene(m, values, scene, source, s.width,
-                                                           s.height, false);
+    RenderResult r =
+        probe ? session.renderer->renderProbe(*&m, values, scene, source)
+              : session.renderer->renderScene(m, values, scene, source, s.width, s.height, false);
     writeOutput(*m.desc, r, out);
     std::cout << "wrote " << out << " (" << r.value.width << "x" << r.value.height << ", view "
               << r.milliseconds << " ms)\n";
@@ -150,8 +151,8 @@ int runCheck(const Options& o, const std::string& id, const std::string& submiss
     CheckResult r = checkModule(*session.renderer, m, values, scene,
                                 studentSource(submission, cumulative, id), s.width, s.height);
     const Tolerance& t = m.desc->tolerance;
-    std::cout << id << " scene (" << scene.file.filename().string() << "): "
-              << describe(r.scene, t) << "\n"
+    std::cout << id << " scene (" << scene.file.filename().string() << "): " << describe(r.scene, t)
+              << "\n"
               << id << " probe (x: " << m.desc->probe.xAxis << "; y: " << m.desc->probe.yAxis
               << "): " << describe(r.probe, t) << "\n"
               << id << ": " << (r.passed ? "PASS" : "FAIL") << "\n";
@@ -161,8 +162,8 @@ int runCheck(const Options& o, const std::string& id, const std::string& submiss
 
 int runStability(const Options& o, const std::vector<std::string>& ids) {
     Session session(o);
-    std::printf("%-12s %8s %8s %8s %8s %10s %10s  %s\n", "module", "gpu NaN", "gpu Inf",
-                "gpu neg", "ref bad", "max err", "mean err", "first problem");
+    std::printf("%-12s %8s %8s %8s %8s %10s %10s  %s\n", "module", "gpu NaN", "gpu Inf", "gpu neg",
+                "ref bad", "max err", "mean err", "first problem");
     int bad = 0;
     for (const auto& m : session.modules->modules()) {
         if (!ids.empty() && std::find(ids.begin(), ids.end(), m.desc->id) == ids.end()) continue;
@@ -171,9 +172,9 @@ int runStability(const Options& o, const std::vector<std::string>& ids) {
         int negatives = m.desc->nonNegative ? r.gpu.negativeCount : 0;
         int refBad = r.referenceNonFinite + r.referenceNegative;
         bad += r.gpu.nonFinite() + negatives + refBad;
-        std::printf("%-12s %8d %8d %8d %8d %10.3g %10.3g  %s\n", m.desc->id.c_str(),
-                    r.gpu.nanCount, r.gpu.infCount, negatives, refBad, r.gpu.maxError,
-                    r.gpu.meanError, r.firstProblem.empty() ? "-" : r.firstProblem.c_str());
+        std::printf("%-12s %8d %8d %8d %8d %10.3g %10.3g  %s\n", m.desc->id.c_str(), r.gpu.nanCount,
+                    r.gpu.infCount, negatives, refBad, r.gpu.maxError, r.gpu.meanError,
+                    r.firstProblem.empty() ? "-" : r.firstProblem.c_str());
     }
     std::printf("(%zu extreme inputs per module; error = |gpu - ref| / max(|ref|, module floor))\n",
                 extremeSurfaces().labels.size());
@@ -196,8 +197,8 @@ int runGallery(const Options& o, const std::string& outDir, const std::string& s
             auto r = session.renderer->renderScene(m, ParamValues(m.desc->params), scene, {},
                                                    s.width, s.height, false);
             writeOutput(*m.desc, r, fs::path(outDir) / name);
-            html << "<figure><img src=\"" << name << "\" width=256><figcaption>"
-                 << m.desc->step << ". " << m.desc->title << "</figcaption></figure>\n";
+            html << "<figure><img src=\"" << name << "\" width=256><figcaption>" << m.desc->step
+                 << ". " << m.desc->title << "</figcaption></figure>\n";
             std::cout << "wrote " << (fs::path(outDir) / name).string() << "\n";
         } catch (const Error& e) {
             ++failures;
@@ -242,9 +243,26 @@ int main(int argc, char** argv) {
     auto* check = app.add_subcommand(
         "check", "Compare a module on the GPU with its CPU reference (scene and probe)");
     addCommon(check);
+    GuiOptions gui;
+    std::string guiSize = "1600x960";
+    auto* guiCmd = app.add_subcommand("gui", "Open the interactive lab (needs a display)");
+    guiCmd->add_option("--submission", gui.submission,
+                       "Student folder with <id>.glsl files (default: the current directory "
+                       "when it holds any)");
+    guiCmd->add_option("--module", gui.module, "Start on this module id");
+    guiCmd->add_option("--view", gui.view,
+                       "student|solution|reference|difference|split, or a term view (albedo, "
+                       "roughness, metallic, ao, normal, N.L, D, G, F, kS, kD, diffuse, specular)");
+    guiCmd->add_option("--scene", gui.scene, "Scene name in assets/scenes");
+    guiCmd->add_option("--set", gui.sets, "Parameter name=value for the start module (repeatable)");
+    guiCmd->add_option("--frames", gui.frames, "Render this many frames, then exit");
+    guiCmd->add_option("--screenshot", gui.screenshot,
+                       "With --frames: save the window to this PNG");
+    guiCmd->add_option("--size", guiSize, "Window size WxH (default 1600x960)");
     std::vector<std::string> stabilityIds;
     auto* stability = app.add_subcommand(
-        "stability", "Run every module (or the given ids) on the extreme inputs: NaN/Inf/negatives");
+        "stability",
+        "Run every module (or the given ids) on the extreme inputs: NaN/Inf/negatives");
     stability->add_option("ids", stabilityIds, "Module ids (default: all)");
     std::string texturesDir;
     int textureSize = 256;
@@ -269,6 +287,13 @@ int main(int argc, char** argv) {
         if (*check) return runCheck(o, id, submission, cumulative, sets, size, scene);
         if (*gallery) return runGallery(o, galleryDir, size);
         if (*stability) return runStability(o, stabilityIds);
+        if (*guiCmd) {
+            Size s = parseSize(guiSize);
+            gui.width = s.width;
+            gui.height = s.height;
+            gui.modulesDir = modulesDir(o);
+            return runGui(gui);
+        }
         if (*textures) {
             generateMetalPlates(texturesDir, textureSize);
             std::cout << "wrote albedo, roughness, metallic, ao and normal maps to " << texturesDir

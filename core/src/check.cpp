@@ -6,7 +6,8 @@ ReferenceContext referenceContext(const Scene& scene, const ParamValues& params)
     ReferenceContext context{params, {}, glm::dvec3(glm::vec3(scene.camera.position))};
     // The shader received float uniforms; so does the reference.
     for (const auto& l : scene.lights)
-        context.lights.push_back({glm::dvec3(glm::vec3(l.position)), glm::dvec3(glm::vec3(l.color))});
+        context.lights.push_back(
+            {glm::dvec3(glm::vec3(l.position)), glm::dvec3(glm::vec3(l.color))});
     return context;
 }
 

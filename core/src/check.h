@@ -16,7 +16,7 @@ struct CheckResult {
 ReferenceContext referenceContext(const Scene& scene, const ParamValues& params);
 
 CheckResult checkModule(LabRenderer& renderer, const LoadedModule& module,
-                        const ParamValues& params, const Scene& scene,
-                        const StudentSource& source, int width, int height);
+                        const ParamValues& params, const Scene& scene, const StudentSource& source,
+                        int width, int height);
 
 }  // namespace pbrlab

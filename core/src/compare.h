@@ -26,8 +26,8 @@ struct ErrorStats {
 
 // Evaluates `module.reference` on every covered surface and compares with `gpu`.
 ErrorStats compareWithReference(const Image& gpu, const std::vector<Surface>& surfaces,
-                                 const ModuleDesc& module, const ReferenceContext& context,
-                                 std::vector<glm::dvec3>* referenceOut = nullptr);
+                                const ModuleDesc& module, const ReferenceContext& context,
+                                std::vector<glm::dvec3>* referenceOut = nullptr);
 
 std::string describe(const ErrorStats& s, const Tolerance& t);
 

@@ -62,15 +62,13 @@ ParamDecl colorParam(std::string name, glm::dvec3 def, std::string desc, double 
     d.defaultValue = def;
     return d;
 }
-ParamDecl enumParam(std::string name, int def, std::vector<std::string> choices,
-                    std::string desc) {
+ParamDecl enumParam(std::string name, int def, std::vector<std::string> choices, std::string desc) {
     ParamDecl d = floatParam(std::move(name), def, 0, double(choices.size()) - 1, std::move(desc));
     d.type = ParamType::Enum;
     d.choices = std::move(choices);
     return d;
 }
-ParamDecl directionParam(std::string name, glm::dvec3 def, std::string desc,
-                         ParamBinding binding) {
+ParamDecl directionParam(std::string name, glm::dvec3 def, std::string desc, ParamBinding binding) {
     ParamDecl d = floatParam(std::move(name), 0, -1, 1, std::move(desc));
     d.type = ParamType::Direction;
     d.defaultValue = glm::normalize(def);
@@ -82,10 +80,14 @@ std::string ParamDecl::typeName() const {
     switch (type) {
         case ParamType::Float:
             return "float in [" + num(min) + ", " + num(max) + "]" + (logScale ? " (log)" : "");
-        case ParamType::Int: return "integer in [" + num(min) + ", " + num(max) + "]";
-        case ParamType::Bool: return "true|false";
-        case ParamType::Color: return "colour r,g,b each in [0, " + num(max) + "]";
-        case ParamType::Direction: return "direction x,y,z (not all zero; normalised)";
+        case ParamType::Int:
+            return "integer in [" + num(min) + ", " + num(max) + "]";
+        case ParamType::Bool:
+            return "true|false";
+        case ParamType::Color:
+            return "colour r,g,b each in [0, " + num(max) + "]";
+        case ParamType::Direction:
+            return "direction x,y,z (not all zero; normalised)";
         case ParamType::Enum: {
             std::string s = "one of ";
             for (size_t i = 0; i < choices.size(); ++i) s += (i ? "|" : "") + choices[i];
@@ -97,12 +99,17 @@ std::string ParamDecl::typeName() const {
 
 std::string ParamDecl::format(const glm::dvec3& v) const {
     switch (type) {
-        case ParamType::Float: return num(v.x);
-        case ParamType::Int: return num(std::round(v.x));
-        case ParamType::Bool: return v.x != 0 ? "true" : "false";
-        case ParamType::Enum: return choices.at(size_t(v.x));
+        case ParamType::Float:
+            return num(v.x);
+        case ParamType::Int:
+            return num(std::round(v.x));
+        case ParamType::Bool:
+            return v.x != 0 ? "true" : "false";
+        case ParamType::Enum:
+            return choices.at(size_t(v.x));
         case ParamType::Color:
-        case ParamType::Direction: return num(v.x) + "," + num(v.y) + "," + num(v.z);
+        case ParamType::Direction:
+            return num(v.x) + "," + num(v.y) + "," + num(v.z);
     }
     return "?";
 }
@@ -111,7 +118,9 @@ ParamValues::ParamValues(const std::vector<ParamDecl>& decls) {
     for (const auto& d : decls) values_[d.name] = d.defaultValue;
 }
 
-double ParamValues::number(const std::string& name) const { return vector(name).x; }
+double ParamValues::number(const std::string& name) const {
+    return vector(name).x;
+}
 
 glm::dvec3 ParamValues::vector(const std::string& name) const {
     auto it = values_.find(name);
@@ -174,8 +183,9 @@ void applyAssignment(const std::vector<ParamDecl>& decls, ParamValues& values,
         }
     std::string known;
     for (const auto& d : decls) known += "\n  " + d.name + ": " + d.typeName();
-    throw Error("unknown parameter '" + name + "'" +
-                (known.empty() ? "; this module has no parameters" : "; known parameters:" + known));
+    throw Error(
+        "unknown parameter '" + name + "'" +
+        (known.empty() ? "; this module has no parameters" : "; known parameters:" + known));
 }
 
 }  // namespace pbrlab

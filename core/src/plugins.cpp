@@ -20,13 +20,11 @@ std::string validate(const ModuleDesc& d, const fs::path& sourceDir) {
     if (step->step != d.step)
         return "step " + std::to_string(d.step) + " should be " + std::to_string(step->step);
     if (step->function != d.function)
-        return "function '" + d.function + "' differs from the contract's '" + step->function +
-               "'";
+        return "function '" + d.function + "' differs from the contract's '" + step->function + "'";
     if (!d.reference) return "no CPU reference";
     if (!d.probe.at || d.probe.width < 2 || d.probe.height < 2) return "no probe";
     for (const char* file : {"solution.glsl", "view.glsl"})
-        if (!fs::exists(sourceDir / file))
-            return "missing " + (sourceDir / file).string();
+        if (!fs::exists(sourceDir / file)) return "missing " + (sourceDir / file).string();
     return {};
 }
 
@@ -63,8 +61,9 @@ ModuleRegistry::ModuleRegistry(const fs::path& moduleDir, const fs::path& labsRo
             fs::path sourceDir = step ? labsRoot / step->folder() : fs::path();
             reason = desc ? validate(*desc, sourceDir) : "pbrlab_module() returned null";
             if (reason.empty()) {
-                auto dup = std::find_if(modules_.begin(), modules_.end(),
-                                        [&](const LoadedModule& m) { return m.desc->id == desc->id; });
+                auto dup =
+                    std::find_if(modules_.begin(), modules_.end(),
+                                 [&](const LoadedModule& m) { return m.desc->id == desc->id; });
                 if (dup != modules_.end())
                     reason = "id '" + desc->id + "' already loaded from " + dup->library.string();
             }

@@ -89,8 +89,8 @@ GLuint LabRenderer::texture(const fs::path& file) {
     Image image = readImage(file);
     GLuint id = textures_.emplace(file, gl::uploadTexture(image, true)).first->second.id();
     countEvent(Counter::TextureLoads);
-    double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                    .count();
+    double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     logLine("texture", file.string() + " " + std::to_string(image.width) + "x" +
                            std::to_string(image.height) + " " +
                            std::to_string(image.sourceBitsPerChannel) + "-bit, " +
@@ -109,7 +109,8 @@ void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int
     gl::DepthFunc(GL_LESS);
 
     const Camera& cam = scene.camera;
-    glm::mat4 view = glm::lookAt(glm::vec3(cam.position), glm::vec3(cam.target), glm::vec3(0, 1, 0));
+    glm::mat4 view =
+        glm::lookAt(glm::vec3(cam.position), glm::vec3(cam.target), glm::vec3(0, 1, 0));
     glm::mat4 proj = glm::perspective(glm::radians(float(cam.fovY)), float(width) / float(height),
                                       0.05f, 200.0f);
     auto& sphere = meshes_["sphere"];
@@ -189,12 +190,18 @@ double LabRenderer::runView(const LoadedModule& module, const ParamValues& param
         glm::dvec3 v = params.vector(p.name);
         const std::string u = p.uniformName();
         switch (p.type) {
-            case ParamType::Float: program->set(u, float(v.x)); break;
+            case ParamType::Float:
+                program->set(u, float(v.x));
+                break;
             case ParamType::Int:
             case ParamType::Bool:
-            case ParamType::Enum: program->set(u, int(v.x)); break;
+            case ParamType::Enum:
+                program->set(u, int(v.x));
+                break;
             case ParamType::Color:
-            case ParamType::Direction: program->set(u, glm::vec3(v)); break;
+            case ParamType::Direction:
+                program->set(u, glm::vec3(v));
+                break;
         }
     }
     gl::Finish();
@@ -210,13 +217,15 @@ double LabRenderer::runView(const LoadedModule& module, const ParamValues& param
 namespace {
 
 // The scene's float-rounded camera and first light: what the shader saw.
-glm::dvec3 asFloat(const glm::dvec3& v) { return glm::dvec3(glm::vec3(v)); }
+glm::dvec3 asFloat(const glm::dvec3& v) {
+    return glm::dvec3(glm::vec3(v));
+}
 
 }  // namespace
 
 RenderResult LabRenderer::renderScene(const LoadedModule& module, const ParamValues& params,
-                                      const Scene& sceneIn, const StudentSource& source,
-                                      int width, int height, bool readSurfaces) {
+                                      const Scene& sceneIn, const StudentSource& source, int width,
+                                      int height, bool readSurfaces) {
     Scene scene = applyParamBindings(sceneIn, *module.desc, params);
     drawGBuffer(scene, module.desc->needs, width, height);
     std::vector<GLuint> inputs;
@@ -237,8 +246,8 @@ std::vector<Surface> probeSurfaces(const Probe& probe) {
     std::vector<Surface> grid;
     for (int y = 0; y < probe.height; ++y)
         for (int x = 0; x < probe.width; ++x)
-            grid.push_back(probe.at(double(x) / (probe.width - 1),
-                                    1.0 - double(y) / (probe.height - 1)));
+            grid.push_back(
+                probe.at(double(x) / (probe.width - 1), 1.0 - double(y) / (probe.height - 1)));
     return grid;
 }
 

@@ -53,15 +53,14 @@ public:
                              int lightCount) const;
 
     RenderResult renderScene(const LoadedModule& module, const ParamValues& params,
-                             const Scene& scene, const StudentSource& source, int width,
-                             int height, bool readSurfaces);
+                             const Scene& scene, const StudentSource& source, int width, int height,
+                             bool readSurfaces);
     RenderResult renderProbe(const LoadedModule& module, const ParamValues& params,
                              const Scene& scene, const StudentSource& source);
     // The view evaluated on arbitrary surfaces (width * height of them, row 0 = top).
     RenderResult renderSurfaces(const LoadedModule& module, const ParamValues& params,
                                 const Scene& scene, const StudentSource& source,
                                 const std::vector<Surface>& surfaces, int width, int height);
-
 
     ProgramCache& programs() { return programs_; }
 

@@ -25,7 +25,8 @@ struct Reader {
     glm::dvec3 vec3(const json& j, const std::string& field) const {
         if (!j.is_array() || j.size() != 3) fail(field, "expected [x, y, z]");
         glm::dvec3 v;
-        for (int i = 0; i < 3; ++i) v[i] = number(j[size_t(i)], field + "[" + std::to_string(i) + "]");
+        for (int i = 0; i < 3; ++i)
+            v[i] = number(j[size_t(i)], field + "[" + std::to_string(i) + "]");
         return v;
     }
     double unit(const json& j, const std::string& field) const {
@@ -47,7 +48,8 @@ struct Reader {
             if (!known) {
                 std::string list;
                 for (const char* k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
-                fail(field.empty() ? key : field + "." + key, "unknown field (known: " + list + ")");
+                fail(field.empty() ? key : field + "." + key,
+                     "unknown field (known: " + list + ")");
             }
         }
     }
@@ -96,7 +98,8 @@ Scene loadScene(const fs::path& file) {
     if (doc.contains("camera")) {
         const json& c = doc["camera"];
         r.onlyKnown(c, "camera", {"position", "target", "fov"});
-        if (c.contains("position")) scene.camera.position = r.vec3(c["position"], "camera.position");
+        if (c.contains("position"))
+            scene.camera.position = r.vec3(c["position"], "camera.position");
         if (c.contains("target")) scene.camera.target = r.vec3(c["target"], "camera.target");
         if (c.contains("fov")) scene.camera.fovY = r.number(c["fov"], "camera.fov");
         if (scene.camera.fovY <= 1 || scene.camera.fovY >= 179)
@@ -123,7 +126,8 @@ Scene loadScene(const fs::path& file) {
 
     std::vector<std::string> names;
     if (doc.contains("materials")) {
-        if (!doc["materials"].is_object()) r.fail("materials", "expected an object of name: material");
+        if (!doc["materials"].is_object())
+            r.fail("materials", "expected an object of name: material");
         for (const auto& [name, m] : doc["materials"].items()) {
             scene.materials.push_back(r.material(m, "materials." + name, name));
             names.push_back(name);

@@ -31,8 +31,12 @@ ExtremeSet extremeSurfaces() {
     for (double r : roughnesses)
         for (const auto& V : views)
             for (int l = 0; l < 6; ++l) {
-                glm::dvec3 L = l == 0 ? V : l == 1 ? -V : l == 2 ? side : l == 3 ? up
-                             : l == 4 ? below : glm::dvec3(0);
+                glm::dvec3 L = l == 0   ? V
+                               : l == 1 ? -V
+                               : l == 2 ? side
+                               : l == 3 ? up
+                               : l == 4 ? below
+                                        : glm::dvec3(0);
                 for (int m = 0; m < 4; ++m) {
                     Surface s;
                     s.normal = up;
@@ -79,7 +83,8 @@ ExtremeSet extremeSurfaces() {
         }
     // Normal mapping: flat, zero-length decoded normal, tangent parallel to N or zero.
     const glm::dvec4 tangents[] = {{1, 0, 0, 1}, {1, 0, 0, -1}, {0, 0, 1, 1}, {0, 0, 0, 1}};
-    const glm::dvec3 texels[] = {{0.5, 0.5, 1}, {0.5, 0.5, 0.5}, {0, 0, 0}, {1, 1, 1}, {1, 0.5, 0.5}};
+    const glm::dvec3 texels[] = {
+        {0.5, 0.5, 1}, {0.5, 0.5, 0.5}, {0, 0, 0}, {1, 1, 1}, {1, 0.5, 0.5}};
     for (const auto& t : tangents)
         for (const auto& n : texels) {
             Surface s;
@@ -88,8 +93,8 @@ ExtremeSet extremeSurfaces() {
             s.light = tilted;
             s.tangent = t;
             s.normalTexel = n;
-            add(s, "tangent " + vec(glm::dvec3(t)) + " w " + std::to_string(t.w) + " texel " +
-                       vec(n));
+            add(s,
+                "tangent " + vec(glm::dvec3(t)) + " w " + std::to_string(t.w) + " texel " + vec(n));
         }
     set.width = 32;
     set.height = int((set.surfaces.size() + 31) / 32);

@@ -9,17 +9,17 @@ namespace pbrlab {
 
 struct ExtremeSet {
     int width = 0, height = 0;
-    std::vector<Surface> surfaces;     // width * height; unused cells are not covered
-    std::vector<std::string> labels;   // what each covered cell is, for reports
+    std::vector<Surface> surfaces;    // width * height; unused cells are not covered
+    std::vector<std::string> labels;  // what each covered cell is, for reports
 };
 
 ExtremeSet extremeSurfaces();
 
 struct StabilityResult {
-    ErrorStats gpu;                 // GPU vs reference on the extreme set
-    int referenceNonFinite = 0;     // CPU reference NaN/Inf count (must be 0)
-    int referenceNegative = 0;      // negative reference values for a non-negative module
-    std::string firstProblem;       // label of the first cell where anything broke
+    ErrorStats gpu;              // GPU vs reference on the extreme set
+    int referenceNonFinite = 0;  // CPU reference NaN/Inf count (must be 0)
+    int referenceNegative = 0;   // negative reference values for a non-negative module
+    std::string firstProblem;    // label of the first cell where anything broke
 };
 
 StabilityResult stabilitySweep(LabRenderer& renderer, const LoadedModule& module,

@@ -11,7 +11,7 @@
 namespace pbrlab {
 
 constexpr int kGBufferTextures = 7;  // written by the G-buffer pass
-constexpr int kProbeTextures = 12;   // the G-buffer's seven plus V, L, light position, colour, extra
+constexpr int kProbeTextures = 12;  // the G-buffer's seven plus V, L, light position, colour, extra
 
 // Probe grid -> 12 RGBA images, row 0 = top (as everywhere on the CPU side).
 std::vector<Image> packSurfaces(const std::vector<Surface>& surfaces, int width, int height);

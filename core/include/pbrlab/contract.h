@@ -10,8 +10,8 @@ namespace pbrlab {
 struct ContractStep {
     int step;
     std::string id;
-    std::string lab;        // "direct" or "ibl"
-    std::string function;   // the GLSL signature
+    std::string lab;                 // "direct" or "ibl"
+    std::string function;            // the GLSL signature
     std::vector<std::string> calls;  // ids its reference solution calls
     std::string folder() const;      // "04-ndotl"
 };

@@ -89,18 +89,18 @@ enum SurfaceNeeds : unsigned {
 
 struct ModuleDesc {
     int abiVersion = kModuleAbiVersion;
-    std::string id;     // contract id, e.g. "ndotl"
-    int step = 0;       // contract step number (1..21): the lab order
-    std::string lab;    // "direct" or "ibl"
-    std::string title;  // one line for lists
+    std::string id;        // contract id, e.g. "ndotl"
+    int step = 0;          // contract step number (1..21): the lab order
+    std::string lab;       // "direct" or "ibl"
+    std::string title;     // one line for lists
     std::string function;  // the GLSL signature students implement
     std::vector<ParamDecl> params;
-    int components = 1;        // meaningful channels of the value: 1 (float), 2, or 3
-    bool nonNegative = true;   // a negative value is an error
+    int components = 1;       // meaningful channels of the value: 1 (float), 2, or 3
+    bool nonNegative = true;  // a negative value is an error
     Display display;
-    std::string scene = "sphere";      // default scene (assets/scenes/<name>.json)
-    unsigned needs = NeedsGeometry;    // SurfaceNeeds flags
-    std::vector<std::string> uses;     // other contract ids the view calls
+    std::string scene = "sphere";    // default scene (assets/scenes/<name>.json)
+    unsigned needs = NeedsGeometry;  // SurfaceNeeds flags
+    std::vector<std::string> uses;   // other contract ids the view calls
     Tolerance tolerance;
     ReferenceFn reference;
     Probe probe;
@@ -109,9 +109,11 @@ struct ModuleDesc {
 }  // namespace pbrlab
 
 // Exports the module from its shared library. `makeDesc` is a function returning ModuleDesc.
-#define PBRLAB_MODULE(makeDesc)                                                           \
-    extern "C" int pbrlab_module_abi() { return pbrlab::kModuleAbiVersion; }              \
-    extern "C" const pbrlab::ModuleDesc* pbrlab_module() {                                \
-        static const pbrlab::ModuleDesc desc = makeDesc();                                \
-        return &desc;                                                                     \
+#define PBRLAB_MODULE(makeDesc)                            \
+    extern "C" int pbrlab_module_abi() {                   \
+        return pbrlab::kModuleAbiVersion;                  \
+    }                                                      \
+    extern "C" const pbrlab::ModuleDesc* pbrlab_module() { \
+        static const pbrlab::ModuleDesc desc = makeDesc(); \
+        return &desc;                                      \
     }

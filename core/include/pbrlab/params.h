@@ -13,22 +13,22 @@ enum class ParamType { Float, Int, Bool, Color, Enum, Direction };
 
 // Where a value goes besides the uniform `u_<name>` of the module's view.
 enum class ParamBinding {
-    Uniform,          // only the uniform (and the CPU reference through ParamValues)
-    LightDirection,   // also moves the scene's first light to this direction from the origin
+    Uniform,         // only the uniform (and the CPU reference through ParamValues)
+    LightDirection,  // also moves the scene's first light to this direction from the origin
 };
 
 struct ParamDecl {
     std::string name;
     ParamType type = ParamType::Float;
     std::string description;
-    glm::dvec3 defaultValue{0};  // scalars in x; Enum: the index in x
-    double min = 0, max = 1;     // Float, Int, and each Color component
-    bool logScale = false;       // Float: slider in log space
+    glm::dvec3 defaultValue{0};        // scalars in x; Enum: the index in x
+    double min = 0, max = 1;           // Float, Int, and each Color component
+    bool logScale = false;             // Float: slider in log space
     std::vector<std::string> choices;  // Enum
     ParamBinding binding = ParamBinding::Uniform;
 
     std::string uniformName() const { return "u_" + name; }
-    std::string typeName() const;     // "float in [0, 1]", "one of a|b", ...
+    std::string typeName() const;                       // "float in [0, 1]", "one of a|b", ...
     std::string format(const glm::dvec3& value) const;  // as `--set` would take it
 };
 
@@ -37,8 +37,7 @@ ParamDecl floatParam(std::string name, double def, double min, double max, std::
 ParamDecl intParam(std::string name, int def, int min, int max, std::string desc);
 ParamDecl boolParam(std::string name, bool def, std::string desc);
 ParamDecl colorParam(std::string name, glm::dvec3 def, std::string desc, double max = 1);
-ParamDecl enumParam(std::string name, int def, std::vector<std::string> choices,
-                    std::string desc);
+ParamDecl enumParam(std::string name, int def, std::vector<std::string> choices, std::string desc);
 ParamDecl directionParam(std::string name, glm::dvec3 def, std::string desc,
                          ParamBinding binding = ParamBinding::Uniform);
 

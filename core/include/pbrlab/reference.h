@@ -14,10 +14,10 @@ using glm::dvec4;
 constexpr double kPi = 3.14159265358979323846;
 
 // Guards shared with the GLSL solutions (documented in the handouts).
-constexpr double kMinAlpha2 = 1e-7;          // GGX alpha^2 floor: roughness 0 stays finite
-constexpr double kMinDistance2 = 1e-4;       // point light: 1/d^2 capped at d = 1 cm
-constexpr double kSpecularDenomFloor = 1e-4; // max(4 N.V N.L, floor)
-constexpr double kAmbient = 0.03;            // reflectance: ambient = 0.03 * albedo * ao
+constexpr double kMinAlpha2 = 1e-7;           // GGX alpha^2 floor: roughness 0 stays finite
+constexpr double kMinDistance2 = 1e-4;        // point light: 1/d^2 capped at d = 1 cm
+constexpr double kSpecularDenomFloor = 1e-4;  // max(4 N.V N.L, floor)
+constexpr double kAmbient = 0.03;             // reflectance: ambient = 0.03 * albedo * ao
 
 struct PointLight {
     dvec3 position;
@@ -27,25 +27,25 @@ struct PointLight {
 // normalize(v), or `fallback` when |v|^2 is below 1e-12 (no direction to speak of).
 dvec3 safeNormalize(const dvec3& v, const dvec3& fallback);
 
-dvec3 srgbToLinear(const dvec3& c);                                            // 1 albedo
+dvec3 srgbToLinear(const dvec3& c);  // 1 albedo
 dvec3 pointLightRadiance(const dvec3& lightColor, const dvec3& lightPos,
-                         const dvec3& worldPos);                               // 2 radiance
-dvec3 halfwayVector(const dvec3& L, const dvec3& V);                           // 3 halfway
-double lambertCosine(const dvec3& N, const dvec3& L);                          // 4 ndotl
-double distributionGGX(const dvec3& N, const dvec3& H, double roughness);      // 5 ndf
-double geometrySchlickGGX(double NdotX, double roughness);                     // 6 g1
+                         const dvec3& worldPos);                           // 2 radiance
+dvec3 halfwayVector(const dvec3& L, const dvec3& V);                       // 3 halfway
+double lambertCosine(const dvec3& N, const dvec3& L);                      // 4 ndotl
+double distributionGGX(const dvec3& N, const dvec3& H, double roughness);  // 5 ndf
+double geometrySchlickGGX(double NdotX, double roughness);                 // 6 g1
 double geometrySmith(const dvec3& N, const dvec3& V, const dvec3& L,
-                     double roughness);                                        // 7 smith
-dvec3 baseReflectivity(const dvec3& albedo, double metallic);                  // 8 f0
-dvec3 fresnelSchlick(double cosTheta, const dvec3& F0);                        // 9 fresnel
+                     double roughness);                        // 7 smith
+dvec3 baseReflectivity(const dvec3& albedo, double metallic);  // 8 f0
+dvec3 fresnelSchlick(double cosTheta, const dvec3& F0);        // 9 fresnel
 dvec3 cookTorranceSpecular(const dvec3& N, const dvec3& V, const dvec3& L, const dvec3& F0,
-                           double roughness);                                  // 10 specular
+                           double roughness);  // 10 specular
 dvec3 cookTorranceBRDF(const dvec3& N, const dvec3& V, const dvec3& L, const dvec3& albedo,
-                       double metallic, double roughness);                     // 11 brdf
+                       double metallic, double roughness);  // 11 brdf
 dvec3 reflectedRadiance(const dvec3& P, const dvec3& N, const dvec3& V, const dvec3& albedo,
                         double metallic, double roughness, double ao, const PointLight* lights,
-                        int lightCount);                                       // 12 reflectance
-dvec3 displayEncode(const dvec3& hdr);                                         // 13 tonemap
-dvec3 normalFromMap(const dvec3& N, const dvec4& tangent, const dvec3& mapTexel); // 14 normalmap
+                        int lightCount);                                           // 12 reflectance
+dvec3 displayEncode(const dvec3& hdr);                                             // 13 tonemap
+dvec3 normalFromMap(const dvec3& N, const dvec4& tangent, const dvec3& mapTexel);  // 14 normalmap
 
 }  // namespace pbrlab::ref

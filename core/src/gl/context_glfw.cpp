@@ -15,7 +15,9 @@ std::string lastGlfwError() {
     return text ? text : "unknown reason";
 }
 
-void* getProc(const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); }
+void* getProc(const char* name) {
+    return reinterpret_cast<void*>(glfwGetProcAddress(name));
+}
 
 class GlfwContext final : public GlContext {
 public:

@@ -24,7 +24,9 @@ using GetProcAddressFn = void* (*)(const char*);
 
 GetProcAddressFn osmesaGetProcAddress = nullptr;
 
-void* getProc(const char* name) { return osmesaGetProcAddress(name); }
+void* getProc(const char* name) {
+    return osmesaGetProcAddress(name);
+}
 
 class OsMesaContext final : public GlContext {
 public:
@@ -34,17 +36,29 @@ public:
         if (!library_)
             throw Error(std::string("headless OpenGL unavailable: cannot load libOSMesa (") +
                         dlerror() + "); install the Debian package libosmesa6");
-        auto create = reinterpret_cast<CreateContextAttribsFn>(
-            dlsym(library_, "OSMesaCreateContextAttribs"));
+        auto create =
+            reinterpret_cast<CreateContextAttribsFn>(dlsym(library_, "OSMesaCreateContextAttribs"));
         makeCurrent_ = reinterpret_cast<MakeCurrentFn>(dlsym(library_, "OSMesaMakeCurrent"));
         destroy_ = reinterpret_cast<DestroyContextFn>(dlsym(library_, "OSMesaDestroyContext"));
         osmesaGetProcAddress =
             reinterpret_cast<GetProcAddressFn>(dlsym(library_, "OSMesaGetProcAddress"));
         if (!create || !makeCurrent_ || !destroy_ || !osmesaGetProcAddress)
             throw Error("headless OpenGL unavailable: libOSMesa lacks OSMesaCreateContextAttribs");
-        const int attribs[] = {kOsmesaFormat, 0x1908 /* GL_RGBA */, kOsmesaDepthBits, 24,
-                               kOsmesaStencilBits, 0, kOsmesaAccumBits, 0, kOsmesaProfile,
-                               kOsmesaCoreProfile, kOsmesaMajor, 4, kOsmesaMinor, 5, 0};
+        const int attribs[] = {kOsmesaFormat,
+                               0x1908 /* GL_RGBA */,
+                               kOsmesaDepthBits,
+                               24,
+                               kOsmesaStencilBits,
+                               0,
+                               kOsmesaAccumBits,
+                               0,
+                               kOsmesaProfile,
+                               kOsmesaCoreProfile,
+                               kOsmesaMajor,
+                               4,
+                               kOsmesaMinor,
+                               5,
+                               0};
         context_ = create(attribs, nullptr);
         if (!context_)
             throw Error("headless OpenGL unavailable: OSMesa could not create a 4.5 core context");
@@ -59,9 +73,8 @@ public:
         // The library stays loaded: llvmpipe threads may outlive the context briefly.
     }
     std::string description() const override {
-        return std::string("OSMesa: ") +
-               reinterpret_cast<const char*>(gl::GetString(GL_VERSION)) + ", " +
-               reinterpret_cast<const char*>(gl::GetString(GL_RENDERER));
+        return std::string("OSMesa: ") + reinterpret_cast<const char*>(gl::GetString(GL_VERSION)) +
+               ", " + reinterpret_cast<const char*>(gl::GetString(GL_RENDERER));
     }
 
 private:
@@ -74,6 +87,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<GlContext> createHeadlessContext() { return std::make_unique<OsMesaContext>(); }
+std::unique_ptr<GlContext> createHeadlessContext() {
+    return std::make_unique<OsMesaContext>();
+}
 
 }  // namespace pbrlab

@@ -9,8 +9,8 @@ PBRLAB_GL_FUNCTIONS(PBRLAB_GL_DEFINE)
 #undef PBRLAB_GL_DEFINE
 
 void loadFunctions(GetProcAddress getProc) {
-#define PBRLAB_GL_LOAD(type, name)                                                            \
-    name = reinterpret_cast<type>(getProc("gl" #name));                                       \
+#define PBRLAB_GL_LOAD(type, name)                      \
+    name = reinterpret_cast<type>(getProc("gl" #name)); \
     if (!name) throw Error("OpenGL entry point gl" #name " is missing from the active context");
     PBRLAB_GL_FUNCTIONS(PBRLAB_GL_LOAD)
 #undef PBRLAB_GL_LOAD

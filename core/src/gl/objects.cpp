@@ -44,10 +44,9 @@ Handle uploadTexture(const Image& image, bool mipmaps, GLenum internalFormat) {
     PixelStorei(GL_UNPACK_ALIGNMENT, 1);
     // Image row 0 goes to t = 0: with glTF's uv convention (v = 0 at the image top) the
     // picture comes out upright without flipping.
-    TexImage2D(GL_TEXTURE_2D, 0,
-               GLint(internalFormat ? internalFormat : floatFormats[image.channels - 1]),
-               image.width, image.height, 0, formats[image.channels - 1], GL_FLOAT,
-               image.pixels.data());
+    TexImage2D(
+        GL_TEXTURE_2D, 0, GLint(internalFormat ? internalFormat : floatFormats[image.channels - 1]),
+        image.width, image.height, 0, formats[image.channels - 1], GL_FLOAT, image.pixels.data());
     if (mipmaps) GenerateMipmap(GL_TEXTURE_2D);
     TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
                   mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST);
@@ -70,16 +69,14 @@ RenderTarget::RenderTarget(int width, int height, int colorCount, bool withDepth
         TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, tex.id(),
-                             0);
+        FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, tex.id(), 0);
         colors_.push_back(std::move(tex));
     }
     if (withDepth) {
         depth_ = makeRenderbuffer();
         BindRenderbuffer(GL_RENDERBUFFER, depth_.id());
         RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
-        FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
-                                depth_.id());
+        FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.id());
     }
     if (CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         throw Error("render target " + std::to_string(width) + "x" + std::to_string(height) +

@@ -76,8 +76,8 @@ struct Expander {
                     out.files.push_back(target);
                     expandText(readText(target), target.string(), target);
                 }
-                out.text += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(index) +
-                            "\n";
+                out.text +=
+                    "#line " + std::to_string(lineNo + 1) + " " + std::to_string(index) + "\n";
             } else if (std::regex_match(line, versionLine)) {
                 out.text += "\n";  // the host writes #version once, first
             } else {
@@ -117,8 +117,8 @@ std::string mapCompilerLog(const std::string& log, const std::vector<std::string
         result.append(begin, m[0].first);
         size_t index = std::stoul(m[2].str());
         std::string name = index < sourceNames.size() ? sourceNames[index] : m[2].str();
-        result += m[1].str() + name + ":" + (m[4].matched ? m[4].str() + "(" + m[5].str() + ")"
-                                                          : m[6].str());
+        result += m[1].str() + name + ":" +
+                  (m[4].matched ? m[4].str() + "(" + m[5].str() + ")" : m[6].str());
         begin = m[0].second;
     }
     result.append(begin, log.cend());

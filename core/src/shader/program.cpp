@@ -33,15 +33,16 @@ gl::Handle compile(GLenum stage, const ExpandedShader& source) {
     gl::CompileShader(shader.id());
     GLint ok = 0;
     gl::GetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
-    if (!ok)
-        throw ShaderError(mapCompilerLog(shaderLog(shader.id()), source.sourceNames));
+    if (!ok) throw ShaderError(mapCompilerLog(shaderLog(shader.id()), source.sourceNames));
     return shader;
 }
 
 std::string partsKey(const std::vector<ShaderPart>& parts) {
     std::string key;
-    for (const auto& p : parts) key += (p.text.empty() ? p.file.string() : p.name + "#" +
-                                        std::to_string(std::hash<std::string>{}(p.text))) + "|";
+    for (const auto& p : parts)
+        key += (p.text.empty() ? p.file.string()
+                               : p.name + "#" + std::to_string(std::hash<std::string>{}(p.text))) +
+               "|";
     return key;
 }
 
@@ -63,8 +64,12 @@ GLint Program::location(const std::string& name) const {
     return loc;
 }
 
-void Program::set(const std::string& name, float v) const { gl::Uniform1f(location(name), v); }
-void Program::set(const std::string& name, int v) const { gl::Uniform1i(location(name), v); }
+void Program::set(const std::string& name, float v) const {
+    gl::Uniform1f(location(name), v);
+}
+void Program::set(const std::string& name, int v) const {
+    gl::Uniform1i(location(name), v);
+}
 void Program::set(const std::string& name, const glm::vec2& v) const {
     gl::Uniform2f(location(name), v.x, v.y);
 }
@@ -118,11 +123,12 @@ std::shared_ptr<Program> ProgramCache::build(const ProgramRecipe& recipe) {
     countEvent(Counter::ProgramCompiles);
     std::vector<fs::path> files = vs.files;
     files.insert(files.end(), fs.files.begin(), fs.files.end());
-    logLine("compile", "program #" + std::to_string(compiles_) + " defines{" + [&] {
-        std::string d;
-        for (const auto& [n, v] : recipe.defines) d += (d.empty() ? "" : " ") + n + "=" + v;
-        return d;
-    }() + "}");
+    logLine(
+        "compile", "program #" + std::to_string(compiles_) + " defines{" + [&] {
+            std::string d;
+            for (const auto& [n, v] : recipe.defines) d += (d.empty() ? "" : " ") + n + "=" + v;
+            return d;
+        }() + "}");
     return std::make_shared<Program>(std::move(program), std::move(files));
 }
 

@@ -1,0 +1,1023 @@
+#include "gui.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "check.h"
+#include "gl/context.h"
+#include "handout.h"
+#include "pbrlab/contract.h"
+#include "pbrlab/display.h"
+#include "pbrlab/error.h"
+#include "pbrlab/log.h"
+
+namespace fs = std::filesystem;
+
+namespace pbrlab {
+
+namespace {
+
+constexpr int kRenderSize = 512;  // the lab image; scaled to fit the window
+constexpr int kStatusSize = 48;   // quick check behind the status badges
+
+enum class Status { Unknown, Missing, CompileError, Passes, Fails };
+
+const char* statusBadge(Status s) {
+    switch (s) {
+        case Status::Missing:
+            return "missing";
+        case Status::CompileError:
+            return "compile error";
+        case Status::Passes:
+            return "passes";
+        case Status::Fails:
+            return "fails";
+        default:
+            return "...";
+    }
+}
+
+ImVec4 statusColor(Status s) {
+    switch (s) {
+        case Status::Passes:
+            return {0.35f, 0.85f, 0.4f, 1};
+        case Status::Fails:
+            return {1.0f, 0.55f, 0.2f, 1};
+        case Status::CompileError:
+            return {1.0f, 0.3f, 0.3f, 1};
+        default:
+            return {0.6f, 0.6f, 0.6f, 1};
+    }
+}
+
+// The views: four images, a comparison, and term views computed from the G-buffer on the CPU.
+const std::vector<std::string> kViews = {
+    "student",  "solution", "reference", "difference",    "split",   "albedo", "roughness",
+    "metallic", "ao",       "normal",    "mapped normal", "N.L",     "D",      "G",
+    "F",        "kS",       "kD",        "diffuse",       "specular"};
+constexpr int kFirstTermView = 5;
+
+struct ModuleState {
+    ParamValues params;
+    Status status = Status::Unknown;
+    fs::file_time_type stamp{};
+    bool stampKnown = false;
+};
+
+fs::path configFile() {
+    const char* xdg = std::getenv("XDG_CONFIG_HOME");
+    const char* home = std::getenv("HOME");
+    fs::path base = xdg && *xdg ? fs::path(xdg) : fs::path(home ? home : ".") / ".config";
+    return base / "pbrlab" / "gui.json";
+}
+
+// A small 2D pad for directions: the disk is the hemisphere seen from +z (towards the
+// viewer); dragging sets x and y, z follows on the chosen side.
+bool directionPad(const char* id, glm::dvec3& dir) {
+    const float radius = 52;
+    ImVec2 origin = ImGui::GetCursorScreenPos();
+    ImVec2 centre(origin.x + radius, origin.y + radius);
+    ImGui::InvisibleButton(id, ImVec2(2 * radius, 2 * radius));
+    bool changed = false;
+    if (ImGui::IsItemActive()) {
+        ImVec2 m = ImGui::GetIO().MousePos;
+        glm::dvec2 p((m.x - centre.x) / radius, -(m.y - centre.y) / radius);
+        if (glm::length(p) > 1) p = glm::normalize(p);
+        double z = std::sqrt(std::max(0.0, 1 - glm::dot(p, p)));
+        dir = glm::dvec3(p, dir.z < 0 ? -z : z);
+        changed = true;
+    }
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    dl->AddCircleFilled(centre, radius, IM_COL32(40, 44, 52, 255));
+    dl->AddCircle(centre, radius, IM_COL32(120, 120, 130, 255));
+    dl->AddLine(ImVec2(centre.x - radius, centre.y), ImVec2(centre.x + radius, centre.y),
+                IM_COL32(70, 70, 80, 255));
+    dl->AddLine(ImVec2(centre.x, centre.y - radius), ImVec2(centre.x, centre.y + radius),
+                IM_COL32(70, 70, 80, 255));
+    ImVec2 dot(centre.x + float(dir.x) * radius, centre.y - float(dir.y) * radius);
+    if (dir.z >= 0)
+        dl->AddCircleFilled(dot, 5, IM_COL32(255, 210, 90, 255));
+    else
+        dl->AddCircle(dot, 5, IM_COL32(255, 210, 90, 255), 12, 2);
+    return changed;
+}
+
+class GuiApp {
+public:
+    explicit GuiApp(const GuiOptions& options) : options_(options) {
+        context_ = createWindowContext(options.width, options.height, "pbrlab");
+        paths_ = DataPaths::locate();
+        registry_ = std::make_unique<ModuleRegistry>(options.modulesDir, paths_.labs());
+        for (const auto& f : registry_->failures())
+            messages_ += "module " + f.library.string() + " not loaded: " + f.reason + "\n";
+        if (registry_->modules().empty())
+            throw Error("no modules in " + options.modulesDir.string());
+        renderer_ = std::make_unique<LabRenderer>(paths_);
+        submission_ = options.submission;
+        if (submission_.empty()) {
+            for (const auto& m : registry_->modules())
+                if (fs::exists(fs::current_path() / (m.desc->id + ".glsl")))
+                    submission_ = fs::current_path();
+        }
+        for (const auto& m : registry_->modules())
+            states_[m.desc->id].params = ParamValues(m.desc->params);
+        select(0);
+        loadState();
+        if (!options.module.empty()) select(indexOf(options.module));
+        if (!options.scene.empty()) sceneName_ = options.scene;
+        for (const auto& s : options.sets) applyAssignment(module().params, state().params, s);
+        if (!options.view.empty()) {
+            auto it = std::find(kViews.begin(), kViews.end(), options.view);
+            if (it == kViews.end()) {
+                std::string known;
+                for (const auto& v : kViews) known += (known.empty() ? "" : ", ") + v;
+                throw Error("--view " + options.view + ": unknown view; one of " + known);
+            }
+            view_ = int(it - kViews.begin());
+        }
+        if (options_.view.empty() && !studentFile().empty() && fs::exists(studentFile()))
+            view_ = 0;
+        else if (options_.view.empty())
+            view_ = 1;  // no student file: show the solution
+
+        IMGUI_CHECKVERSION();
+        ImGui::CreateContext();
+        ImGui::GetIO().IniFilename = nullptr;  // the layout is computed, not saved
+        styleUi();
+        ImGui_ImplGlfw_InitForOpenGL(context_->window(), true);
+        ImGui_ImplOpenGL3_Init("#version 450 core");
+        imageTexture_ = gl::makeTexture();
+    }
+
+    ~GuiApp() {
+        saveState();
+        imageTexture_.reset();
+        ImGui_ImplOpenGL3_Shutdown();
+        ImGui_ImplGlfw_Shutdown();
+        ImGui::DestroyContext();
+    }
+
+    int run() {
+        GLFWwindow* window = context_->window();
+        int frame = 0;
+        while (!glfwWindowShouldClose(window)) {
+            glfwPollEvents();
+            auto start = std::chrono::steady_clock::now();
+            update();
+            ImGui_ImplOpenGL3_NewFrame();
+            ImGui_ImplGlfw_NewFrame();
+            ImGui::NewFrame();
+            drawUi();
+            ImGui::Render();
+            int w = 0, h = 0;
+            glfwGetFramebufferSize(window, &w, &h);
+            gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
+            gl::Viewport(0, 0, w, h);
+            gl::ClearColor(0.08f, 0.08f, 0.09f, 1);
+            gl::Clear(GL_COLOR_BUFFER_BIT);
+            ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+            ++frame;
+            bool last = options_.frames > 0 && frame >= options_.frames;
+            if (screenshotRequested_ || (last && !options_.screenshot.empty())) {
+                fs::path file = last && !options_.screenshot.empty()
+                                    ? options_.screenshot
+                                    : fs::path("pbrlab-screenshot.png");
+                saveScreenshot(file, w, h);
+                screenshotRequested_ = false;
+            }
+            glfwSwapBuffers(window);
+            frameMs_ =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                    .count();
+            if (last) break;
+        }
+        return 0;
+    }
+
+private:
+    // ---- state ------------------------------------------------------------------------------
+    const LoadedModule& loaded() const { return registry_->modules()[size_t(current_)]; }
+    const ModuleDesc& module() const { return *loaded().desc; }
+    ModuleState& state() { return states_[module().id]; }
+    int indexOf(const std::string& id) const {
+        const auto& ms = registry_->modules();
+        for (size_t i = 0; i < ms.size(); ++i)
+            if (ms[i].desc->id == id) return int(i);
+        registry_->find(id);  // throws, listing the known ids
+        return 0;
+    }
+    void select(int index) {
+        current_ = std::clamp(index, 0, int(registry_->modules().size()) - 1);
+        sceneName_.clear();
+        plotRow_ = module().probe.height / 2;
+        lastStudentStamp_ = {};
+        loadScene();
+        handout_.clear();
+        std::ifstream in(loaded().sourceDir / "README.md");
+        std::stringstream s;
+        s << in.rdbuf();
+        handout_ = s.str();
+    }
+    fs::path studentFile() const {
+        return submission_.empty() ? fs::path() : submission_ / (module().id + ".glsl");
+    }
+    StudentSource studentSource() const { return {submission_, false}; }
+
+    void loadScene() {
+        if (registry_->modules().empty()) return;
+        std::string name = sceneName_.empty() ? module().scene : sceneName_;
+        try {
+            scene_ = pbrlab::loadScene(paths_.scene(name));
+            sceneError_.clear();
+        } catch (const Error& e) {
+            sceneError_ = e.what();  // keep the previous scene on screen
+        }
+        glm::dvec3 offset = scene_.camera.position - scene_.camera.target;
+        distance_ = glm::length(offset);
+        yaw_ = std::atan2(offset.x, offset.z);
+        pitch_ = std::asin(std::clamp(offset.y / distance_, -1.0, 1.0));
+        dirty_ = true;
+    }
+
+    Scene currentScene() const {
+        Scene s = scene_;
+        s.camera.position =
+            s.camera.target + distance_ * glm::dvec3(std::cos(pitch_) * std::sin(yaw_),
+                                                     std::sin(pitch_),
+                                                     std::cos(pitch_) * std::cos(yaw_));
+        return s;
+    }
+
+    void loadState() {
+        std::ifstream in(configFile());
+        if (!in) return;
+        try {
+            nlohmann::json j = nlohmann::json::parse(in);
+            const nlohmann::json& all = j.contains("params") ? j["params"] : nlohmann::json();
+            if (!all.is_object()) return;
+            for (auto& [id, params] : all.items()) {
+                auto it = states_.find(id);
+                if (it == states_.end()) continue;
+                for (auto& [name, value] : params.items()) try {
+                        applyAssignment(registry_->find(id).desc->params, it->second.params,
+                                        name + "=" + value.get<std::string>());
+                    } catch (const std::exception&) {
+                        // A value from an older version of the module: keep the default.
+                    }
+            }
+            if (j.contains("module") && options_.module.empty()) {
+                std::string id = j["module"].get<std::string>();
+                for (size_t i = 0; i < registry_->modules().size(); ++i)
+                    if (registry_->modules()[i].desc->id == id) select(int(i));
+            }
+        } catch (const std::exception& e) {
+            messages_ += configFile().string() + ": ignored (" + e.what() + ")\n";
+        }
+    }
+
+    void saveState() const {
+        nlohmann::json j;
+        j["module"] = module().id;
+        for (const auto& m : registry_->modules())
+            for (const auto& p : m.desc->params)
+                j["params"][m.desc->id][p.name] =
+                    p.format(states_.at(m.desc->id).params.vector(p.name));
+        std::error_code ec;
+        fs::create_directories(configFile().parent_path(), ec);
+        fs::path tmp = configFile();
+        tmp += ".tmp";
+        std::ofstream(tmp) << j.dump(2);
+        fs::rename(tmp, configFile(), ec);
+    }
+
+    // ---- work between frames ----------------------------------------------------------------
+    void update() {
+        // Hot reload: a saved student file marks the view dirty; the renderer recompiles it.
+        if (!studentFile().empty()) {
+            std::error_code ec;
+            auto stamp = fs::last_write_time(studentFile(), ec);
+            if (!ec && stamp != lastStudentStamp_) {
+                lastStudentStamp_ = stamp;
+                dirty_ = true;
+            }
+        }
+        if (dirty_) render();
+        updateOneStatus();
+    }
+
+    void render() {
+        dirty_ = false;
+        const LoadedModule& m = loaded();
+        Scene scene = currentScene();
+        ModuleState& st = state();
+        auto start = std::chrono::steady_clock::now();
+        try {
+            RenderResult solution =
+                renderer_->renderScene(m, st.params, scene, {}, kRenderSize, kRenderSize, true);
+            solutionValue_ = solution.value;
+            surfaces_ = solution.surfaces;
+            std::vector<glm::dvec3> reference;
+            Scene bound = applyParamBindings(scene, module(), st.params);
+            ReferenceContext context = referenceContext(bound, st.params);
+            solutionStats_ =
+                compareWithReference(solution.value, surfaces_, module(), context, &reference);
+            referenceValue_ = solution.value;
+            for (size_t i = 0; i < reference.size(); ++i)
+                for (int c = 0; c < 3; ++c)
+                    referenceValue_.pixels[i * 4 + size_t(c)] = float(reference[i][c]);
+            lights_ = context.lights;
+            probeSolution_ = renderer_->renderProbe(m, st.params, scene, {}).value;
+            renderError_.clear();
+        } catch (const Error& e) {
+            renderError_ = e.what();
+        }
+        hasStudent_ = !studentFile().empty() && fs::exists(studentFile());
+        bool rendered = false;
+        if (hasStudent_) {
+            for (int attempt = 0; attempt < 2; ++attempt) {
+                try {
+                    RenderResult student = renderer_->renderScene(
+                        m, st.params, scene, studentSource(), kRenderSize, kRenderSize, false);
+                    studentValue_ = student.value;
+                    Scene bound = applyParamBindings(scene, module(), st.params);
+                    studentStats_ = compareWithReference(student.value, surfaces_, module(),
+                                                         referenceContext(bound, st.params));
+                    probeStudent_ =
+                        renderer_->renderProbe(m, st.params, scene, studentSource()).value;
+                    if (attempt == 0) compileLog_.clear();
+                    rendered = true;
+                    break;
+                } catch (const ShaderError& e) {
+                    // The new file does not compile: show the log, and render once more with
+                    // the last good program (the cache kept it).
+                    compileLog_ = e.what();
+                    st.status = Status::CompileError;
+                } catch (const Error& e) {
+                    compileLog_ = e.what();
+                    break;
+                }
+            }
+        }
+        // No version of the student's file has compiled yet: nothing of theirs to show.
+        if (!rendered) studentValue_ = Image();
+        renderMs_ =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
+        compose();
+    }
+
+    // One module's badge per frame, so the window stays responsive.
+    void updateOneStatus() {
+        const auto& ms = registry_->modules();
+        for (size_t k = 0; k < ms.size(); ++k) {
+            statusCursor_ = (statusCursor_ + 1) % ms.size();
+            const LoadedModule& m = ms[statusCursor_];
+            ModuleState& st = states_[m.desc->id];
+            fs::path file = submission_.empty() ? fs::path() : submission_ / (m.desc->id + ".glsl");
+            std::error_code ec;
+            if (file.empty() || !fs::exists(file)) {
+                st.status = Status::Missing;
+                continue;
+            }
+            auto stamp = fs::last_write_time(file, ec);
+            if (st.stampKnown && stamp == st.stamp) continue;
+            st.stamp = stamp;
+            st.stampKnown = true;
+            try {
+                Scene scene = pbrlab::loadScene(paths_.scene(m.desc->scene));
+                CheckResult r = checkModule(*renderer_, m, st.params, scene, {submission_, false},
+                                            kStatusSize, kStatusSize);
+                st.status = r.passed ? Status::Passes : Status::Fails;
+            } catch (const ShaderError&) {
+                st.status = Status::CompileError;
+            } catch (const Error&) {
+                st.status = Status::Fails;
+            }
+            dirty_ = dirty_ || m.desc->id == module().id;
+            return;
+        }
+    }
+
+    // ---- images -----------------------------------------------------------------------------
+    Image termImage(int term) const {
+        Image out = solutionValue_;
+        const ModuleDesc& d = module();
+        for (size_t i = 0; i < surfaces_.size(); ++i) {
+            const Surface& s = surfaces_[i];
+            glm::dvec3 c(0);
+            glm::dvec3 H = ref::halfwayVector(s.light, s.view);
+            glm::dvec3 F0 = ref::baseReflectivity(s.albedo, s.metallic);
+            glm::dvec3 F = ref::fresnelSchlick(std::max(glm::dot(H, s.view), 0.0), F0);
+            glm::dvec3 radiance =
+                ref::pointLightRadiance(s.lightColor, s.lightPosition, s.position);
+            double NdotL = ref::lambertCosine(s.normal, s.light);
+            glm::dvec3 kD = (1.0 - F) * (1.0 - s.metallic);
+            switch (term) {
+                case 0:
+                    c = s.albedo;
+                    break;
+                case 1:
+                    c = glm::dvec3(s.roughness);
+                    break;
+                case 2:
+                    c = glm::dvec3(s.metallic);
+                    break;
+                case 3:
+                    c = glm::dvec3(s.ao);
+                    break;
+                case 4:
+                    c = 0.5 + 0.5 * s.normal;
+                    break;
+                case 5:
+                    c = 0.5 + 0.5 * ref::normalFromMap(s.normal, s.tangent, s.normalTexel);
+                    break;
+                case 6:
+                    c = glm::dvec3(NdotL);
+                    break;
+                case 7: {
+                    double D = ref::distributionGGX(s.normal, H, s.roughness);
+                    c = glm::dvec3(D / (1 + D));  // compresses the peak for display
+                    break;
+                }
+                case 8:
+                    c = glm::dvec3(ref::geometrySmith(s.normal, s.view, s.light, s.roughness));
+                    break;
+                case 9:
+                case 10:
+                    c = F;
+                    break;
+                case 11:
+                    c = kD;
+                    break;
+                case 12:
+                    c = kD * s.albedo / ref::kPi * radiance * NdotL;
+                    break;
+                case 13:
+                    c = ref::cookTorranceSpecular(s.normal, s.view, s.light, F0, s.roughness) *
+                        radiance * NdotL;
+                    break;
+            }
+            if (term == 0 || term >= 12) {  // linear colours and radiance: encode for display
+                Display hdr{term == 0 ? DisplayMode::LinearColor : DisplayMode::HdrColor};
+                c = displayColor(glm::dvec4(c, 1), hdr, 3);
+            }
+            for (int k = 0; k < 3; ++k)
+                out.pixels[i * 4 + size_t(k)] = s.covered ? float(c[k]) : 0.12f;
+            out.pixels[i * 4 + 3] = 1;
+        }
+        (void)d;
+        return out;
+    }
+
+    void compose() {
+        if (solutionValue_.pixels.empty()) return;
+        const ModuleDesc& d = module();
+        const Image& student = studentValue_.pixels.empty() ? solutionValue_ : studentValue_;
+        Image shown;
+        switch (view_) {
+            case 0:
+                shown = displayImage(student, d.display, d.components);
+                break;
+            case 1:
+                shown = displayImage(solutionValue_, d.display, d.components);
+                break;
+            case 2:
+                shown = displayImage(referenceValue_, d.display, d.components);
+                break;
+            case 3:
+                shown = differenceImage(student, referenceValue_, d.components, diffRange_);
+                break;
+            case 4: {
+                shown = displayImage(student, d.display, d.components);
+                Image ref = displayImage(referenceValue_, d.display, d.components);
+                int split = int(split_ * shown.width);
+                for (int y = 0; y < shown.height; ++y)
+                    for (int x = split; x < shown.width; ++x)
+                        for (int c = 0; c < 4; ++c)
+                            shown.at(x, y, c) = x == split ? 1.0f : ref.at(x, y, c);
+                break;
+            }
+            default:
+                shown = termImage(view_ - kFirstTermView);
+                break;
+        }
+        // Count what cannot be shown honestly, for the warning line.
+        nanCount_ = infCount_ = 0;
+        for (size_t i = 0; i + 3 < student.pixels.size(); i += 4)
+            for (int c = 0; c < d.components; ++c) {
+                nanCount_ += std::isnan(student.pixels[i + size_t(c)]);
+                infCount_ += std::isinf(student.pixels[i + size_t(c)]);
+            }
+        gl::BindTexture(GL_TEXTURE_2D, imageTexture_.id());
+        gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        // Row 0 of the image is its top; ImGui draws uv (0,0) at the top-left: no flip.
+        gl::TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, shown.width, shown.height, 0, GL_RGBA,
+                       GL_FLOAT, shown.pixels.data());
+        gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        imageWidth_ = shown.width;
+        imageHeight_ = shown.height;
+    }
+
+    void saveScreenshot(const fs::path& file, int w, int h) {
+        std::vector<unsigned char> rows(size_t(w) * h * 4);
+        gl::BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+        gl::ReadBuffer(GL_BACK);
+        gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
+        gl::ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+        Image image;
+        image.width = w;
+        image.height = h;
+        image.channels = 3;
+        image.pixels.resize(size_t(w) * h * 3);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                for (int c = 0; c < 3; ++c)
+                    image.at(x, y, c) = rows[(size_t(h - 1 - y) * w + x) * 4 + size_t(c)] / 255.0f;
+        try {
+            writeImage(file, image, FileDepth::Uint8, true);
+            messages_ += "screenshot: " + file.string() + "\n";
+            std::cout << "screenshot " << file.string() << " (" << w << "x" << h << ")\n";
+        } catch (const Error& e) {
+            messages_ += std::string(e.what()) + "\n";
+        }
+    }
+
+    // ---- UI -------------------------------------------------------------------------------
+    static void styleUi() {
+        ImGui::StyleColorsDark();
+        ImGuiStyle& s = ImGui::GetStyle();
+        s.WindowRounding = 0;
+        s.FrameRounding = 3;
+        s.GrabRounding = 3;
+        s.WindowBorderSize = 0;
+        s.ItemSpacing = ImVec2(8, 6);
+        s.Colors[ImGuiCol_WindowBg] = ImVec4(0.11f, 0.115f, 0.13f, 1);
+        s.Colors[ImGuiCol_Header] = ImVec4(0.24f, 0.32f, 0.45f, 1);
+        s.Colors[ImGuiCol_HeaderHovered] = ImVec4(0.30f, 0.40f, 0.56f, 1);
+    }
+
+    void drawUi() {
+        ImVec2 size = ImGui::GetIO().DisplaySize;
+        const float left = 250, right = 430;
+        const ImGuiWindowFlags fixed =
+            ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse;
+        ImGui::SetNextWindowPos(ImVec2(0, 0));
+        ImGui::SetNextWindowSize(ImVec2(left, size.y));
+        ImGui::Begin("Steps", nullptr, fixed);
+        drawModuleList();
+        ImGui::End();
+
+        ImGui::SetNextWindowPos(ImVec2(left, 0));
+        ImGui::SetNextWindowSize(ImVec2(size.x - left - right, size.y));
+        ImGui::Begin("View", nullptr, fixed | ImGuiWindowFlags_NoScrollbar);
+        drawViewport();
+        ImGui::End();
+
+        ImGui::SetNextWindowPos(ImVec2(size.x - right, 0));
+        ImGui::SetNextWindowSize(ImVec2(right, size.y));
+        ImGui::Begin("Module", nullptr, fixed);
+        drawSidePanel();
+        ImGui::End();
+    }
+
+    void drawModuleList() {
+        ImGui::TextDisabled("workspace");
+        ImGui::TextWrapped("%s", submission_.empty() ? "(no student folder: solutions only)"
+                                                     : submission_.string().c_str());
+        ImGui::Separator();
+        std::string lab;
+        const auto& ms = registry_->modules();
+        for (size_t i = 0; i < ms.size(); ++i) {
+            const ModuleDesc& d = *ms[i].desc;
+            if (d.lab != lab) {
+                lab = d.lab;
+                ImGui::Spacing();
+                ImGui::TextColored(ImVec4(1, 0.8f, 0.45f, 1), "lab: %s", lab.c_str());
+            }
+            ImGui::PushID(int(i));
+            char label[128];
+            std::snprintf(label, sizeof label, "%2d  %s", d.step, d.id.c_str());
+            if (ImGui::Selectable(label, int(i) == current_, 0, ImVec2(130, 0))) select(int(i));
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("%s\n%s", d.title.c_str(), d.function.c_str());
+            ImGui::SameLine(150);
+            Status s = states_[d.id].status;
+            ImGui::TextColored(statusColor(s), "%s", statusBadge(s));
+            ImGui::PopID();
+        }
+        ImGui::Spacing();
+        ImGui::Separator();
+        if (ImGui::Button("< previous")) select(current_ - 1);
+        ImGui::SameLine();
+        if (ImGui::Button("next >")) select(current_ + 1);
+        if (!messages_.empty()) {
+            ImGui::Separator();
+            ImGui::TextWrapped("%s", messages_.c_str());
+        }
+    }
+
+    void drawViewport() {
+        const ModuleDesc& d = module();
+        ImGui::Text("%d. %s", d.step, d.title.c_str());
+        ImGui::TextDisabled("%s", d.function.c_str());
+        ImGui::SetNextItemWidth(170);
+        if (ImGui::BeginCombo("view", kViews[size_t(view_)].c_str())) {
+            for (size_t i = 0; i < kViews.size(); ++i) {
+                if (i == size_t(kFirstTermView)) ImGui::Separator();
+                if (ImGui::Selectable(kViews[i].c_str(), int(i) == view_)) {
+                    view_ = int(i);
+                    compose();
+                }
+            }
+            ImGui::EndCombo();
+        }
+        if (view_ == 3) {
+            ImGui::SameLine();
+            ImGui::SetNextItemWidth(160);
+            if (ImGui::SliderFloat("range", &diffRange_, 1e-6f, 1.0f, "%.1e",
+                                   ImGuiSliderFlags_Logarithmic))
+                compose();
+        }
+        if (view_ == 4) {
+            ImGui::SameLine();
+            ImGui::SetNextItemWidth(160);
+            if (ImGui::SliderFloat("split", &split_, 0, 1)) compose();
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("screenshot")) screenshotRequested_ = true;
+        ImGui::SameLine();
+        ImGui::TextDisabled("frame %.1f ms, render %.0f ms", frameMs_, renderMs_);
+
+        if (studentValue_.pixels.empty() && (view_ == 0 || view_ == 3 || view_ == 4))
+            ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "%s",
+                               hasStudent_ ? "your file has not compiled yet: showing the solution"
+                                           : "no student file for this step: showing the solution");
+        if (!renderError_.empty())
+            ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "%s", renderError_.c_str());
+        if (nanCount_ + infCount_ > 0)
+            ImGui::TextColored(ImVec4(1, 0.3f, 1, 1),
+                               "%d NaN pixels (magenta), %d Inf pixels (cyan) in the student image",
+                               nanCount_, infCount_);
+
+        ImVec2 avail = ImGui::GetContentRegionAvail();
+        float legend = (view_ == 3 || d.display.mode == DisplayMode::FalseColor) ? 28 : 0;
+        float side = std::max(64.0f, std::min(avail.x - legend, avail.y - 150));
+        ImVec2 origin = ImGui::GetCursorScreenPos();
+        ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(imageTexture_.id())),
+                     ImVec2(side, side));
+        handleCamera(origin, side);
+        if (legend > 0) {
+            ImGui::SameLine();
+            drawLegend(view_ == 3 ? 0.0 : d.display.lo, view_ == 3 ? diffRange_ : d.display.hi,
+                       view_ != 3 && d.display.logScale, side);
+        }
+        drawStats();
+    }
+
+    void handleCamera(ImVec2 origin, float side) {
+        if (!ImGui::IsItemHovered()) return;
+        ImGuiIO& io = ImGui::GetIO();
+        if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
+            yaw_ -= io.MouseDelta.x * 0.01;
+            pitch_ = std::clamp(pitch_ + io.MouseDelta.y * 0.01, -1.5, 1.5);
+            dirty_ = true;
+        }
+        if (io.MouseWheel != 0) {
+            distance_ = std::clamp(distance_ * std::pow(0.9, io.MouseWheel), 1.2, 200.0);
+            dirty_ = true;
+        }
+        // Pixel inspector.
+        int x = int((io.MousePos.x - origin.x) / side * imageWidth_);
+        int y = int((io.MousePos.y - origin.y) / side * imageHeight_);
+        if (x < 0 || y < 0 || x >= imageWidth_ || y >= imageHeight_ ||
+            solutionValue_.pixels.empty())
+            return;
+        size_t i = size_t(y) * solutionValue_.width + x;
+        if (i >= surfaces_.size() || !surfaces_[i].covered) return;
+        const Surface& s = surfaces_[i];
+        auto value = [&](const Image& im) {
+            char buf[96];
+            std::snprintf(buf, sizeof buf, "%.6g %.6g %.6g", im.pixels[i * 4], im.pixels[i * 4 + 1],
+                          im.pixels[i * 4 + 2]);
+            return std::string(buf);
+        };
+        ImGui::BeginTooltip();
+        ImGui::Text("pixel (%d, %d)", x, y);
+        if (!studentValue_.pixels.empty())
+            ImGui::Text("student   %s", value(studentValue_).c_str());
+        ImGui::Text("solution  %s", value(solutionValue_).c_str());
+        ImGui::Text("reference %s", value(referenceValue_).c_str());
+        ImGui::Separator();
+        ImGui::Text("N (%.3f %.3f %.3f)  N.V %.3f  N.L %.3f", s.normal.x, s.normal.y, s.normal.z,
+                    glm::dot(s.normal, s.view), glm::dot(s.normal, s.light));
+        ImGui::Text("roughness %.3f  metallic %.3f  ao %.3f", s.roughness, s.metallic, s.ao);
+        ImGui::EndTooltip();
+    }
+
+    void drawLegend(double lo, double hi, bool logScale, float height) {
+        ImVec2 p = ImGui::GetCursorScreenPos();
+        ImDrawList* dl = ImGui::GetWindowDrawList();
+        const int steps = 64;
+        for (int i = 0; i < steps; ++i) {
+            glm::dvec3 c = falseColor(1.0 - (i + 0.5) / steps);
+            float y0 = p.y + height * i / steps, y1 = p.y + height * (i + 1) / steps;
+            dl->AddRectFilled(ImVec2(p.x, y0), ImVec2(p.x + 14, y1),
+                              IM_COL32(int(c.r * 255), int(c.g * 255), int(c.b * 255), 255));
+        }
+        char top[32], bottom[32];
+        std::snprintf(top, sizeof top, "%.2g", hi);
+        std::snprintf(bottom, sizeof bottom, "%.2g%s", lo, logScale ? " log" : "");
+        dl->AddText(ImVec2(p.x - 2, p.y - 14), IM_COL32(220, 220, 220, 255), top);
+        dl->AddText(ImVec2(p.x - 2, p.y + height + 1), IM_COL32(220, 220, 220, 255), bottom);
+        ImGui::Dummy(ImVec2(28, height));
+    }
+
+    void drawStats() {
+        const Tolerance& t = module().tolerance;
+        auto row = [&](const char* who, const ErrorStats& s) {
+            bool ok = s.passes(t, module().nonNegative);
+            ImGui::TextColored(ok ? ImVec4(0.4f, 0.9f, 0.45f, 1) : ImVec4(1, 0.5f, 0.3f, 1),
+                               "%-9s max err %.3g  mean %.3g  NaN %d  Inf %d  neg %d  %s", who,
+                               s.maxError, s.meanError, s.nanCount, s.infCount, s.negativeCount,
+                               ok ? "within tolerance" : "over tolerance");
+        };
+        ImGui::TextDisabled("vs CPU reference (tolerance %.3g, floor %.3g):", t.maxError, t.floor);
+        if (!studentValue_.pixels.empty()) row("student", studentStats_);
+        row("solution", solutionStats_);
+    }
+
+    void drawSidePanel() {
+        // Parameters stay in view; the handout, plot and log share the space below.
+        ImGui::BeginChild("parameters", ImVec2(0, ImGui::GetContentRegionAvail().y * 0.42f), true);
+        drawParams();
+        ImGui::Separator();
+        drawScenePanel();
+        ImGui::EndChild();
+        if (ImGui::BeginTabBar("tabs")) {
+            if (ImGui::BeginTabItem("Handout")) {
+                ImGui::BeginChild("handout");
+                drawHandout(handout_);
+                ImGui::EndChild();
+                ImGui::EndTabItem();
+            }
+            if (ImGui::BeginTabItem("Plot")) {
+                drawPlot();
+                ImGui::EndTabItem();
+            }
+            ImGuiTabItemFlags logFlags = compileLog_.empty() ? 0 : ImGuiTabItemFlags_SetSelected;
+            if (compileLog_ != shownLog_)
+                shownLog_ = compileLog_;
+            else
+                logFlags = 0;
+            if (ImGui::BeginTabItem(compileLog_.empty() ? "Log###log" : "Log (error)###log",
+                                    nullptr, logFlags)) {
+                drawLog();
+                ImGui::EndTabItem();
+            }
+            ImGui::EndTabBar();
+        }
+    }
+
+    void drawParams() {
+        const ModuleDesc& d = module();
+        ModuleState& st = state();
+        if (d.params.empty()) ImGui::TextDisabled("this step has no parameters");
+        for (const ParamDecl& p : d.params) {
+            ImGui::PushID(p.name.c_str());
+            glm::dvec3 v = st.params.vector(p.name);
+            bool changed = false;
+            switch (p.type) {
+                case ParamType::Float: {
+                    float f = float(v.x);
+                    changed =
+                        ImGui::SliderFloat(p.name.c_str(), &f, float(p.min), float(p.max), "%.4g",
+                                           p.logScale ? ImGuiSliderFlags_Logarithmic : 0);
+                    v.x = f;
+                    break;
+                }
+                case ParamType::Int: {
+                    int i = int(v.x);
+                    changed = ImGui::SliderInt(p.name.c_str(), &i, int(p.min), int(p.max));
+                    v.x = i;
+                    break;
+                }
+                case ParamType::Bool: {
+                    bool b = v.x != 0;
+                    changed = ImGui::Checkbox(p.name.c_str(), &b);
+                    v.x = b;
+                    break;
+                }
+                case ParamType::Enum: {
+                    int i = int(v.x);
+                    if (ImGui::BeginCombo(p.name.c_str(), p.choices[size_t(i)].c_str())) {
+                        for (size_t k = 0; k < p.choices.size(); ++k)
+                            if (ImGui::Selectable(p.choices[k].c_str(), int(k) == i)) {
+                                v.x = double(k);
+                                changed = true;
+                            }
+                        ImGui::EndCombo();
+                    }
+                    break;
+                }
+                case ParamType::Color: {
+                    float c[3] = {float(v.x), float(v.y), float(v.z)};
+                    changed = ImGui::ColorEdit3(
+                        p.name.c_str(), c,
+                        p.max > 1 ? ImGuiColorEditFlags_HDR | ImGuiColorEditFlags_Float : 0);
+                    v = glm::clamp(glm::dvec3(c[0], c[1], c[2]), 0.0, p.max);
+                    break;
+                }
+                case ParamType::Direction: {
+                    ImGui::TextUnformatted(p.name.c_str());
+                    changed = directionPad("pad", v);
+                    ImGui::SameLine();
+                    ImGui::BeginGroup();
+                    float f[3] = {float(v.x), float(v.y), float(v.z)};
+                    ImGui::SetNextItemWidth(200);
+                    if (ImGui::DragFloat3("##xyz", f, 0.01f, -1, 1) &&
+                        glm::length(glm::dvec3(f[0], f[1], f[2])) > 1e-6) {
+                        v = glm::dvec3(f[0], f[1], f[2]);
+                        changed = true;
+                    }
+                    if (ImGui::Button(v.z < 0 ? "lower hemisphere" : "upper hemisphere")) {
+                        v.z = -v.z;
+                        changed = true;
+                    }
+                    ImGui::EndGroup();
+                    if (changed) v = glm::normalize(v);
+                    break;
+                }
+            }
+            if (ImGui::IsItemHovered() && !p.description.empty())
+                ImGui::SetTooltip("%s", p.description.c_str());
+            ImGui::SameLine();
+            if (ImGui::SmallButton("reset")) {
+                v = p.defaultValue;
+                changed = true;
+            }
+            if (changed) {
+                st.params.set(p.name, v);
+                dirty_ = true;
+            }
+            ImGui::TextDisabled("  %s", p.description.c_str());
+            ImGui::PopID();
+        }
+    }
+
+    void drawScenePanel() {
+        ImGui::TextDisabled("scene");
+        std::string current = sceneName_.empty() ? module().scene : sceneName_;
+        ImGui::SetNextItemWidth(220);
+        if (ImGui::BeginCombo("scene", current.c_str())) {
+            std::vector<std::string> names;
+            for (const auto& e : fs::directory_iterator(paths_.assets() / "scenes"))
+                if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+            std::sort(names.begin(), names.end());
+            for (const auto& n : names)
+                if (ImGui::Selectable(n.c_str(), n == current)) {
+                    sceneName_ = n;
+                    loadScene();
+                }
+            ImGui::EndCombo();
+        }
+        if (!sceneError_.empty())
+            ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "%s", sceneError_.c_str());
+        if (!scene_.lights.empty()) {
+            float pos[3] = {float(scene_.lights[0].position.x), float(scene_.lights[0].position.y),
+                            float(scene_.lights[0].position.z)};
+            if (ImGui::DragFloat3("light 0 position", pos, 0.05f)) {
+                scene_.lights[0].position = glm::dvec3(pos[0], pos[1], pos[2]);
+                dirty_ = true;
+            }
+            float col[3] = {float(scene_.lights[0].color.x), float(scene_.lights[0].color.y),
+                            float(scene_.lights[0].color.z)};
+            if (ImGui::ColorEdit3("light 0 colour", col,
+                                  ImGuiColorEditFlags_HDR | ImGuiColorEditFlags_Float)) {
+                scene_.lights[0].color = glm::max(glm::dvec3(col[0], col[1], col[2]), 0.0);
+                dirty_ = true;
+            }
+        }
+        if (ImGui::Button("reset camera")) loadScene();
+        ImGui::SameLine();
+        ImGui::TextDisabled("drag: orbit, wheel: zoom");
+    }
+
+    void drawPlot() {
+        const ModuleDesc& d = module();
+        const Probe& probe = d.probe;
+        if (probeSolution_.pixels.empty()) return;
+        ImGui::TextWrapped("The function along one row of the probe: x = %s; the row picks y = %s.",
+                           probe.xAxis.c_str(), probe.yAxis.c_str());
+        ImGui::SliderInt("row", &plotRow_, 0, probe.height - 1);
+        plotRow_ = std::clamp(plotRow_, 0, probe.height - 1);
+        ImGui::TextDisabled("y = %.3f (of 0..1)", 1.0 - double(plotRow_) / (probe.height - 1));
+        ImVec2 p = ImGui::GetCursorScreenPos();
+        ImVec2 size(ImGui::GetContentRegionAvail().x, 260);
+        ImGui::InvisibleButton("plot", size);
+        ImDrawList* dl = ImGui::GetWindowDrawList();
+        dl->AddRectFilled(p, ImVec2(p.x + size.x, p.y + size.y), IM_COL32(25, 27, 32, 255));
+        bool haveStudent =
+            !studentValue_.pixels.empty() && probeStudent_.width == probeSolution_.width;
+        double lo = 1e300, hi = -1e300;
+        auto valueAt = [&](const Image& im, int x, int c) { return double(im.at(x, plotRow_, c)); };
+        for (int x = 0; x < probe.width; ++x)
+            for (int c = 0; c < d.components; ++c)
+                for (const Image* im :
+                     {&probeSolution_, haveStudent ? &probeStudent_ : &probeSolution_}) {
+                    double v = valueAt(*im, x, c);
+                    if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+                }
+        if (!(hi > lo)) hi = lo + 1;
+        auto point = [&](int x, double v) {
+            return ImVec2(p.x + size.x * float(x) / float(probe.width - 1),
+                          p.y + size.y - size.y * float((v - lo) / (hi - lo)));
+        };
+        const ImU32 colors[3] = {IM_COL32(255, 110, 90, 255), IM_COL32(110, 230, 120, 255),
+                                 IM_COL32(110, 160, 255, 255)};
+        for (int c = 0; c < d.components; ++c) {
+            std::vector<ImVec2> solution, student;
+            for (int x = 0; x < probe.width; ++x) {
+                solution.push_back(point(x, valueAt(probeSolution_, x, c)));
+                if (haveStudent) student.push_back(point(x, valueAt(probeStudent_, x, c)));
+            }
+            ImU32 col = d.components == 1 ? IM_COL32(255, 210, 90, 255) : colors[c];
+            dl->AddPolyline(solution.data(), int(solution.size()), col, 0, 3.0f);
+            if (haveStudent)
+                dl->AddPolyline(student.data(), int(student.size()), IM_COL32(255, 255, 255, 200),
+                                0, 1.2f);
+        }
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.3g", hi);
+        dl->AddText(ImVec2(p.x + 4, p.y + 2), IM_COL32(200, 200, 200, 255), buf);
+        std::snprintf(buf, sizeof buf, "%.3g", lo);
+        dl->AddText(ImVec2(p.x + 4, p.y + size.y - 16), IM_COL32(200, 200, 200, 255), buf);
+        ImGui::TextDisabled("thick: solution%s", haveStudent ? ", thin white: your function" : "");
+    }
+
+    void drawLog() {
+        if (compileLog_.empty()) {
+            ImGui::TextDisabled("no errors");
+        } else {
+            ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1),
+                               "%s does not compile; the image shows the last version that did.",
+                               studentFile().filename().string().c_str());
+            ImGui::TextDisabled("click a line to copy it");
+            std::istringstream in(compileLog_);
+            std::string line;
+            int n = 0;
+            while (std::getline(in, line)) {
+                ImGui::PushID(n++);
+                if (ImGui::Selectable(line.c_str())) ImGui::SetClipboardText(line.c_str());
+                ImGui::PopID();
+            }
+        }
+        ImGui::Separator();
+        ImGui::TextDisabled("host log");
+        ImGui::TextWrapped("%s", journal().c_str());
+    }
+
+    GuiOptions options_;
+    std::unique_ptr<GlContext> context_;
+    DataPaths paths_;
+    std::unique_ptr<ModuleRegistry> registry_;
+    std::unique_ptr<LabRenderer> renderer_;
+    fs::path submission_;
+    std::map<std::string, ModuleState> states_;
+    int current_ = 0;
+    int view_ = 0;
+    std::string sceneName_, sceneError_, renderError_, compileLog_, shownLog_, messages_, handout_;
+    Scene scene_;
+    double yaw_ = 0, pitch_ = 0, distance_ = 3;
+    bool dirty_ = true, hasStudent_ = false, screenshotRequested_ = false;
+    fs::file_time_type lastStudentStamp_{};
+    Image studentValue_, solutionValue_, referenceValue_, probeSolution_, probeStudent_;
+    std::vector<Surface> surfaces_;
+    std::vector<ref::PointLight> lights_;
+    ErrorStats studentStats_, solutionStats_;
+    gl::Handle imageTexture_;
+    int imageWidth_ = 1, imageHeight_ = 1, nanCount_ = 0, infCount_ = 0, plotRow_ = 0;
+    float diffRange_ = 1e-3f, split_ = 0.5f;
+    double frameMs_ = 0, renderMs_ = 0;
+    size_t statusCursor_ = 0;
+};
+
+}  // namespace
+
+int runGui(const GuiOptions& options) {
+    GuiApp app(options);
+    return app.run();
+}
+
+}  // namespace pbrlab

@@ -1,0 +1,24 @@
+// The interactive lab: a GLFW window with Dear ImGui, for students working through the steps.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace pbrlab {
+
+struct GuiOptions {
+    std::filesystem::path modulesDir;
+    std::filesystem::path submission;  // empty: the current directory when it holds <id>.glsl
+    std::string module;                // start on this module id
+    std::string view;                  // student|solution|reference|difference|split or a term
+    std::string scene;
+    std::vector<std::string> sets;     // name=value for the start module
+    int frames = 0;                    // > 0: render this many frames, then exit (scripted runs)
+    std::filesystem::path screenshot;  // with frames: save the window here before exiting
+    int width = 1600, height = 960;
+};
+
+int runGui(const GuiOptions& options);
+
+}  // namespace pbrlab
