@@ -8,7 +8,9 @@ using namespace pbrlab;
 namespace fs = std::filesystem;
 
 namespace {
-std::string labs() { return std::string(PBRLAB_SOURCE_DIR) + "/labs"; }
+std::string labs() {
+    return std::string(PBRLAB_SOURCE_DIR) + "/labs";
+}
 }  // namespace
 
 TEST(Plugins, LoadsTheBuiltModulesInStepOrder) {

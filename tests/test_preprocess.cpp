@@ -21,7 +21,8 @@ std::pair<std::string, int> originOf(const ExpandedShader& s, const std::string&
             l >> lineNo >> source;
             continue;  // the next line has number lineNo
         }
-        if (line.find(needle) != std::string::npos) return {s.sourceNames.at(size_t(source)), lineNo};
+        if (line.find(needle) != std::string::npos)
+            return {s.sourceNames.at(size_t(source)), lineNo};
         ++lineNo;
     }
     return {"", -1};

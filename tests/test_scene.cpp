@@ -29,8 +29,8 @@ TEST(Scene, LoadsTheProjectScenes) {
 }
 
 TEST(Scene, ErrorsNameTheFileAndTheField) {
-    std::string m = loadError(std::string("{") + kLight +
-                              R"(, "objects": [{"material": {"roughness": 2}}]})");
+    std::string m =
+        loadError(std::string("{") + kLight + R"(, "objects": [{"material": {"roughness": 2}}]})");
     EXPECT_NE(m.find("scene.json: field 'objects[0].material.roughness'"), std::string::npos) << m;
     m = loadError(std::string("{") + kLight + R"(, "objects": [{"material": "steel"}]})");
     EXPECT_NE(m.find("'objects[0].material': no material named \"steel\""), std::string::npos) << m;

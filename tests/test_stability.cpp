@@ -32,7 +32,8 @@ TEST(Stability, ExtremeSetCoversTheDesignsEdges) {
     for (size_t i = 0; i < set.labels.size(); ++i) {
         const Surface& s = set.surfaces[i];
         roughness0 = roughness0 || s.roughness == 0;
-        vIsMinusL = vIsMinusL || (glm::length(s.view + s.light) < 1e-12 && glm::length(s.light) > 0);
+        vIsMinusL =
+            vIsMinusL || (glm::length(s.view + s.light) < 1e-12 && glm::length(s.light) > 0);
         lightOnPoint = lightOnPoint || s.lightPosition == s.position;
         bigLight = bigLight || s.lightColor.x >= 1e6;
         grazing = grazing || glm::dot(s.normal, s.view) == 0;

@@ -12,12 +12,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path variantsRoot() { return fs::path(PBRLAB_SOURCE_DIR) / "tests" / "variants"; }
+fs::path variantsRoot() {
+    return fs::path(PBRLAB_SOURCE_DIR) / "tests" / "variants";
+}
 
 struct Variant {
     std::string module, file;
 };
-void PrintTo(const Variant& v, std::ostream* os) { *os << v.module << "/" << v.file; }
+void PrintTo(const Variant& v, std::ostream* os) {
+    *os << v.module << "/" << v.file;
+}
 
 std::vector<Variant> allVariants() {
     std::vector<Variant> v;
@@ -50,8 +54,8 @@ TEST_P(VariantTest, CorrectPassesAndMistakeFailsAtItsOwnStep) {
     test::TempDir kit;
     fs::copy(variantsRoot() / v.module / v.file, kit.path / (v.module + ".glsl"));
     Scene scene = loadScene(s.paths.scene(m.desc->scene));
-    CheckResult r = checkModule(s.renderer, m, ParamValues(m.desc->params), scene, {kit.path},
-                                128, 128);  // a mistake that does not compile throws: test fails
+    CheckResult r = checkModule(s.renderer, m, ParamValues(m.desc->params), scene, {kit.path}, 128,
+                                128);  // a mistake that does not compile throws: test fails
     std::string details = "scene: " + describe(r.scene, m.desc->tolerance) +
                           "\nprobe: " + describe(r.probe, m.desc->tolerance);
     if (v.file.rfind("correct_", 0) == 0)

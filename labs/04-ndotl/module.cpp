@@ -1,7 +1,7 @@
 // Step 4, ndotl: the Lambert cosine N·L, how much of a light's irradiance reaches a surface.
-#include <numbers>
-
 #include "pbrlab/module.h"
+
+#include <numbers>
 
 using namespace pbrlab;
 
