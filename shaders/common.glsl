@@ -9,6 +9,15 @@ const float PI = 3.14159265358979;
 uniform vec3 uLightPositions[NUM_LIGHTS];
 uniform vec3 uLightColors[NUM_LIGHTS];
 
+#ifdef PBRLAB_IBL
+// Image-based lighting inputs (contract names), declared only in programs that use them.
+uniform samplerCube uEnvironment;     // radiance, with mips
+uniform samplerCube uIrradianceMap;   // stores E/PI
+uniform samplerCube uPrefilterMap;    // roughness r at LOD r * uPrefilterMaxLod
+uniform float uPrefilterMaxLod;
+uniform sampler2D uBrdfLut;           // x = N.V, y = roughness; R = scale A, G = bias B
+#endif
+
 // normalize(v), or `fallback` when v is too short to have a direction (avoids 0/0 = NaN).
 vec3 pbrlab_safeNormalize(vec3 v, vec3 fallback)
 {

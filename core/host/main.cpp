@@ -14,6 +14,7 @@
 #include "check.h"
 #include "gl/context.h"
 #include "gui/gui.h"
+#include "ibl.h"
 #include "pbrlab/contract.h"
 #include "pbrlab/display.h"
 #include "pbrlab/error.h"
@@ -181,6 +182,34 @@ int runStability(const Options& o, const std::vector<std::string>& ids) {
     return bad ? 1 : 0;
 }
 
+int runPrecompute(const Options& o, const std::string& envFile, const IblSettings& settings,
+                  const std::string& outDir) {
+    Session session(o);
+    Image equirect = readImage(envFile);
+    if (equirect.width != 2 * equirect.height)
+        throw Error(envFile + ": expected an equirectangular image (width = 2 x height), got " +
+                    std::to_string(equirect.width) + "x" + std::to_string(equirect.height));
+    IblPrecompute precompute(session.renderer->programs(), session.paths.shaders(),
+                             session.paths.labs());
+    std::cout << "precomputing " << envFile << " (" << settings.key() << ")\n" << std::flush;
+    auto maps = precompute.build(equirect, settings);
+    fs::path out(outDir);
+    auto writeCube = [&](const fs::path& dir, GLuint cube, int size, int mip) {
+        fs::create_directories(dir);
+        for (int face = 0; face < 6; ++face)
+            writeImage(dir / (std::string(kCubeFaceNames[face]) + ".exr"),
+                       IblPrecompute::readCubeFace(cube, face, mip, size), FileDepth::Float32);
+    };
+    writeCube(out / "irradiance", maps->irradiance.id(), settings.irradianceSize, 0);
+    for (int mip = 0; mip < settings.prefilterMips; ++mip)
+        writeCube(out / "prefilter" / ("mip" + std::to_string(mip)), maps->prefilter.id(),
+                  settings.prefilterSize, mip);
+    for (const auto& [pass, ms] : maps->milliseconds)
+        std::printf("  %-50s %10.1f ms\n", pass.c_str(), ms);
+    std::cout << "wrote " << out.string() << "/{irradiance,prefilter/mip*}/{+x,-x,+y,-y,+z,-z}.exr\n";
+    return 0;
+}
+
 int runGallery(const Options& o, const std::string& outDir, const std::string& size) {
     Session session(o);
     Size s = parseSize(size);
@@ -259,6 +288,19 @@ int main(int argc, char** argv) {
     guiCmd->add_option("--screenshot", gui.screenshot,
                        "With --frames: save the window to this PNG");
     guiCmd->add_option("--size", guiSize, "Window size WxH (default 1600x960)");
+    std::string envFile, precomputeDir;
+    IblSettings ibl;
+    auto* precompute = app.add_subcommand(
+        "precompute", "Split-sum maps of an environment: irradiance and prefiltered cubes (EXR)");
+    precompute->add_option("--env", envFile, "Equirectangular .hdr or .exr")->required();
+    precompute->add_option("--out", precomputeDir, "Output folder")->required();
+    precompute->add_option("--env-size", ibl.environmentSize, "Environment cube face size");
+    precompute->add_option("--irradiance-size", ibl.irradianceSize, "Irradiance cube face size");
+    precompute->add_option("--prefilter-size", ibl.prefilterSize, "Prefiltered cube mip 0 size");
+    precompute->add_option("--prefilter-mips", ibl.prefilterMips, "Prefiltered mip count");
+    precompute->add_option("--prefilter-samples", ibl.prefilterSamples, "Samples per texel");
+    precompute->add_option("--lut-size", ibl.lutSize, "BRDF LUT size");
+    precompute->add_option("--lut-samples", ibl.lutSamples, "BRDF LUT samples per texel");
     std::vector<std::string> stabilityIds;
     auto* stability = app.add_subcommand(
         "stability",
@@ -287,6 +329,7 @@ int main(int argc, char** argv) {
         if (*check) return runCheck(o, id, submission, cumulative, sets, size, scene);
         if (*gallery) return runGallery(o, galleryDir, size);
         if (*stability) return runStability(o, stabilityIds);
+        if (*precompute) return runPrecompute(o, envFile, ibl, precomputeDir);
         if (*guiCmd) {
             Size s = parseSize(guiSize);
             gui.width = s.width;

@@ -70,6 +70,9 @@ void Program::set(const std::string& name, float v) const {
 void Program::set(const std::string& name, int v) const {
     gl::Uniform1i(location(name), v);
 }
+void Program::setUnsigned(const std::string& name, unsigned v) const {
+    gl::Uniform1ui(location(name), v);
+}
 void Program::set(const std::string& name, const glm::vec2& v) const {
     gl::Uniform2f(location(name), v.x, v.y);
 }

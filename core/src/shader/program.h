@@ -34,6 +34,7 @@ public:
     bool uses(const std::string& name) const { return location(name) >= 0; }
     void set(const std::string& name, float v) const;
     void set(const std::string& name, int v) const;
+    void setUnsigned(const std::string& name, unsigned v) const;
     void set(const std::string& name, const glm::vec2& v) const;
     void set(const std::string& name, const glm::vec3& v) const;
     void set(const std::string& name, const glm::vec4& v) const;

@@ -1,0 +1,198 @@
+#include "ibl.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "pbrlab/contract.h"
+#include "pbrlab/error.h"
+#include "pbrlab/log.h"
+
+namespace fs = std::filesystem;
+
+namespace pbrlab {
+
+const char* const kCubeFaceNames[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+
+std::string IblSettings::key() const {
+    return "env" + std::to_string(environmentSize) + "_irr" + std::to_string(irradianceSize) +
+           "_pre" + std::to_string(prefilterSize) + "x" + std::to_string(prefilterMips) + "s" +
+           std::to_string(prefilterSamples) + "_lut" + std::to_string(lutSize) + "s" +
+           std::to_string(lutSamples);
+}
+
+namespace {
+
+gl::Handle makeCube(int size, bool mips) {
+    gl::Handle cube = gl::makeTexture();
+    gl::BindTexture(GL_TEXTURE_CUBE_MAP, cube.id());
+    int levels = mips ? int(std::floor(std::log2(size))) + 1 : 1;
+    for (int level = 0; level < levels; ++level)
+        for (int face = 0; face < 6; ++face)
+            gl::TexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face, level, GL_RGBA32F,
+                           std::max(size >> level, 1), std::max(size >> level, 1), 0, GL_RGBA,
+                           GL_FLOAT, nullptr);
+    gl::TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER,
+                      mips ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+    gl::TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        gl::TexParameteri(GL_TEXTURE_CUBE_MAP, wrap, GL_CLAMP_TO_EDGE);
+    gl::TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, levels - 1);
+    gl::Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    gl::checkError("creating a cube map");
+    return cube;
+}
+
+class PassTimer {
+public:
+    PassTimer(IblMaps& maps, std::string name) : maps_(maps), name_(std::move(name)) {
+        gl::Finish();
+        start_ = std::chrono::steady_clock::now();
+    }
+    ~PassTimer() {
+        gl::Finish();
+        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
+                                                              start_)
+                        .count();
+        maps_.milliseconds[name_] = ms;
+        countEvent(Counter::PrecomputePasses);
+        logLine("precompute", name_ + " " + std::to_string(ms) + " ms");
+    }
+
+private:
+    IblMaps& maps_;
+    std::string name_;
+    std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
+
+IblPrecompute::IblPrecompute(ProgramCache& programs, fs::path shaders, fs::path labs)
+    : programs_(programs), shaders_(std::move(shaders)), labs_(std::move(labs)) {}
+
+std::shared_ptr<Program> IblPrecompute::program(const std::string& pass,
+                                                const std::string& contractId) {
+    ProgramRecipe r;
+    r.vertex = {shaders_ / "fullscreen.vert"};
+    r.fragment.push_back(shaders_ / "common.glsl");
+    if (!contractId.empty())
+        for (const ContractStep* step : contractClosure(contractId, {}))
+            r.fragment.push_back(labs_ / step->folder() / "solution.glsl");
+    r.fragment.push_back(shaders_ / "ibl" / (pass + ".frag"));
+    r.defines["PBRLAB_IBL"] = "1";
+    return programs_.get(r);
+}
+
+void IblPrecompute::renderCube(GLuint cube, int size, int mip, const Program& program,
+                               const std::string& pass) {
+    gl::Handle fbo = gl::makeFramebuffer();
+    gl::BindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+    const int faceSize = std::max(size >> mip, 1);
+    gl::Viewport(0, 0, faceSize, faceSize);
+    GLenum buffer = GL_COLOR_ATTACHMENT0;
+    gl::DrawBuffers(1, &buffer);
+    program.use();
+    program.set("uSize", float(faceSize));
+    for (int face = 0; face < 6; ++face) {
+        gl::FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                 GL_TEXTURE_CUBE_MAP_POSITIVE_X + face, cube, mip);
+        if (gl::CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            throw Error(pass + ": cube face target incomplete");
+        program.set("uFace", face);
+        fullscreen_.draw();
+    }
+    gl::checkError(pass.c_str());
+}
+
+std::unique_ptr<IblMaps> IblPrecompute::build(const Image& equirect, const IblSettings& s) {
+    auto maps = std::make_unique<IblMaps>();
+    maps->settings = s;
+    gl::Disable(GL_DEPTH_TEST);
+    {
+        PassTimer timer(*maps, "environment cube " + std::to_string(s.environmentSize));
+        gl::Handle source = gl::uploadTexture(equirect, false);
+        gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        maps->environment = makeCube(s.environmentSize, true);
+        auto p = program("equirect_to_cube", "");
+        p->use();
+        gl::ActiveTexture(GL_TEXTURE0);
+        gl::BindTexture(GL_TEXTURE_2D, source.id());
+        p->set("uEquirect", 0);
+        renderCube(maps->environment.id(), s.environmentSize, 0, *p, "environment cube");
+        gl::BindTexture(GL_TEXTURE_CUBE_MAP, maps->environment.id());
+        gl::GenerateMipmap(GL_TEXTURE_CUBE_MAP);
+    }
+    auto bindEnvironment = [&](const Program& p) {
+        p.use();
+        gl::ActiveTexture(GL_TEXTURE0);
+        gl::BindTexture(GL_TEXTURE_CUBE_MAP, maps->environment.id());
+        p.set("uEnvironment", 0);
+    };
+    {
+        PassTimer timer(*maps, "irradiance " + std::to_string(s.irradianceSize));
+        maps->irradiance = makeCube(s.irradianceSize, false);
+        auto p = program("irradiance", "irradiance");
+        bindEnvironment(*p);
+        renderCube(maps->irradiance.id(), s.irradianceSize, 0, *p, "irradiance");
+    }
+    {
+        PassTimer timer(*maps, "prefilter " + std::to_string(s.prefilterSize) + " x" +
+                                   std::to_string(s.prefilterMips) + " mips, " +
+                                   std::to_string(s.prefilterSamples) + " samples");
+        maps->prefilter = makeCube(s.prefilterSize, true);
+        gl::TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, s.prefilterMips - 1);
+        maps->prefilterMaxLod = float(s.prefilterMips - 1);
+        auto p = program("prefilter", "prefilter");
+        bindEnvironment(*p);
+        for (int mip = 0; mip < s.prefilterMips; ++mip) {
+            p->set("uRoughness", s.prefilterMips > 1 ? float(mip) / float(s.prefilterMips - 1) : 0.f);
+            p->setUnsigned("uSampleCount", unsigned(s.prefilterSamples));
+            renderCube(maps->prefilter.id(), s.prefilterSize, mip, *p, "prefilter");
+        }
+    }
+    {
+        PassTimer timer(*maps, "brdf lut " + std::to_string(s.lutSize) + ", " +
+                                   std::to_string(s.lutSamples) + " samples");
+        gl::RenderTarget target(s.lutSize, s.lutSize, 1, false);
+        target.bind();
+        auto p = program("brdf_lut", "brdf_lut");
+        p->use();
+        p->set("uSize", float(s.lutSize));
+        p->setUnsigned("uSampleCount", unsigned(s.lutSamples));
+        fullscreen_.draw();
+        // read() returns row 0 at the top; flip back so that t = roughness, as rendered.
+        Image flipped = target.read(0);
+        const size_t row = size_t(flipped.width) * 4;
+        Image lut = flipped;
+        for (int y = 0; y < lut.height; ++y)
+            std::copy_n(flipped.pixels.data() + size_t(lut.height - 1 - y) * row, row,
+                        lut.pixels.data() + size_t(y) * row);
+        maps->lut = gl::uploadTexture(lut, false, GL_RG32F);
+        gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    }
+    gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
+    return maps;
+}
+
+Image IblPrecompute::readCubeFace(GLuint cube, int face, int mip, int size) {
+    const int faceSize = std::max(size >> mip, 1);
+    gl::Handle fbo = gl::makeFramebuffer();
+    gl::BindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+    gl::FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                             GL_TEXTURE_CUBE_MAP_POSITIVE_X + face, cube, mip);
+    Image image;
+    image.width = image.height = faceSize;
+    image.channels = 4;
+    image.pixels.resize(size_t(faceSize) * faceSize * 4);
+    gl::ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
+    // Memory row 0 of a cube face is its t = 0 row, which is the top of the face image.
+    gl::ReadPixels(0, 0, faceSize, faceSize, GL_RGBA, GL_FLOAT, image.pixels.data());
+    gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl::checkError("reading a cube face");
+    return image;
+}
+
+}  // namespace pbrlab

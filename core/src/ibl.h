@@ -1,0 +1,55 @@
+// Image-based lighting on the GPU: an equirectangular environment becomes a cube map with
+// mips, then the split-sum precompute passes (irradiance, prefiltered mip chain, BRDF LUT)
+// run with the reference solutions of steps 18-20. Runs under OSMesa too. Every pass is
+// counted (Counter::PrecomputePasses) and timed, so "no environment, no precompute" is
+// observable.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "gl/objects.h"
+#include "pbrlab/image.h"
+#include "shader/program.h"
+
+namespace pbrlab {
+
+struct IblSettings {
+    int environmentSize = 256;  // cube face size of the radiance map (mips to 1x1)
+    int irradianceSize = 32;
+    int prefilterSize = 128;    // mip 0 of the prefiltered map
+    int prefilterMips = 5;      // roughness 0, 0.25, ... 1
+    int prefilterSamples = 256;
+    int lutSize = 128;
+    int lutSamples = 512;
+    std::string key() const;  // all of the above, for caches
+};
+
+struct IblMaps {
+    IblSettings settings;
+    gl::Handle environment, irradiance, prefilter, lut;
+    float prefilterMaxLod = 0;
+    std::map<std::string, double> milliseconds;  // per pass: glFinish + steady clock
+};
+
+class IblPrecompute {
+public:
+    IblPrecompute(ProgramCache& programs, std::filesystem::path shaders, std::filesystem::path labs);
+    std::unique_ptr<IblMaps> build(const Image& equirect, const IblSettings& settings);
+
+    // Read-back for files and tests: one face (0..5 = +x -x +y -y +z -z) of a cube mip.
+    static Image readCubeFace(GLuint cube, int face, int mip, int size);
+
+private:
+    std::shared_ptr<Program> program(const std::string& pass, const std::string& contractId);
+    void renderCube(GLuint cube, int size, int mip, const Program& program, const std::string& pass);
+    ProgramCache& programs_;
+    std::filesystem::path shaders_, labs_;
+    gl::FullscreenTriangle fullscreen_;
+};
+
+// Six faces named +x -x +y -y +z -z, as cmgen-like tools expect.
+extern const char* const kCubeFaceNames[6];
+
+}  // namespace pbrlab

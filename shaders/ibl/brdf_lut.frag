@@ -1,0 +1,11 @@
+// Precompute: the split-sum BRDF LUT with the step 20 function; texel centres map to
+// x = N.V and y = roughness.
+uniform float uSize;
+uniform uint uSampleCount;
+layout(location = 0) out vec4 outColor;
+
+void main()
+{
+    vec2 xy = gl_FragCoord.xy / uSize;
+    outColor = vec4(integrateBRDF(xy.x, xy.y, uSampleCount), 0.0, 1.0);
+}

@@ -1,0 +1,11 @@
+// Precompute: the irradiance cube (stores E/PI) with the step 18 function.
+#include "ibl/cube_face.glsl"
+
+uniform int uFace;
+uniform float uSize;
+layout(location = 0) out vec4 outColor;
+
+void main()
+{
+    outColor = vec4(irradianceAt(pbrlab_cubeDirection(uFace, gl_FragCoord.xy, uSize)), 1.0);
+}
