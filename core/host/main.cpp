@@ -15,6 +15,7 @@
 #include "gl/context.h"
 #include "gui/gui.h"
 #include "ibl.h"
+#include "kit.h"
 #include "pbrlab/contract.h"
 #include "pbrlab/display.h"
 #include "pbrlab/error.h"
@@ -288,6 +289,14 @@ int main(int argc, char** argv) {
     guiCmd->add_option("--screenshot", gui.screenshot,
                        "With --frames: save the window to this PNG");
     guiCmd->add_option("--size", guiSize, "Window size WxH (default 1600x960)");
+    KitOptions kit;
+    auto* kitCmd = app.add_subcommand("kit", "Write the student kit (stubs, handouts, README)");
+    kitCmd->add_option("--out", kit.out, "Output folder")->required();
+    kitCmd->add_flag("--with-solutions", kit.withSolutions,
+                     "Write the reference solutions instead of stubs (instructors, tests)");
+    kitCmd->add_option("--release-through", kit.releaseThrough,
+                       "Give the solutions of the steps up to this id (after due dates)");
+    kitCmd->add_flag("--force", kit.force, "Write into a non-empty folder");
     std::string envFile, precomputeDir;
     IblSettings ibl;
     auto* precompute = app.add_subcommand(
@@ -329,6 +338,13 @@ int main(int argc, char** argv) {
         if (*check) return runCheck(o, id, submission, cumulative, sets, size, scene);
         if (*gallery) return runGallery(o, galleryDir, size);
         if (*stability) return runStability(o, stabilityIds);
+        if (*kitCmd) {
+            Session session(o, false);
+            int n = writeKit(*session.modules, kit);
+            std::cout << "wrote " << n << " module files and handouts to " << kit.out.string()
+                      << "\n";
+            return 0;
+        }
         if (*precompute) return runPrecompute(o, envFile, ibl, precomputeDir);
         if (*guiCmd) {
             Size s = parseSize(guiSize);

@@ -1,0 +1,99 @@
+#include "kit.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "pbrlab/contract.h"
+#include "pbrlab/error.h"
+
+namespace fs = std::filesystem;
+
+namespace pbrlab {
+
+namespace {
+
+std::string readFile(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    if (!in) throw Error(p.string() + ": cannot read");
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+void writeFile(const fs::path& p, const std::string& text) {
+    fs::create_directories(p.parent_path());
+    std::ofstream out(p, std::ios::binary);
+    out << text;
+    if (!out) throw Error(p.string() + ": cannot write");
+}
+
+std::string neutralValue(const std::string& signature) {
+    std::string type = signature.substr(0, signature.find(' '));
+    if (type == "float") return "0.0";
+    if (type == "vec2") return "vec2(0.0)";
+    if (type == "vec3") return "vec3(0.0)";
+    if (type == "vec4") return "vec4(0.0)";
+    throw Error("no neutral value for return type '" + type + "'");
+}
+
+}  // namespace
+
+std::string stubSolution(const std::string& solution, const std::string& signature,
+                         const std::string& fileName) {
+    const std::string begin = "// BEGIN SOLUTION", end = "// END SOLUTION";
+    size_t b = solution.find(begin), e = solution.find(end);
+    if (b == std::string::npos || e == std::string::npos || e < b)
+        throw Error(fileName + ": missing '// BEGIN SOLUTION' ... '// END SOLUTION' markers");
+    size_t lineStart = solution.rfind('\n', b) + 1;
+    std::string indent = solution.substr(lineStart, b - lineStart);
+    std::string body = begin + "\n" + indent + "// TODO: implement " + signature +
+                       " (see the handout).\n" + indent + "return " + neutralValue(signature) +
+                       ";\n" + indent;
+    return solution.substr(0, b) + body + solution.substr(e);
+}
+
+int writeKit(const ModuleRegistry& modules, const KitOptions& o) {
+    std::error_code ec;
+    if (fs::exists(o.out, ec) && !fs::is_empty(o.out, ec) && !o.force)
+        throw Error(o.out.string() + " is not empty; use --force to write into it anyway");
+    int releaseStep = 0;
+    if (!o.releaseThrough.empty()) {
+        const ContractStep* s = findContractStep(o.releaseThrough);
+        if (!s) throw Error("--release-through " + o.releaseThrough + ": not a module id");
+        releaseStep = s->step;
+    }
+    int written = 0;
+    std::string list;
+    for (const LoadedModule& m : modules.modules()) {
+        const ModuleDesc& d = *m.desc;
+        fs::path solution = m.sourceDir / "solution.glsl";
+        std::string text = readFile(solution);
+        bool released = o.withSolutions || d.step <= releaseStep;
+        writeFile(o.out / (d.id + ".glsl"),
+                  released ? text : stubSolution(text, d.function, solution.string()));
+        fs::path handout = m.sourceDir / "README.md";
+        if (fs::exists(handout))
+            writeFile(o.out / "handouts" / (findContractStep(d.id)->folder() + ".md"),
+                      readFile(handout));
+        list += "| " + std::to_string(d.step) + " | `" + d.id + ".glsl` | `" + d.function +
+                "` | " + (released ? "solution given" : "to write") + " |\n";
+        ++written;
+    }
+    writeFile(o.out / "README.md",
+              "# pbrlab kit\n\n"
+              "One file per step. Write the body of each function where the TODO is; you may "
+              "add helper functions of your own above it (do not name them `pbrlab_*`, and do "
+              "not define `PI`: it is provided, as are `NUM_LIGHTS`, `uLightPositions`, "
+              "`uLightColors` and every contract function of the earlier steps). The handouts "
+              "in `handouts/` explain each step.\n\n"
+              "| step | file | function | status |\n|---|---|---|---|\n" +
+                  list +
+                  "\n## Run and test\n\n"
+                  "    pbrlab gui                      # from this folder: live view, hot reload\n"
+                  "    pbrlab check ndotl --submission .   # one step against the CPU reference\n"
+                  "    pbrlab render ndotl --submission . --out ndotl.png\n"
+                  "    pbrlab grade .                  # every step, as the autograder does\n");
+    return written;
+}
+
+}  // namespace pbrlab

@@ -1,0 +1,28 @@
+// The student kit: one <id>.glsl per module with the solution replaced by a TODO and a stub,
+// the handouts, and a README on how to run and test.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "plugins.h"
+
+namespace pbrlab {
+
+struct KitOptions {
+    std::filesystem::path out;
+    bool withSolutions = false;   // reference solutions in the same shape (instructors, tests)
+    std::string releaseThrough;   // solutions of the steps up to this id, stubs after
+    bool force = false;           // write into a non-empty folder
+};
+
+// The student version of a solution file: what is between BEGIN/END SOLUTION becomes a TODO
+// comment and a stub returning a neutral value of the function's return type. Throws
+// pbrlab::Error naming the file when the markers are missing.
+std::string stubSolution(const std::string& solution, const std::string& signature,
+                         const std::string& fileName);
+
+// Writes the kit; returns how many module files were written.
+int writeKit(const ModuleRegistry& modules, const KitOptions& options);
+
+}  // namespace pbrlab
