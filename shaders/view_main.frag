@@ -1,9 +1,28 @@
 // Entry point of every module view: evaluates the module's view(Surface) per pixel into a
-// float target (alpha = 1 where a surface was evaluated).
+// float target (alpha = 1 where a surface was evaluated; 0.5 for the environment drawn behind
+// it, which is shown but never compared).
 layout(location = 0) out vec4 outValue;
+
+#ifdef PBRLAB_SKY
+uniform mat4 uInverseViewProjection;
+uniform vec2 uViewportSize;
+
+vec3 pbrlab_skyRadiance()
+{
+    vec2 ndc = gl_FragCoord.xy / uViewportSize * 2.0 - 1.0;
+    vec4 far = uInverseViewProjection * vec4(ndc, 1.0, 1.0);
+    return textureLod(uEnvironment, normalize(far.xyz / far.w - uCameraPosition), 0.0).rgb;
+}
+#endif
 
 void main()
 {
     Surface s = loadSurface();
+#ifdef PBRLAB_SKY
+    if (!s.covered) {
+        outValue = vec4(pbrlab_skyRadiance(), 0.5);
+        return;
+    }
+#endif
     outValue = s.covered ? vec4(view(s), 1.0) : vec4(0.0);
 }

@@ -18,6 +18,8 @@
 #include "kit.h"
 #include "pbrlab/contract.h"
 #include "pbrlab/display.h"
+#include "pbrlab/envgen.h"
+#include "pbrlab/ibl_reference.h"
 #include "pbrlab/error.h"
 #include "pbrlab/log.h"
 #include "pbrlab/texgen.h"
@@ -205,9 +207,29 @@ int runPrecompute(const Options& o, const std::string& envFile, const IblSetting
     for (int mip = 0; mip < settings.prefilterMips; ++mip)
         writeCube(out / "prefilter" / ("mip" + std::to_string(mip)), maps->prefilter.id(),
                   settings.prefilterSize, mip);
+    writeImage(out / "brdf_lut.exr",
+               IblPrecompute::readTexture(maps->lut.id(), settings.lutSize, settings.lutSize),
+               FileDepth::Float32);
+    {
+        // The 9 spherical-harmonic coefficients of the radiance (real SH, index l(l+1)+m),
+        // the fast alternative to the irradiance cube: E(N)/pi = shIrradiance(sh, N).
+        auto start = std::chrono::steady_clock::now();
+        ref::SH9 sh = ref::projectSH9(equirect);
+        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
+                                                              start).count();
+        std::ofstream json(out / "sh.json");
+        json << "{\n  \"basis\": \"real SH, bands 0-2, index l(l+1)+m, radiance\",\n  "
+                "\"coefficients\": [\n";
+        for (int i = 0; i < 9; ++i)
+            json << "    [" << sh.c[size_t(i)].x << ", " << sh.c[size_t(i)].y << ", "
+                 << sh.c[size_t(i)].z << "]" << (i < 8 ? ",\n" : "\n");
+        json << "  ]\n}\n";
+        maps->milliseconds["spherical harmonics (CPU)"] = ms;
+    }
     for (const auto& [pass, ms] : maps->milliseconds)
         std::printf("  %-50s %10.1f ms\n", pass.c_str(), ms);
-    std::cout << "wrote " << out.string() << "/{irradiance,prefilter/mip*}/{+x,-x,+y,-y,+z,-z}.exr\n";
+    std::cout << "wrote " << out.string()
+              << "/{irradiance,prefilter/mip*}/{+x,-x,+y,-y,+z,-z}.exr, brdf_lut.exr, sh.json\n";
     return 0;
 }
 
@@ -289,6 +311,12 @@ int main(int argc, char** argv) {
     guiCmd->add_option("--screenshot", gui.screenshot,
                        "With --frames: save the window to this PNG");
     guiCmd->add_option("--size", guiSize, "Window size WxH (default 1600x960)");
+    std::string envOut;
+    int envWidth = 512;
+    auto* envCmd = app.add_subcommand(
+        "environment", "Write the project's own HDR sky (equirectangular, deterministic)");
+    envCmd->add_option("--out", envOut, "Output .exr or .hdr")->required();
+    envCmd->add_option("--width", envWidth, "Width in texels (height = width / 2)");
     KitOptions kit;
     auto* kitCmd = app.add_subcommand("kit", "Write the student kit (stubs, handouts, README)");
     kitCmd->add_option("--out", kit.out, "Output folder")->required();
@@ -338,6 +366,12 @@ int main(int argc, char** argv) {
         if (*check) return runCheck(o, id, submission, cumulative, sets, size, scene);
         if (*gallery) return runGallery(o, galleryDir, size);
         if (*stability) return runStability(o, stabilityIds);
+        if (*envCmd) {
+            Image sky = generateSkyEnvironment(envWidth);
+            writeImage(envOut, sky, FileDepth::Float32);
+            std::cout << "wrote " << envOut << " (" << sky.width << "x" << sky.height << ")\n";
+            return 0;
+        }
         if (*kitCmd) {
             Session session(o, false);
             int n = writeKit(*session.modules, kit);

@@ -17,6 +17,7 @@ CheckResult checkModule(LabRenderer& renderer, const LoadedModule& module,
     const ModuleDesc& d = *module.desc;
     Scene scene = applyParamBindings(sceneIn, d, params);
     ReferenceContext context = referenceContext(scene, params);
+    if (d.needs & NeedsEnvironment) context.ibl = &renderer.environmentInputs(scene);
     CheckResult r;
     RenderResult onScene = renderer.renderScene(module, params, scene, source, width, height, true);
     r.scene = compareWithReference(onScene.value, onScene.surfaces, d, context);

@@ -195,4 +195,21 @@ Image IblPrecompute::readCubeFace(GLuint cube, int face, int mip, int size) {
     return image;
 }
 
+Image IblPrecompute::readTexture(GLuint texture, int width, int height) {
+    gl::Handle fbo = gl::makeFramebuffer();
+    gl::BindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+    gl::FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
+    Image image;
+    image.width = width;
+    image.height = height;
+    image.channels = 4;
+    image.pixels.resize(size_t(width) * height * 4);
+    gl::ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl::ReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, image.pixels.data());
+    gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl::checkError("reading a texture");
+    return image;
+}
+
 }  // namespace pbrlab

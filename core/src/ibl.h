@@ -40,6 +40,8 @@ public:
 
     // Read-back for files and tests: one face (0..5 = +x -x +y -y +z -z) of a cube mip.
     static Image readCubeFace(GLuint cube, int face, int mip, int size);
+    // A 2D texture's level 0, row 0 = t = 0 (as stored, not flipped).
+    static Image readTexture(GLuint texture, int width, int height);
 
 private:
     std::shared_ptr<Program> program(const std::string& pass, const std::string& contractId);

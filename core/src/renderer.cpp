@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "pbrlab/contract.h"
+#include "pbrlab/envgen.h"
 #include "pbrlab/error.h"
 #include "pbrlab/log.h"
 #include "surface_io.h"
@@ -79,6 +80,8 @@ ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentS
     r.fragment.push_back(paths_.shaders() / "view_main.frag");
     r.defines["NUM_LIGHTS"] = std::to_string(std::max(lightCount, 1));
     if (probe) r.defines["PBRLAB_PROBE"] = "1";
+    if (d.needs & NeedsEnvironment) r.defines["PBRLAB_IBL"] = "1";
+    if ((d.needs & NeedsEnvironment) && d.skyBackground && !probe) r.defines["PBRLAB_SKY"] = "1";
     return r;
 }
 
@@ -143,6 +146,7 @@ void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int
         glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
         gl::UniformMatrix3fv(program->location("uNormalMatrix"), 1, GL_FALSE, &normalMatrix[0][0]);
         program->set("uViewProjection", proj * view);
+        viewProjection_ = proj * view;
         program->set("uAlbedo", glm::vec3(m.albedo));
         program->set("uAlbedoTexel", glm::vec3(srgbEncode(m.albedo)));
         program->set("uMetallic", float(m.metallic));
@@ -186,6 +190,32 @@ double LabRenderer::runView(const LoadedModule& module, const ParamValues& param
     program->set("uLightColors", colors);
     if (program->uses("uCameraPosition"))
         program->set("uCameraPosition", glm::vec3(scene.camera.position));
+    if (module.desc->needs & NeedsEnvironment) {
+        const IblMaps& maps = environmentMaps(scene);
+        program->use();  // precompute on first use switched programs
+        struct Binding {
+            const char* name;
+            GLenum target;
+            GLuint texture;
+        };
+        const Binding bindings[] = {{"uEnvironment", GL_TEXTURE_CUBE_MAP, maps.environment.id()},
+                                    {"uIrradianceMap", GL_TEXTURE_CUBE_MAP, maps.irradiance.id()},
+                                    {"uPrefilterMap", GL_TEXTURE_CUBE_MAP, maps.prefilter.id()},
+                                    {"uBrdfLut", GL_TEXTURE_2D, maps.lut.id()}};
+        int unit = int(inputs.size());
+        for (const Binding& b : bindings) {
+            if (!program->uses(b.name)) continue;
+            gl::ActiveTexture(GLenum(GL_TEXTURE0 + unit));
+            gl::BindTexture(b.target, b.texture);
+            program->set(b.name, unit++);
+        }
+        program->set("uPrefilterMaxLod", maps.prefilterMaxLod);
+        if (program->uses("uInverseViewProjection")) {
+            program->set("uInverseViewProjection", glm::inverse(viewProjection_));
+            program->set("uViewportSize", glm::vec2(float(width), float(height)));
+        }
+        valueTarget_->bind();
+    }
     for (const ParamDecl& p : module.desc->params) {
         glm::dvec3 v = params.vector(p.name);
         const std::string u = p.uniformName();
@@ -240,6 +270,53 @@ RenderResult LabRenderer::renderScene(const LoadedModule& module, const ParamVal
         result.surfaces = unpackSurfaces(textures, asFloat(scene.camera.position), first);
     }
     return result;
+}
+
+Image loadEnvironmentImage(const std::string& source) {
+    if (source == "sky") return generateSkyEnvironment(512);
+    Image image = readImage(source);
+    if (image.width != 2 * image.height || image.channels < 3)
+        throw Error(source + ": expected an equirectangular RGB image (width = 2 x height), got " +
+                    std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
+                    std::to_string(image.channels));
+    return image;
+}
+
+const IblMaps& LabRenderer::environmentMaps(const Scene& scene) {
+    std::string key = scene.environment + "|" + iblSettings_.key();
+    Environment& env = environments_[key];
+    if (!env.maps) {
+        if (!precompute_)
+            precompute_ = std::make_unique<IblPrecompute>(programs_, paths_.shaders(), paths_.labs());
+        logLine("environment", scene.environment + " (" + iblSettings_.key() + ")");
+        env.maps = precompute_->build(loadEnvironmentImage(scene.environment), iblSettings_);
+    }
+    return *env.maps;
+}
+
+const IblInputs& LabRenderer::environmentInputs(const Scene& scene) {
+    const IblMaps& maps = environmentMaps(scene);
+    Environment& env = environments_[scene.environment + "|" + iblSettings_.key()];
+    if (!env.cpu) {
+        auto cpu = std::make_unique<IblInputs>();
+        auto cube = [](GLuint texture, int size, int levels) {
+            std::vector<std::vector<Image>> mips{size_t(levels)};
+            for (int level = 0; level < levels; ++level)
+                for (int face = 0; face < 6; ++face)
+                    mips[size_t(level)].push_back(
+                        IblPrecompute::readCubeFace(texture, face, level, size));
+            return CubeSampler(std::move(mips));
+        };
+        const IblSettings& s = maps.settings;
+        cpu->environment = cube(maps.environment.id(), s.environmentSize,
+                                int(std::floor(std::log2(s.environmentSize))) + 1);
+        cpu->irradiance = cube(maps.irradiance.id(), s.irradianceSize, 1);
+        cpu->prefilter = cube(maps.prefilter.id(), s.prefilterSize, s.prefilterMips);
+        cpu->prefilterMaxLod = maps.prefilterMaxLod;
+        cpu->lut = IblPrecompute::readTexture(maps.lut.id(), s.lutSize, s.lutSize);
+        env.cpu = std::move(cpu);
+    }
+    return *env.cpu;
 }
 
 std::vector<Surface> probeSurfaces(const Probe& probe) {

@@ -8,6 +8,8 @@
 #include <optional>
 
 #include "gl/objects.h"
+#include "ibl.h"
+#include "pbrlab/cube_sampler.h"
 #include "pbrlab/scene.h"
 #include "plugins.h"
 #include "shader/program.h"
@@ -64,6 +66,14 @@ public:
 
     ProgramCache& programs() { return programs_; }
 
+    // The split-sum maps of the scene's environment, precomputed on first use (and only for
+    // modules that need an environment), then reused for every frame.
+    const IblMaps& environmentMaps(const Scene& scene);
+    // CPU copies of the same maps, for references (read back on first use).
+    const IblInputs& environmentInputs(const Scene& scene);
+    void setIblSettings(const IblSettings& settings) { iblSettings_ = settings; }
+    const IblSettings& iblSettings() const { return iblSettings_; }
+
 private:
     void drawGBuffer(const Scene& scene, unsigned needs, int width, int height);
     double runView(const LoadedModule& module, const ParamValues& params, const Scene& scene,
@@ -78,6 +88,18 @@ private:
     std::map<std::string, std::unique_ptr<gl::GpuMesh>> meshes_;
     std::map<std::filesystem::path, gl::Handle> textures_;
     std::vector<gl::Handle> probeInputs_;
+    glm::mat4 viewProjection_{1};
+
+    struct Environment {
+        std::unique_ptr<IblMaps> maps;
+        std::unique_ptr<IblInputs> cpu;
+    };
+    IblSettings iblSettings_;
+    std::map<std::string, Environment> environments_;  // by source and settings
+    std::unique_ptr<IblPrecompute> precompute_;
 };
+
+// Loads an environment: "sky" (generated) or an equirectangular .hdr/.exr file.
+Image loadEnvironmentImage(const std::string& source);
 
 }  // namespace pbrlab

@@ -108,6 +108,7 @@ StabilityResult stabilitySweep(LabRenderer& renderer, const LoadedModule& module
     ExtremeSet set = extremeSurfaces();
     ParamValues params(d.params);
     ReferenceContext context = referenceContext(scene, params);
+    if (d.needs & NeedsEnvironment) context.ibl = &renderer.environmentInputs(scene);
     RenderResult r =
         renderer.renderSurfaces(module, params, scene, source, set.surfaces, set.width, set.height);
     StabilityResult result;

@@ -10,13 +10,14 @@
 #include <string>
 #include <vector>
 
+#include "pbrlab/cube_sampler.h"
 #include "pbrlab/params.h"
 #include "pbrlab/reference.h"
 
 namespace pbrlab {
 
 // Bump when ModuleDesc or anything it contains changes layout.
-constexpr int kModuleAbiVersion = 1;
+constexpr int kModuleAbiVersion = 2;
 
 // Everything a contract function may take, per pixel. The GPU fills the same fields in
 // GLSL (shaders/surface.glsl) from the G-buffer (scene) or from uploaded textures (probe), so
@@ -41,6 +42,7 @@ struct ReferenceContext {
     const ParamValues& params;
     std::vector<ref::PointLight> lights;  // the scene's point lights
     glm::dvec3 cameraPosition{0};
+    const IblInputs* ibl = nullptr;  // the precomputed maps, for modules with NeedsEnvironment
 };
 
 using ReferenceFn = std::function<glm::dvec3(const Surface&, const ReferenceContext&)>;
@@ -84,6 +86,7 @@ enum SurfaceNeeds : unsigned {
     NeedsRoughness = 1u << 2,
     NeedsAo = 1u << 3,
     NeedsNormalMap = 1u << 4,
+    NeedsEnvironment = 1u << 5,  // IBL: environment cube and the split-sum maps (precompute)
     NeedsMaterial = NeedsAlbedo | NeedsMetallic | NeedsRoughness | NeedsAo,
 };
 
@@ -101,6 +104,7 @@ struct ModuleDesc {
     std::string scene = "sphere";    // default scene (assets/scenes/<name>.json)
     unsigned needs = NeedsGeometry;  // SurfaceNeeds flags
     std::vector<std::string> uses;   // other contract ids the view calls
+    bool skyBackground = false;  // draw the environment behind the scene (radiance views)
     Tolerance tolerance;
     ReferenceFn reference;
     Probe probe;

@@ -42,6 +42,9 @@ struct Scene {
     std::vector<PointLightDesc> lights;
     std::vector<MaterialDesc> materials;
     std::vector<ObjectDesc> objects;
+    // Equirectangular radiance (.hdr/.exr, absolute path), or "sky" for the project's own
+    // generated environment (the default for modules that need one).
+    std::string environment = "sky";
 };
 
 // Throws pbrlab::Error "FILE: field 'objects[3].material': ..." on any problem, including

@@ -1,0 +1,42 @@
+// CPU copies of the GPU's cube maps and LUT, sampled as OpenGL samples them (face selection
+// by major axis, bilinear between texel centres clamped at face edges, linear between mips),
+// so a module's CPU reference can read exactly the precomputed data its shader reads.
+// (The GPU filters across face edges, GL_TEXTURE_CUBE_MAP_SEAMLESS; this does not: texels
+// on a face border may differ by a fraction of a texel's contrast.)
+#pragma once
+
+#include <vector>
+
+#include "pbrlab/image.h"
+#include "pbrlab/reference.h"
+
+namespace pbrlab {
+
+class CubeSampler {
+public:
+    CubeSampler() = default;
+    // mips[level][face]: square RGBA images, face order +x -x +y -y +z -z, row 0 = t = 0.
+    explicit CubeSampler(std::vector<std::vector<Image>> mips) : mips_(std::move(mips)) {}
+    bool empty() const { return mips_.empty(); }
+    int levels() const { return int(mips_.size()); }
+    int size() const { return mips_.empty() ? 0 : mips_[0][0].width; }
+    glm::dvec3 sample(const glm::dvec3& dir, double lod = 0) const;
+
+private:
+    glm::dvec3 sampleLevel(const glm::dvec3& dir, int level) const;
+    std::vector<std::vector<Image>> mips_;
+};
+
+// Bilinear lookup of a 2D texture at uv in [0, 1] (clamp to edge), row 0 = t = 0.
+glm::dvec4 sampleTexture(const Image& image, const glm::dvec2& uv);
+
+// What an IBL module's CPU reference may read: the same maps the shader was given.
+struct IblInputs {
+    CubeSampler environment;  // uEnvironment (all mips)
+    CubeSampler irradiance;   // uIrradianceMap
+    CubeSampler prefilter;    // uPrefilterMap
+    double prefilterMaxLod = 0;
+    Image lut;                // uBrdfLut, row 0 = roughness 0 (t = 0)
+};
+
+}  // namespace pbrlab

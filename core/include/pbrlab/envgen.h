@@ -1,0 +1,32 @@
+// The HDR environment the project makes itself (no downloaded panorama): an outdoor test
+// range under a clear sky. Deterministic: integer-hash noise only (no std::rand, no clock), so
+// every run gives the same pixels.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "pbrlab/image.h"
+
+namespace pbrlab {
+
+// An equirectangular RGB float image, width x width/2, in the mapping of
+// shaders/ibl/cube_face.glsl (row 0 = zenith, column centre = looking down -z, y up), linear
+// radiance in arbitrary units (sky about 0.3-1):
+//   - a sky gradient (deep blue zenith, pale horizon, brighter towards the sun) with
+//     fractal-noise clouds;
+//   - a sun: a disc of 1.2 degrees radius with limb darkening and radiance 20000, plus a glow;
+//   - two soft rectangular area lights (softbox panels): a warm one low in front (radiance
+//     80) and a cool one high on the right (radiance 50);
+//   - below the horizon a ground plane of noisy stone tiles lit by sun and sky, fading into
+//     haze towards the horizon.
+// The brightest texels are over 10^4 times the median. Each texel is the average of 4 x 4
+// stratified sub-samples (the sun's edge is antialiased, its energy kept). width must be even
+// and in [16, 8192] (512 is the shipped size); throws pbrlab::Error otherwise.
+Image generateSkyEnvironment(int width = 512);
+
+// Where the sun of generateSkyEnvironment is (unit vector, y up) and its angular radius in
+// radians, for tests and handouts (e.g. where a mirror sphere shows its highlight).
+glm::dvec3 skySunDirection();
+double skySunAngularRadius();
+
+}  // namespace pbrlab

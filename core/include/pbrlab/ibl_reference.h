@@ -1,0 +1,156 @@
+// The CPU truth of the lab "ibl" (contract steps 15-21) in double precision. The sampling
+// functions mirror the GLSL reference solutions (labs/15-hammersley ... labs/21-split_sum)
+// formula for formula and guard for guard, so GPU and CPU differ only by float rounding and by
+// how the environment is stored (cube map on the GPU, equirectangular image here). Next to
+// the Monte Carlo estimators are high-accuracy quadratures (brdfLutExact, irradianceAt,
+// projectSH9) that serve as ground truth in the error-against-run-time plots.
+//
+// Conventions: y is up; directions are unit vectors; `roughness` is perceptual and
+// alpha = roughness^2 (DESIGN.md). The equirectangular mapping is the one of
+// shaders/ibl/cube_face.glsl: u = atan2(d.x, -d.z) / 2pi + 0.5 (u = 0.5 looks down -z),
+// v = acos(d.y) / pi (v = 0 at the zenith, image row 0).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "pbrlab/image.h"
+#include "pbrlab/reference.h"
+
+namespace pbrlab::ref {
+
+// Guards shared with the GLSL solutions (each is explained where it is used, in
+// ibl_reference.cpp and the solution files).
+constexpr double kIblMinNdotV = 1e-4;  // N.V floor in the IBL weights and the LUT (N.V = 0)
+constexpr double kIblMinNdotH = 1e-4;  // N.H floor in the weight G V.H / (N.H N.V)
+constexpr double kIblMinAlpha = 3.1622776601683794e-4;  // sqrt(kMinAlpha2): alpha floor in k
+
+// ---- 15 hammersley --------------------------------------------------------------------------
+
+// Van der Corput radical inverse in base 2: the bits of i mirrored around the binary point
+// (bit reversal of the 32-bit word, divided by 2^32). In [0, 1).
+double radicalInverse2(std::uint32_t i);
+// Point i of the n-point Hammersley set: (i / n, radicalInverse2(i)). n = 0 is treated as 1.
+dvec2 hammersley(std::uint32_t i, std::uint32_t n);
+
+// ---- 16 importance --------------------------------------------------------------------------
+
+// Maps a uniform Xi in [0,1)^2 to a GGX-distributed half vector around N: phi = 2 pi Xi.x and
+// cos^2(theta) = (1 - Xi.y) / (1 + (alpha^2 - 1) Xi.y), so that H has the density
+// pdfGGXHalfVector (D(h) (N.H) per steradian). The tangent frame is the one of the seed: the
+// up vector z (x when N is within ~2.6 degrees of +-z), T = normalize(up x N), B = N x T.
+dvec3 importanceSampleGGX(const dvec2& Xi, const dvec3& N, double roughness);
+// The density of importanceSampleGGX's H per steradian of half-vector directions: D (N.H).
+double pdfGGXHalfVector(double NdotH, double roughness);
+// The density of L = reflect(-V, H) per steradian of light directions: D (N.H) / (4 V.H), the
+// Jacobian dH/dL = 1 / (4 V.H) of the reflection. 0 when V.H <= 0.
+double pdfGGXReflected(double NdotH, double VdotH, double roughness);
+
+// Smith-Schlick-GGX for image-based lighting: k = alpha / 2 = roughness^2 / 2 (not the
+// direct-light (roughness + 1)^2 / 8 of step 6), alpha floored at kIblMinAlpha like D.
+double geometrySchlickGGXIBL(double NdotX, double roughness);
+double geometrySmithIBL(double NdotV, double NdotL, double roughness);
+
+// The contract's helper for step 21: F0 + (max(1 - roughness, F0) - F0) (1 - cosTheta)^5.
+dvec3 fresnelSchlickRoughness(double cosTheta, const dvec3& F0, double roughness);
+
+// ---- environments ---------------------------------------------------------------------------
+
+// Incoming radiance from every direction, at infinite distance.
+struct Environment {
+    virtual ~Environment() = default;
+    virtual dvec3 radiance(const dvec3& dir) const = 0;
+};
+
+// The same radiance everywhere (the white furnace when colour = 1).
+struct ConstantEnvironment final : Environment {
+    explicit ConstantEnvironment(const dvec3& c) : colour(c) {}
+    dvec3 radiance(const dvec3&) const override { return colour; }
+    dvec3 colour;
+};
+
+// An equirectangular image (RGB from the first three channels; one channel is grey), looked
+// up bilinearly between texel centres, wrapping around in u and clamped in v, as a GL sampler
+// with GL_REPEAT on s and GL_CLAMP_TO_EDGE on t would. Throws pbrlab::Error on an empty image.
+class EquirectEnvironment final : public Environment {
+public:
+    explicit EquirectEnvironment(Image image);
+    dvec3 radiance(const dvec3& dir) const override;
+    const Image& image() const { return image_; }
+    dvec3 texel(int x, int y) const;  // x wraps, y clamps
+
+private:
+    Image image_;
+};
+
+dvec2 equirectUv(const dvec3& dir);     // the mapping above, u in [0, 1], v in [0, 1]
+dvec3 equirectDirection(const dvec2& uv);  // its inverse
+
+// ---- 17 mc_specular -------------------------------------------------------------------------
+
+// Brute-force split-free specular IBL: (1/n) sum over Hammersley-driven GGX half vectors H of
+// L(l) F(V.H) G(N.V, N.L) (V.H) / ((N.H)(N.V)), l = reflect(-V, H), samples with N.L <= 0
+// contributing 0. This is f_spec(l) (N.L) / pdf(l) with D cancelled (pdf = D (N.H) / 4 (V.H)).
+dvec3 specularIBLReference(const Environment& env, const dvec3& N, const dvec3& V,
+                           const dvec3& F0, double roughness, std::uint32_t sampleCount);
+
+// ---- 18 irradiance --------------------------------------------------------------------------
+
+// E(N) / pi with E(N) = integral over the hemisphere around N of L(l) (N.l) dl, so that
+// diffuse = albedo * irradianceAt(N). High-accuracy quadrature: Gauss-Legendre in theta
+// (thetaSteps nodes) times the periodic midpoint rule in phi (4 * thetaSteps nodes) around N.
+// 256 resolves features of about 0.2 degrees; see tests/test_ibl_reference.cpp for measured
+// convergence.
+dvec3 irradianceAt(const Environment& env, const dvec3& N, int thetaSteps = 256);
+// The same for an equirectangular image taken as piecewise constant per texel: the sum over
+// texels of L (N.l)+ times the texel's exact solid angle (2 pi / W)(cos theta_top -
+// cos theta_bottom), with l at the texel centre. The ground truth for small bright sources
+// (a sun a few texels wide), which point quadratures resolve only slowly: on the shipped sky,
+// irradianceAt(EquirectEnvironment) changes by 2.6% from 128 to 256 theta nodes.
+dvec3 irradianceAt(const Image& equirect, const dvec3& N);
+
+// Real spherical harmonics up to band 2 (9 coefficients, RGB each): index l (l + 1) + m.
+struct SH9 {
+    std::array<dvec3, 9> c{};
+};
+// The 9 real SH basis functions at a unit direction (orthonormal over the sphere).
+std::array<double, 9> shBasis9(const dvec3& dir);
+// Projection by quadrature over the whole sphere: Gauss-Legendre in cos(theta) (thetaSteps
+// nodes) times the midpoint rule in phi (2 * thetaSteps nodes).
+SH9 projectSH9(const Environment& env, int thetaSteps = 512);
+// Projection of an equirectangular image taken as piecewise constant per texel, each texel
+// weighted by its exact solid angle (2 pi / W) (cos(theta_top) - cos(theta_bottom)).
+SH9 projectSH9(const Image& equirect);
+// E(N) / pi from the 9 coefficients: the clamped-cosine kernel acts on band l by
+// A_l = 2 pi integral_0^1 t P_l(t) dt, i.e. A_0 = pi, A_1 = 2 pi / 3, A_2 = pi / 4 (Funk-Hecke).
+dvec3 shIrradiance(const SH9& sh, const dvec3& N);
+
+// ---- 19 prefilter ---------------------------------------------------------------------------
+
+// The first sum of the split sum: the environment averaged over the GGX lobe of L around R,
+// assuming N = V = R, weighted by N.L (Karis 2013): sum L(l) (N.l) / sum (N.l) over samples
+// with N.l > 0.
+dvec3 prefilterEnvironment(const Environment& env, const dvec3& R, double roughness,
+                           std::uint32_t sampleCount);
+
+// ---- 20 brdf_lut ----------------------------------------------------------------------------
+
+// The second sum: scale A and bias B with integral of f_spec (N.L) = F0 A + B for Schlick's
+// Fresnel, by Monte Carlo with Hammersley points; N = +z, V = (sqrt(1 - NdotV^2), 0, NdotV).
+dvec2 integrateBRDF(double NdotV, double roughness, std::uint32_t sampleCount);
+// The same two integrals by deterministic quadrature (graded Gauss-Legendre panels in the
+// half-vector angle, the exact azimuth range where N.L > 0): within 4e-7 of a rule with 4x
+// the nodes (measured over roughness and N.V in [0, 1]), about 0.6 ms per value.
+dvec2 brdfLutExact(double NdotV, double roughness);
+
+// ---- 21 split_sum ---------------------------------------------------------------------------
+
+// The ambient term from the three precomputed values at this point: irradiance (E/pi at N),
+// prefiltered (the prefiltered environment at R = reflect(-V, N), roughness) and lut (A, B at
+// N.V, roughness). kD = (1 - F)(1 - metallic), F = fresnelSchlickRoughness(N.V, F0, roughness);
+// result = (kD albedo irradiance + prefiltered (F0 A + B)) ao.
+dvec3 ambientIBL(const dvec3& N, const dvec3& V, const dvec3& albedo, double metallic,
+                 double roughness, double ao, const dvec3& irradiance, const dvec3& prefiltered,
+                 const dvec2& lut);
+
+}  // namespace pbrlab::ref

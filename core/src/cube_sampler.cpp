@@ -1,0 +1,65 @@
+#include "pbrlab/cube_sampler.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pbrlab {
+
+namespace {
+
+glm::dvec4 texel(const Image& im, int x, int y) {
+    x = std::clamp(x, 0, im.width - 1);
+    y = std::clamp(y, 0, im.height - 1);
+    glm::dvec4 v(0);
+    for (int c = 0; c < std::min(im.channels, 4); ++c) v[c] = im.at(x, y, c);
+    return v;
+}
+
+}  // namespace
+
+glm::dvec4 sampleTexture(const Image& im, const glm::dvec2& uv) {
+    double x = std::clamp(uv.x, 0.0, 1.0) * im.width - 0.5;
+    double y = std::clamp(uv.y, 0.0, 1.0) * im.height - 0.5;
+    int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+    double fx = x - x0, fy = y - y0;
+    return glm::mix(glm::mix(texel(im, x0, y0), texel(im, x0 + 1, y0), fx),
+                    glm::mix(texel(im, x0, y0 + 1), texel(im, x0 + 1, y0 + 1), fx), fy);
+}
+
+glm::dvec3 CubeSampler::sampleLevel(const glm::dvec3& d, int level) const {
+    // OpenGL 4.5 table 8.19: major axis, then sc, tc and ma.
+    glm::dvec3 a = glm::abs(d);
+    int face;
+    double sc, tc, ma;
+    if (a.x >= a.y && a.x >= a.z) {
+        face = d.x >= 0 ? 0 : 1;
+        sc = d.x >= 0 ? -d.z : d.z;
+        tc = -d.y;
+        ma = a.x;
+    } else if (a.y >= a.z) {
+        face = d.y >= 0 ? 2 : 3;
+        sc = d.x;
+        tc = d.y >= 0 ? d.z : -d.z;
+        ma = a.y;
+    } else {
+        face = d.z >= 0 ? 4 : 5;
+        sc = d.z >= 0 ? d.x : -d.x;
+        tc = -d.y;
+        ma = a.z;
+    }
+    if (!(ma > 0)) return glm::dvec3(0);
+    glm::dvec2 st(0.5 * (sc / ma + 1), 0.5 * (tc / ma + 1));
+    return glm::dvec3(sampleTexture(mips_[size_t(level)][size_t(face)], st));
+}
+
+glm::dvec3 CubeSampler::sample(const glm::dvec3& dir, double lod) const {
+    if (mips_.empty()) return glm::dvec3(0);
+    lod = std::clamp(lod, 0.0, double(mips_.size() - 1));
+    int l0 = int(std::floor(lod));
+    int l1 = std::min(l0 + 1, int(mips_.size()) - 1);
+    double f = lod - l0;
+    glm::dvec3 a = sampleLevel(dir, l0);
+    return f > 0 ? glm::mix(a, sampleLevel(dir, l1), f) : a;
+}
+
+}  // namespace pbrlab

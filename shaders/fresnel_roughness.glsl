@@ -1,0 +1,9 @@
+// Contract helper for step 21 (split_sum), available to student code: Schlick's Fresnel for
+// ambient light. Light from the environment arrives over a whole lobe of half vectors, so the
+// grazing-angle rise is capped for rough surfaces: the ceiling is max(1 - roughness, F0)
+// instead of 1 (Lagarde's "fresnelSchlickRoughness"). cosTheta is N.V here.
+vec3 fresnelSchlickRoughness(float cosTheta, vec3 F0, float roughness)
+{
+    return F0 + (max(vec3(1.0 - roughness), F0) - F0) *
+                    pow(clamp(1.0 - cosTheta, 0.0, 1.0), 5.0);
+}
