@@ -19,6 +19,11 @@ CheckResult checkModule(LabRenderer& renderer, const LoadedModule& module,
     ReferenceContext context = referenceContext(scene, params);
     if (d.needs & NeedsEnvironment) context.ibl = &renderer.environmentInputs(scene);
     CheckResult r;
+    renderer.setSeamlessCubes(false);  // see LabRenderer::setSeamlessCubes
+    struct Restore {
+        LabRenderer& r;
+        ~Restore() { r.setSeamlessCubes(true); }
+    } restore{renderer};
     RenderResult onScene = renderer.renderScene(module, params, scene, source, width, height, true);
     r.scene = compareWithReference(onScene.value, onScene.surfaces, d, context);
     r.sceneMilliseconds = onScene.milliseconds;

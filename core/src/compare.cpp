@@ -1,5 +1,6 @@
 #include "compare.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -10,6 +11,7 @@ ErrorStats compareWithReference(const Image& gpu, const std::vector<Surface>& su
                                 std::vector<glm::dvec3>* referenceOut) {
     ErrorStats s;
     double sumAbs = 0, sumError = 0;
+    std::vector<double> pixelErrors;
     const double floor = module.tolerance.floor;
     if (referenceOut) referenceOut->assign(surfaces.size(), glm::dvec3(0));
     for (int y = 0; y < gpu.height; ++y)
@@ -20,6 +22,7 @@ ErrorStats compareWithReference(const Image& gpu, const std::vector<Surface>& su
             if (referenceOut) (*referenceOut)[size_t(y) * gpu.width + x] = r;
             ++s.compared;
             bool nan = false, inf = false, negative = false;
+            double pixelError = 0;
             for (int c = 0; c < module.components; ++c) {
                 double g = gpu.at(x, y, c);
                 nan = nan || std::isnan(g);
@@ -31,6 +34,7 @@ ErrorStats compareWithReference(const Image& gpu, const std::vector<Surface>& su
                 s.maxAbs = std::max(s.maxAbs, abs);
                 sumAbs += abs;
                 sumError += err;
+                pixelError = std::max(pixelError, err);
                 if (err > s.maxError || s.worstX < 0) {
                     if (err > s.maxError) s.maxError = err;
                     s.worstX = x;
@@ -39,10 +43,17 @@ ErrorStats compareWithReference(const Image& gpu, const std::vector<Surface>& su
                     s.worstRef = r;
                 }
             }
+            pixelErrors.push_back(pixelError);
+            s.overCount += pixelError > module.tolerance.maxError;
             s.nanCount += nan;
             s.infCount += inf;
             s.negativeCount += negative;
         }
+    if (!pixelErrors.empty()) {
+        size_t k = size_t(double(pixelErrors.size() - 1) * (1 - module.tolerance.outlierFraction));
+        std::nth_element(pixelErrors.begin(), pixelErrors.begin() + long(k), pixelErrors.end());
+        s.quantileError = pixelErrors[k];
+    }
     const double n = double(s.compared) * module.components;
     if (n > 0) {
         s.meanAbs = sumAbs / n;
@@ -57,7 +68,10 @@ std::string describe(const ErrorStats& s, const Tolerance& t) {
     o << s.compared << " px  max err " << s.maxError << " (tol " << t.maxError << ", floor "
       << t.floor << ")  mean err " << s.meanError << "  max abs " << s.maxAbs << "  mean abs "
       << s.meanAbs << "  NaN " << s.nanCount << "  Inf " << s.infCount << "  neg "
-      << s.negativeCount;
+      << s.negativeCount << "  over tol " << s.overCount;
+    if (t.outlierFraction > 0)
+        o << " (allowed " << t.outlierFraction * 100 << "%: quantile err " << s.quantileError
+          << ")";
     if (s.worstX >= 0)
         o << "\n    worst at (" << s.worstX << ", " << s.worstY << "): gpu (" << s.worstGpu.x
           << ", " << s.worstGpu.y << ", " << s.worstGpu.z << ") ref (" << s.worstRef.x << ", "

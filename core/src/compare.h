@@ -15,12 +15,15 @@ struct ErrorStats {
     // error = |gpu - ref| / max(|ref|, floor), per component; the tolerance applies to it.
     double maxError = 0, meanError = 0;
     int nanCount = 0, infCount = 0, negativeCount = 0;
+    int overCount = 0;             // pixels whose error exceeds the tolerance
+    double quantileError = 0;      // the error not exceeded by (1 - outlierFraction) of pixels
     int worstX = -1, worstY = -1;  // where maxError happened (row 0 = top)
     glm::dvec3 worstGpu{0}, worstRef{0};
 
     int nonFinite() const { return nanCount + infCount; }
     bool passes(const Tolerance& t, bool nonNegative) const {
-        return nonFinite() == 0 && (!nonNegative || negativeCount == 0) && maxError <= t.maxError;
+        return nonFinite() == 0 && (!nonNegative || negativeCount == 0) &&
+               (t.outlierFraction > 0 ? quantileError : maxError) <= t.maxError;
     }
 };
 

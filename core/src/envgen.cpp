@@ -98,9 +98,9 @@ double groundIrradiance() {
 }
 
 struct AreaLight {
-    double az, el;          // centre
-    double halfW, halfH;    // angular half sizes (along the horizon, vertical)
-    double softness;        // width of the smooth edge
+    double az, el;        // centre
+    double halfW, halfH;  // angular half sizes (along the horizon, vertical)
+    double softness;      // width of the smooth edge
     dvec3 radiance;
 };
 

@@ -37,7 +37,6 @@ gl::Handle makeCube(int size, bool mips) {
     for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
         gl::TexParameteri(GL_TEXTURE_CUBE_MAP, wrap, GL_CLAMP_TO_EDGE);
     gl::TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, levels - 1);
-    gl::Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     gl::checkError("creating a cube map");
     return cube;
 }
@@ -50,9 +49,9 @@ public:
     }
     ~PassTimer() {
         gl::Finish();
-        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
-                                                              start_)
-                        .count();
+        double ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
+                .count();
         maps_.milliseconds[name_] = ms;
         countEvent(Counter::PrecomputePasses);
         logLine("precompute", name_ + " " + std::to_string(ms) + " ms");
@@ -107,6 +106,7 @@ std::unique_ptr<IblMaps> IblPrecompute::build(const Image& equirect, const IblSe
     auto maps = std::make_unique<IblMaps>();
     maps->settings = s;
     gl::Disable(GL_DEPTH_TEST);
+    gl::Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);  // precomputed maps never depend on the caller
     {
         PassTimer timer(*maps, "environment cube " + std::to_string(s.environmentSize));
         gl::Handle source = gl::uploadTexture(equirect, false);
@@ -145,7 +145,8 @@ std::unique_ptr<IblMaps> IblPrecompute::build(const Image& equirect, const IblSe
         auto p = program("prefilter", "prefilter");
         bindEnvironment(*p);
         for (int mip = 0; mip < s.prefilterMips; ++mip) {
-            p->set("uRoughness", s.prefilterMips > 1 ? float(mip) / float(s.prefilterMips - 1) : 0.f);
+            p->set("uRoughness",
+                   s.prefilterMips > 1 ? float(mip) / float(s.prefilterMips - 1) : 0.f);
             p->setUnsigned("uSampleCount", unsigned(s.prefilterSamples));
             renderCube(maps->prefilter.id(), s.prefilterSize, mip, *p, "prefilter");
         }

@@ -18,8 +18,8 @@ namespace pbrlab {
 struct IblSettings {
     int environmentSize = 256;  // cube face size of the radiance map (mips to 1x1)
     int irradianceSize = 32;
-    int prefilterSize = 128;    // mip 0 of the prefiltered map
-    int prefilterMips = 5;      // roughness 0, 0.25, ... 1
+    int prefilterSize = 128;  // mip 0 of the prefiltered map
+    int prefilterMips = 5;    // roughness 0, 0.25, ... 1
     int prefilterSamples = 256;
     int lutSize = 128;
     int lutSamples = 512;
@@ -35,7 +35,8 @@ struct IblMaps {
 
 class IblPrecompute {
 public:
-    IblPrecompute(ProgramCache& programs, std::filesystem::path shaders, std::filesystem::path labs);
+    IblPrecompute(ProgramCache& programs, std::filesystem::path shaders,
+                  std::filesystem::path labs);
     std::unique_ptr<IblMaps> build(const Image& equirect, const IblSettings& settings);
 
     // Read-back for files and tests: one face (0..5 = +x -x +y -y +z -z) of a cube mip.
@@ -45,7 +46,8 @@ public:
 
 private:
     std::shared_ptr<Program> program(const std::string& pass, const std::string& contractId);
-    void renderCube(GLuint cube, int size, int mip, const Program& program, const std::string& pass);
+    void renderCube(GLuint cube, int size, int mip, const Program& program,
+                    const std::string& pass);
     ProgramCache& programs_;
     std::filesystem::path shaders_, labs_;
     gl::FullscreenTriangle fullscreen_;

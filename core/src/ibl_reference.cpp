@@ -168,8 +168,8 @@ EquirectEnvironment::EquirectEnvironment(Image image) : image_(std::move(image))
         image_.pixels.size() !=
             size_t(image_.width) * size_t(image_.height) * size_t(image_.channels))
         throw Error("equirectangular environment: empty or inconsistent image (" +
-                    std::to_string(image_.width) + " x " + std::to_string(image_.height) +
-                    ", " + std::to_string(image_.channels) + " channels)");
+                    std::to_string(image_.width) + " x " + std::to_string(image_.height) + ", " +
+                    std::to_string(image_.channels) + " channels)");
 }
 
 dvec3 EquirectEnvironment::texel(int x, int y) const {
@@ -193,7 +193,8 @@ dvec3 EquirectEnvironment::radiance(const dvec3& dir) const {
 }
 
 dvec2 equirectUv(const dvec3& dir) {
-    return {std::atan2(dir.x, -dir.z) / kTwoPi + 0.5, std::acos(std::clamp(dir.y, -1.0, 1.0)) / kPi};
+    return {std::atan2(dir.x, -dir.z) / kTwoPi + 0.5,
+            std::acos(std::clamp(dir.y, -1.0, 1.0)) / kPi};
 }
 
 dvec3 equirectDirection(const dvec2& uv) {
@@ -203,8 +204,8 @@ dvec3 equirectDirection(const dvec2& uv) {
 
 // ---- 17 mc_specular -------------------------------------------------------------------------
 
-dvec3 specularIBLReference(const Environment& env, const dvec3& N, const dvec3& V,
-                           const dvec3& F0, double roughness, std::uint32_t sampleCount) {
+dvec3 specularIBLReference(const Environment& env, const dvec3& N, const dvec3& V, const dvec3& F0,
+                           double roughness, std::uint32_t sampleCount) {
     // Guard: N.V floored at 1e-4, it divides the weight (N.V = 0 would give x/0).
     const double NdotV = std::max(glm::dot(N, V), kIblMinNdotV);
     const std::uint32_t n = std::max(sampleCount, 1u);  // guard: 0 samples would give 0/0
@@ -269,11 +270,11 @@ dvec3 irradianceAt(const Image& equirect, const dvec3& N) {
 std::array<double, 9> shBasis9(const dvec3& d) {
     // Real, orthonormal SH: K_l^m P_l^|m|(cos theta) times sqrt(2) cos(m phi) or sin(|m| phi),
     // written as polynomials in x, y, z (polar axis z).
-    const double k0 = 0.5 / std::sqrt(kPi);             // sqrt(1 / 4pi)
-    const double k1 = std::sqrt(3.0 / (4.0 * kPi));     // band 1
-    const double k2 = 0.5 * std::sqrt(15.0 / kPi);      // xy, yz, xz
-    const double k20 = 0.25 * std::sqrt(5.0 / kPi);     // 3z^2 - 1
-    const double k22 = 0.25 * std::sqrt(15.0 / kPi);    // x^2 - y^2
+    const double k0 = 0.5 / std::sqrt(kPi);           // sqrt(1 / 4pi)
+    const double k1 = std::sqrt(3.0 / (4.0 * kPi));   // band 1
+    const double k2 = 0.5 * std::sqrt(15.0 / kPi);    // xy, yz, xz
+    const double k20 = 0.25 * std::sqrt(5.0 / kPi);   // 3z^2 - 1
+    const double k22 = 0.25 * std::sqrt(15.0 / kPi);  // x^2 - y^2
     return {k0,
             k1 * d.y,
             k1 * d.z,
@@ -323,8 +324,7 @@ SH9 projectSH9(const Image& equirect) {
 dvec3 shIrradiance(const SH9& sh, const dvec3& N) {
     // E = sum A_l L_lm Y_lm(N) with A_l = 2 pi integral_0^1 t P_l(t) dt (Funk-Hecke for the
     // clamped cosine max(t, 0)): pi, 2 pi / 3, pi / 4. Returned divided by pi.
-    constexpr double band[9] = {1.0,       2.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0, 0.25,
-                                0.25,      0.25,      0.25,      0.25};
+    constexpr double band[9] = {1.0, 2.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0, 0.25, 0.25, 0.25, 0.25, 0.25};
     const auto Y = shBasis9(N);
     dvec3 e(0.0);
     for (int k = 0; k < 9; ++k) e += sh.c[k] * (band[k] * Y[k]);
@@ -368,7 +368,7 @@ dvec2 integrateBRDF(double NdotV, double roughness, std::uint32_t sampleCount) {
         const dvec3 L = 2.0 * VdotH * H - V;
         const double NdotL = L.z;
         if (NdotL <= 0.0) continue;
-        const double NdotH = std::max(H.z, kIblMinNdotH);  // as in specularIBLReference
+        const double NdotH = std::max(H.z, kIblMinNdotH);   // as in specularIBLReference
         const double VdotHc = std::clamp(VdotH, 0.0, 1.0);  // 1 - V.H >= 0 for pow in GLSL
         const double Gvis = geometrySmithIBL(NdotV, NdotL, roughness) * VdotHc / (NdotH * NdotV);
         const double Fc = std::pow(1.0 - VdotHc, 5.0);
@@ -430,16 +430,15 @@ dvec2 brdfLutExact(double NdotV, double roughness) {
 
     double A = 0.0, B = 0.0;
     for (size_t k = 0; k + 1 < edges.size() && edges[k] < thetaB; ++k) {
-        forGaussNodes(gauss8(), edges[k], std::min(edges[k + 1], thetaB),
-                      [&](double theta, double w) {
-                          double phiMax = kPi;  // theta < thetaA: every phi counts
-                          if (theta > thetaA && sv > 0.0) {
-                              const double c = -(cv / sv) * std::cos(2.0 * theta) /
-                                               std::sin(2.0 * theta);
-                              phiMax = std::acos(std::clamp(c, -1.0, 1.0));
-                          }
-                          ring(theta, phiMax, w, A, B);
-                      });
+        forGaussNodes(
+            gauss8(), edges[k], std::min(edges[k + 1], thetaB), [&](double theta, double w) {
+                double phiMax = kPi;  // theta < thetaA: every phi counts
+                if (theta > thetaA && sv > 0.0) {
+                    const double c = -(cv / sv) * std::cos(2.0 * theta) / std::sin(2.0 * theta);
+                    phiMax = std::acos(std::clamp(c, -1.0, 1.0));
+                }
+                ring(theta, phiMax, w, A, B);
+            });
     }
     return {A, B};
 }

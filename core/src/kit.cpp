@@ -75,8 +75,8 @@ int writeKit(const ModuleRegistry& modules, const KitOptions& o) {
         if (fs::exists(handout))
             writeFile(o.out / "handouts" / (findContractStep(d.id)->folder() + ".md"),
                       readFile(handout));
-        list += "| " + std::to_string(d.step) + " | `" + d.id + ".glsl` | `" + d.function +
-                "` | " + (released ? "solution given" : "to write") + " |\n";
+        list += "| " + std::to_string(d.step) + " | `" + d.id + ".glsl` | `" + d.function + "` | " +
+                (released ? "solution given" : "to write") + " |\n";
         ++written;
     }
     writeFile(o.out / "README.md",

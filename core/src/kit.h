@@ -11,9 +11,9 @@ namespace pbrlab {
 
 struct KitOptions {
     std::filesystem::path out;
-    bool withSolutions = false;   // reference solutions in the same shape (instructors, tests)
-    std::string releaseThrough;   // solutions of the steps up to this id, stubs after
-    bool force = false;           // write into a non-empty folder
+    bool withSolutions = false;  // reference solutions in the same shape (instructors, tests)
+    std::string releaseThrough;  // solutions of the steps up to this id, stubs after
+    bool force = false;          // write into a non-empty folder
 };
 
 // The student version of a solution file: what is between BEGIN/END SOLUTION becomes a TODO

@@ -46,7 +46,10 @@ DataPaths DataPaths::locate() {
 
 Scene applyParamBindings(Scene scene, const ModuleDesc& module, const ParamValues& values) {
     for (const auto& p : module.params)
-        if (p.binding == ParamBinding::LightDirection && !scene.lights.empty()) {
+        // A binding moves the scene only once the value leaves its default, so every module's
+        // default view shows the scene as authored.
+        if (p.binding == ParamBinding::LightDirection && !scene.lights.empty() &&
+            values.vector(p.name) != p.defaultValue) {
             double distance = glm::length(scene.lights[0].position);
             scene.lights[0].position = values.vector(p.name) * (distance > 0 ? distance : 10.0);
         }
@@ -62,6 +65,8 @@ ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentS
     r.vertex = {paths_.shaders() / "fullscreen.vert"};
     r.fragment.push_back(paths_.shaders() / "common.glsl");
     const ModuleDesc& d = *module.desc;
+    // The IBL lab's contract adds fresnelSchlickRoughness to the reference library.
+    if (d.lab == "ibl") r.fragment.push_back(paths_.shaders() / "fresnel_roughness.glsl");
     for (const ContractStep* step : contractClosure(d.id, d.uses)) {
         fs::path file = paths_.labs() / step->folder() / "solution.glsl";
         if (!source.dir.empty() && (step->id == d.id || source.cumulative)) {
@@ -170,6 +175,8 @@ double LabRenderer::runView(const LoadedModule& module, const ParamValues& param
                             const std::vector<GLuint>& inputs, int width, int height) {
     // reloadIfChanged: an edited student file is recompiled; if that fails, the error is thrown
     // and the last good program stays cached for the next call.
+    // Precompute (on first use) before binding anything: its passes use the texture units.
+    if (module.desc->needs & NeedsEnvironment) environmentMaps(scene);
     auto program =
         programs_.reloadIfChanged(viewRecipe(module, source, probe, int(scene.lights.size())));
     if (!valueTarget_ || valueTarget_->width() != width || valueTarget_->height() != height)
@@ -191,8 +198,7 @@ double LabRenderer::runView(const LoadedModule& module, const ParamValues& param
     if (program->uses("uCameraPosition"))
         program->set("uCameraPosition", glm::vec3(scene.camera.position));
     if (module.desc->needs & NeedsEnvironment) {
-        const IblMaps& maps = environmentMaps(scene);
-        program->use();  // precompute on first use switched programs
+        const IblMaps& maps = environmentMaps(scene);  // built before anything was bound
         struct Binding {
             const char* name;
             GLenum target;
@@ -214,7 +220,6 @@ double LabRenderer::runView(const LoadedModule& module, const ParamValues& param
             program->set("uInverseViewProjection", glm::inverse(viewProjection_));
             program->set("uViewportSize", glm::vec2(float(width), float(height)));
         }
-        valueTarget_->bind();
     }
     for (const ParamDecl& p : module.desc->params) {
         glm::dvec3 v = params.vector(p.name);
@@ -234,6 +239,10 @@ double LabRenderer::runView(const LoadedModule& module, const ParamValues& param
                 break;
         }
     }
+    if (seamlessCubes_)
+        gl::Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    else
+        gl::Disable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     gl::Finish();
     auto start = std::chrono::steady_clock::now();
     fullscreen_.draw();
@@ -287,7 +296,8 @@ const IblMaps& LabRenderer::environmentMaps(const Scene& scene) {
     Environment& env = environments_[key];
     if (!env.maps) {
         if (!precompute_)
-            precompute_ = std::make_unique<IblPrecompute>(programs_, paths_.shaders(), paths_.labs());
+            precompute_ =
+                std::make_unique<IblPrecompute>(programs_, paths_.shaders(), paths_.labs());
         logLine("environment", scene.environment + " (" + iblSettings_.key() + ")");
         env.maps = precompute_->build(loadEnvironmentImage(scene.environment), iblSettings_);
     }

@@ -72,6 +72,9 @@ public:
     // CPU copies of the same maps, for references (read back on first use).
     const IblInputs& environmentInputs(const Scene& scene);
     void setIblSettings(const IblSettings& settings) { iblSettings_ = settings; }
+    // Seamless cube filtering (GL_TEXTURE_CUBE_MAP_SEAMLESS) in the view pass: on for
+    // pictures; off for checks, so the GPU reads the texels CubeSampler reads on the CPU.
+    void setSeamlessCubes(bool on) { seamlessCubes_ = on; }
     const IblSettings& iblSettings() const { return iblSettings_; }
 
 private:
@@ -95,6 +98,7 @@ private:
         std::unique_ptr<IblInputs> cpu;
     };
     IblSettings iblSettings_;
+    bool seamlessCubes_ = true;
     std::map<std::string, Environment> environments_;  // by source and settings
     std::unique_ptr<IblPrecompute> precompute_;
 };

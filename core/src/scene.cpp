@@ -91,12 +91,14 @@ Scene loadScene(const fs::path& file) {
         throw Error(file.string() + ": not valid JSON (" + e.what() + ")");
     }
     if (!doc.is_object()) r.fail("(top level)", "expected an object");
-    r.onlyKnown(doc, "", {"description", "camera", "lights", "materials", "objects", "environment"});
+    r.onlyKnown(doc, "",
+                {"description", "camera", "lights", "materials", "objects", "environment"});
     Scene scene;
     scene.file = file;
 
     if (doc.contains("environment")) {
-        if (!doc["environment"].is_string()) r.fail("environment", "expected \"sky\" or a file path");
+        if (!doc["environment"].is_string())
+            r.fail("environment", "expected \"sky\" or a file path");
         std::string env = doc["environment"].get<std::string>();
         if (env != "sky") {
             fs::path p = file.parent_path() / env;

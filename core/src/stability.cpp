@@ -109,8 +109,10 @@ StabilityResult stabilitySweep(LabRenderer& renderer, const LoadedModule& module
     ParamValues params(d.params);
     ReferenceContext context = referenceContext(scene, params);
     if (d.needs & NeedsEnvironment) context.ibl = &renderer.environmentInputs(scene);
+    renderer.setSeamlessCubes(false);  // as in checks: the CPU sampler reads the same texels
     RenderResult r =
         renderer.renderSurfaces(module, params, scene, source, set.surfaces, set.width, set.height);
+    renderer.setSeamlessCubes(true);
     StabilityResult result;
     std::vector<glm::dvec3> reference;
     result.gpu = compareWithReference(r.value, r.surfaces, d, context, &reference);

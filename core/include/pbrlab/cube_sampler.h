@@ -36,7 +36,7 @@ struct IblInputs {
     CubeSampler irradiance;   // uIrradianceMap
     CubeSampler prefilter;    // uPrefilterMap
     double prefilterMaxLod = 0;
-    Image lut;                // uBrdfLut, row 0 = roughness 0 (t = 0)
+    Image lut;  // uBrdfLut, row 0 = roughness 0 (t = 0)
 };
 
 }  // namespace pbrlab

@@ -83,7 +83,7 @@ private:
     Image image_;
 };
 
-dvec2 equirectUv(const dvec3& dir);     // the mapping above, u in [0, 1], v in [0, 1]
+dvec2 equirectUv(const dvec3& dir);        // the mapping above, u in [0, 1], v in [0, 1]
 dvec3 equirectDirection(const dvec2& uv);  // its inverse
 
 // ---- 17 mc_specular -------------------------------------------------------------------------
@@ -91,8 +91,8 @@ dvec3 equirectDirection(const dvec2& uv);  // its inverse
 // Brute-force split-free specular IBL: (1/n) sum over Hammersley-driven GGX half vectors H of
 // L(l) F(V.H) G(N.V, N.L) (V.H) / ((N.H)(N.V)), l = reflect(-V, H), samples with N.L <= 0
 // contributing 0. This is f_spec(l) (N.L) / pdf(l) with D cancelled (pdf = D (N.H) / 4 (V.H)).
-dvec3 specularIBLReference(const Environment& env, const dvec3& N, const dvec3& V,
-                           const dvec3& F0, double roughness, std::uint32_t sampleCount);
+dvec3 specularIBLReference(const Environment& env, const dvec3& N, const dvec3& V, const dvec3& F0,
+                           double roughness, std::uint32_t sampleCount);
 
 // ---- 18 irradiance --------------------------------------------------------------------------
 

@@ -68,6 +68,11 @@ struct Display {
 struct Tolerance {
     double floor = 1e-3;
     double maxError = 1e-3;
+    // Share of compared pixels allowed over maxError (0: none). For views that filter HDR
+    // textures: GL leaves the precision of bilinear weights to the implementation (llvmpipe
+    // uses 8 bits), so next to a 20000-bright sun a handful of pixels differ by whole
+    // percents while the function is right. NaN, Inf and negatives are never excused.
+    double outlierFraction = 0;
 };
 
 // A full-screen grid whose pixels map to the function's inputs, domain ends included:
@@ -104,7 +109,7 @@ struct ModuleDesc {
     std::string scene = "sphere";    // default scene (assets/scenes/<name>.json)
     unsigned needs = NeedsGeometry;  // SurfaceNeeds flags
     std::vector<std::string> uses;   // other contract ids the view calls
-    bool skyBackground = false;  // draw the environment behind the scene (radiance views)
+    bool skyBackground = false;      // draw the environment behind the scene (radiance views)
     Tolerance tolerance;
     ReferenceFn reference;
     Probe probe;

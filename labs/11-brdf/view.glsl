@@ -1,0 +1,13 @@
+// What step 11 shows: the BRDF f_r on the sphere, as HDR colour (Reinhard + gamma). Where the
+// light is above the horizon the painted plates show their albedo through the diffuse term,
+// evenly, with no falloff (f_r has no cosine), plus the highlight; the metal plates are dark
+// (no diffuse term) outside the highlight. The value fades to 0 over the thin band where
+// 4 N·V N·L < 0.1 and is 0 where N·L <= 0 (f_r is not evaluated for light from below): in that
+// band the specular term is decided by the denominator's guard, which legitimately differs
+// between solutions (+0.001, max(d, 1e-4)); the stability sweep checks it.
+vec3 view(Surface s)
+{
+    float band = smoothstep(0.05, 0.1, 4.0 * max(dot(s.normal, s.view), 0.0) *
+                                           max(dot(s.normal, s.light), 0.0));
+    return band * cookTorranceBRDF(s.normal, s.view, s.light, s.albedo, s.metallic, s.roughness);
+}

@@ -1,0 +1,54 @@
+// Step 12, reflectance: the reflectance equation for point lights, a sum over the scene's
+// lights of f_r L_i N·L, plus the ambient term 0.03 albedo ao.
+#include "pbrlab/module.h"
+
+using namespace pbrlab;
+
+namespace {
+
+ModuleDesc describeModule() {
+    ModuleDesc d;
+    d.id = "reflectance";
+    d.step = 12;
+    d.lab = "direct";
+    d.title = "Reflectance equation: sum of f_r L_i N·L + ambient";
+    d.function =
+        "vec3 reflectedRadiance(vec3 P, vec3 N, vec3 V, vec3 albedo, float metallic, float "
+        "roughness, float ao)";
+    d.components = 3;
+    d.display = {DisplayMode::HdrColor, 0, 1};
+    d.needs = NeedsMaterial;
+    // The lesson's denominator + 0.001 legitimately changes the terminator pixels: measured up
+    // to 0.30 (sphere grid, 1024^2; the reference itself: 6e-6 on the sphere, 5.8% on the grid).
+    // 0.5 passes it; every mistake is off by >= 0.6 on the scene (README.md).
+    d.tolerance = {1e-2, 0.5};
+    d.reference = [](const Surface& s, const ReferenceContext& c) {
+        return ref::reflectedRadiance(s.position, s.normal, s.view, s.albedo, s.metallic,
+                                      s.roughness, s.ao, c.lights.data(), int(c.lights.size()));
+    };
+    // The lesson's sphere grid as a continuous chart: x roughness 0.05..1, y metallic 0..1,
+    // albedo (0.5, 0, 0), ao 1, at the origin with N = +z and V the mirror image of the
+    // direction to (5, 5, 8), the light of the default scene: there the highlight is at its
+    // peak. The lights are the scene's (uLightPositions), as on the sphere.
+    d.probe.xAxis = "roughness 0.05..1";
+    d.probe.yAxis = "metallic 0..1";
+    d.probe.width = 39;
+    d.probe.height = 33;
+    d.probe.at = [](double x, double y) {
+        Surface s;
+        s.covered = true;
+        s.position = {0, 0, 0};
+        s.normal = {0, 0, 1};
+        s.view = glm::normalize(glm::dvec3(-5, -5, 8));
+        s.albedo = {0.5, 0, 0};
+        s.metallic = y;
+        s.roughness = 0.05 + 0.95 * x;
+        s.ao = 1;
+        return s;
+    };
+    return d;
+}
+
+}  // namespace
+
+PBRLAB_MODULE(describeModule)

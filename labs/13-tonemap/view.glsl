@@ -1,0 +1,12 @@
+// What step 13 shows: the final picture of the direct lab, the sphere's reflected radiance
+// (step 12) display-encoded: the same image as step 12's HDR view, now made by your function.
+// The probe (and the stability sweep) hand their HDR input over in s.extra instead: a
+// non-zero extra means "tonemap this value" (denormals count as zero, flushed or not).
+vec3 view(Surface s)
+{
+    vec3 hdr = any(greaterThanEqual(abs(s.extra), vec4(1.17549435e-38)))
+                   ? s.extra.xyz
+                   : reflectedRadiance(s.position, s.normal, s.view, s.albedo, s.metallic,
+                                       s.roughness, s.ao);
+    return displayEncode(hdr);
+}
