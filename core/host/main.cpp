@@ -164,7 +164,8 @@ int runCheck(const Options& o, const std::string& id, const std::string& submiss
     return r.passed ? 0 : 1;
 }
 
-int runStability(const Options& o, const std::vector<std::string>& ids) {
+int runStability(const Options& o, const std::vector<std::string>& ids,
+                 const std::string& submission) {
     Session session(o);
     std::printf("%-12s %8s %8s %8s %8s %10s %10s  %s\n", "module", "gpu NaN", "gpu Inf", "gpu neg",
                 "ref bad", "max err", "mean err", "first problem");
@@ -172,7 +173,10 @@ int runStability(const Options& o, const std::vector<std::string>& ids) {
     for (const auto& m : session.modules->modules()) {
         if (!ids.empty() && std::find(ids.begin(), ids.end(), m.desc->id) == ids.end()) continue;
         Scene scene = loadScene(session.paths.scene(m.desc->scene));
-        StabilityResult r = stabilitySweep(*session.renderer, m, scene);
+        StudentSource source{submission, false};
+        if (!submission.empty() && !fs::exists(fs::path(submission) / (m.desc->id + ".glsl")))
+            continue;  // nothing of the student's to sweep for this step
+        StabilityResult r = stabilitySweep(*session.renderer, m, scene, source);
         int negatives = m.desc->nonNegative ? r.gpu.negativeCount : 0;
         int refBad = r.referenceNonFinite + r.referenceNegative;
         bad += r.gpu.nonFinite() + negatives + refBad;
@@ -338,11 +342,16 @@ int main(int argc, char** argv) {
     precompute->add_option("--prefilter-samples", ibl.prefilterSamples, "Samples per texel");
     precompute->add_option("--lut-size", ibl.lutSize, "BRDF LUT size");
     precompute->add_option("--lut-samples", ibl.lutSamples, "BRDF LUT samples per texel");
+    precompute->add_option("--filtered-sampling", ibl.filteredSampling,
+                           "Prefilter with filtered importance sampling (default true)");
     std::vector<std::string> stabilityIds;
     auto* stability = app.add_subcommand(
         "stability",
         "Run every module (or the given ids) on the extreme inputs: NaN/Inf/negatives");
     stability->add_option("ids", stabilityIds, "Module ids (default: all)");
+    std::string stabilitySubmission;
+    stability->add_option("--submission", stabilitySubmission,
+                          "Sweep the student's <id>.glsl files instead of the solutions");
     std::string texturesDir;
     int textureSize = 256;
     auto* textures = app.add_subcommand(
@@ -365,7 +374,7 @@ int main(int argc, char** argv) {
         if (*render) return runRender(o, id, submission, cumulative, sets, size, scene, probe, out);
         if (*check) return runCheck(o, id, submission, cumulative, sets, size, scene);
         if (*gallery) return runGallery(o, galleryDir, size);
-        if (*stability) return runStability(o, stabilityIds);
+        if (*stability) return runStability(o, stabilityIds, stabilitySubmission);
         if (*envCmd) {
             Image sky = generateSkyEnvironment(envWidth);
             writeImage(envOut, sky, FileDepth::Float32);

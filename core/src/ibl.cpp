@@ -17,7 +17,7 @@ std::string IblSettings::key() const {
     return "env" + std::to_string(environmentSize) + "_irr" + std::to_string(irradianceSize) +
            "_pre" + std::to_string(prefilterSize) + "x" + std::to_string(prefilterMips) + "s" +
            std::to_string(prefilterSamples) + "_lut" + std::to_string(lutSize) + "s" +
-           std::to_string(lutSamples);
+           std::to_string(lutSamples) + (filteredSampling ? "_fis" : "");
 }
 
 namespace {
@@ -69,7 +69,8 @@ IblPrecompute::IblPrecompute(ProgramCache& programs, fs::path shaders, fs::path 
     : programs_(programs), shaders_(std::move(shaders)), labs_(std::move(labs)) {}
 
 std::shared_ptr<Program> IblPrecompute::program(const std::string& pass,
-                                                const std::string& contractId) {
+                                                const std::string& contractId,
+                                                const Defines& extra) {
     ProgramRecipe r;
     r.vertex = {shaders_ / "fullscreen.vert"};
     r.fragment.push_back(shaders_ / "common.glsl");
@@ -77,6 +78,7 @@ std::shared_ptr<Program> IblPrecompute::program(const std::string& pass,
         for (const ContractStep* step : contractClosure(contractId, {}))
             r.fragment.push_back(labs_ / step->folder() / "solution.glsl");
     r.fragment.push_back(shaders_ / "ibl" / (pass + ".frag"));
+    r.defines = extra;
     r.defines["PBRLAB_IBL"] = "1";
     return programs_.get(r);
 }
@@ -138,11 +140,14 @@ std::unique_ptr<IblMaps> IblPrecompute::build(const Image& equirect, const IblSe
     {
         PassTimer timer(*maps, "prefilter " + std::to_string(s.prefilterSize) + " x" +
                                    std::to_string(s.prefilterMips) + " mips, " +
-                                   std::to_string(s.prefilterSamples) + " samples");
+                                   std::to_string(s.prefilterSamples) + " samples" +
+                                   (s.filteredSampling ? ", filtered" : ""));
         maps->prefilter = makeCube(s.prefilterSize, true);
         gl::TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, s.prefilterMips - 1);
         maps->prefilterMaxLod = float(s.prefilterMips - 1);
-        auto p = program("prefilter", "prefilter");
+        Defines fis;
+        if (s.filteredSampling) fis["PBRLAB_FILTERED_IS"] = "1";
+        auto p = program("prefilter", "prefilter", fis);
         bindEnvironment(*p);
         for (int mip = 0; mip < s.prefilterMips; ++mip) {
             p->set("uRoughness",

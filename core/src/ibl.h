@@ -23,6 +23,9 @@ struct IblSettings {
     int prefilterSamples = 256;
     int lutSize = 128;
     int lutSamples = 512;
+    // Prefilter with filtered importance sampling (source mip from the pdf) instead of the
+    // step 19 function: the default for pictures, off to study the plain estimator.
+    bool filteredSampling = true;
     std::string key() const;  // all of the above, for caches
 };
 
@@ -45,7 +48,8 @@ public:
     static Image readTexture(GLuint texture, int width, int height);
 
 private:
-    std::shared_ptr<Program> program(const std::string& pass, const std::string& contractId);
+    std::shared_ptr<Program> program(const std::string& pass, const std::string& contractId,
+                                     const Defines& extra = {});
     void renderCube(GLuint cube, int size, int mip, const Program& program,
                     const std::string& pass);
     ProgramCache& programs_;

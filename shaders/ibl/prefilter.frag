@@ -1,4 +1,8 @@
-// Precompute: one mip of the prefiltered environment with the step 19 function.
+// Precompute: one mip of the prefiltered environment. By default with the step 19 function;
+// with PBRLAB_FILTERED_IS, filtered importance sampling (Krivanek and Colbert, GPU Gems 3,
+// ch. 20): each sample reads the environment mip whose texel covers about the solid angle the
+// sample stands for, 1 / (n pdf), so a small bright sun is averaged instead of hit or missed
+// (no fireflies on rough surfaces at modest sample counts).
 #include "ibl/cube_face.glsl"
 
 uniform int uFace;
@@ -7,8 +11,38 @@ uniform float uRoughness;
 uniform uint uSampleCount;
 layout(location = 0) out vec4 outColor;
 
+#ifdef PBRLAB_FILTERED_IS
+vec3 pbrlab_prefilterFiltered(vec3 R, float roughness, uint sampleCount)
+{
+    vec3 N = R, V = R;
+    uint n = max(sampleCount, 1u);
+    float sourceSize = float(textureSize(uEnvironment, 0).x);
+    float texelSolidAngle = 4.0 * PI / (6.0 * sourceSize * sourceSize);
+    vec3 sum = vec3(0.0);
+    float weight = 0.0;
+    for (uint i = 0u; i < n; ++i) {
+        vec3 H = importanceSampleGGX(hammersley(i, n), N, roughness);
+        vec3 L = 2.0 * dot(V, H) * H - V;
+        float NdotL = dot(N, L);
+        if (NdotL > 0.0) {
+            // With N = V the pdf of L is D (N.H) / (4 V.H) = D / 4.
+            float pdf = max(distributionGGX(N, H, roughness) * 0.25, 1e-8);
+            float sampleSolidAngle = 1.0 / (float(n) * pdf);
+            float lod = roughness == 0.0 ? 0.0 : max(0.5 * log2(sampleSolidAngle / texelSolidAngle) + 1.0, 0.0);
+            sum += textureLod(uEnvironment, L, lod).rgb * NdotL;
+            weight += NdotL;
+        }
+    }
+    return weight > 0.0 ? sum / weight : textureLod(uEnvironment, R, 0.0).rgb;
+}
+#endif
+
 void main()
 {
     vec3 R = pbrlab_cubeDirection(uFace, gl_FragCoord.xy, uSize);
+#ifdef PBRLAB_FILTERED_IS
+    outColor = vec4(pbrlab_prefilterFiltered(R, uRoughness, uSampleCount), 1.0);
+#else
     outColor = vec4(prefilterEnvironment(R, uRoughness, uSampleCount), 1.0);
+#endif
 }

@@ -154,6 +154,7 @@ public:
         IMGUI_CHECKVERSION();
         ImGui::CreateContext();
         ImGui::GetIO().IniFilename = nullptr;  // the layout is computed, not saved
+        loadFont();
         styleUi();
         ImGui_ImplGlfw_InitForOpenGL(context_->window(), true);
         ImGui_ImplOpenGL3_Init("#version 450 core");
@@ -555,6 +556,23 @@ private:
     }
 
     // ---- UI -------------------------------------------------------------------------------
+    // The handouts use Greek letters and maths signs (α, θ, π, ≤, ≈, ·, ², −); ImGui's built-in
+    // font has none of them. DejaVu Sans (Debian's fonts-dejavu-core) has all; without it the
+    // built-in font is kept and those characters show as '?'.
+    void loadFont() {
+        static const ImWchar ranges[] = {0x0020, 0x00FF,   // Latin-1: ·, ², °, ×
+                                         0x0370, 0x03FF,   // Greek
+                                         0x2010, 0x205E,   // dashes, quotes, ′
+                                         0x2070, 0x209F,   // super- and subscripts
+                                         0x2190, 0x21FF,   // arrows
+                                         0x2200, 0x22FF,   // maths operators
+                                         0};
+        const char* file = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+        if (fs::exists(file) && ImGui::GetIO().Fonts->AddFontFromFileTTF(file, 15.0f, nullptr, ranges))
+            return;
+        messages_ += std::string("font ") + file + " not found: Greek letters show as '?'\n";
+    }
+
     static void styleUi() {
         ImGui::StyleColorsDark();
         ImGuiStyle& s = ImGui::GetStyle();
