@@ -14,6 +14,7 @@
 #include "check.h"
 #include "gl/context.h"
 #include "gui/gui.h"
+#include "converge.h"
 #include "ibl.h"
 #include "kit.h"
 #include "pbrlab/contract.h"
@@ -321,6 +322,15 @@ int main(int argc, char** argv) {
         "environment", "Write the project's own HDR sky (equirectangular, deterministic)");
     envCmd->add_option("--out", envOut, "Output .exr or .hdr")->required();
     envCmd->add_option("--width", envWidth, "Width in texels (height = width / 2)");
+    ConvergeOptions converge;
+    auto* convergeCmd = app.add_subcommand(
+        "converge", "Error against run time of the IBL approximations: CSV, table and plot");
+    convergeCmd->add_option("--out", converge.out, "Output folder (default: converge)");
+    convergeCmd->add_option("--size", converge.size, "Image side in pixels (default 96)");
+    convergeCmd->add_option("--truth-samples", converge.truthSamples,
+                            "Samples per pixel of the CPU Monte Carlo truth (default 16384)");
+    convergeCmd->add_option("--scene", converge.scene, "Scene (default sphere-grid)");
+    convergeCmd->add_flag("--quick", converge.quick, "Fewer settings (for tests)");
     KitOptions kit;
     auto* kitCmd = app.add_subcommand("kit", "Write the student kit (stubs, handouts, README)");
     kitCmd->add_option("--out", kit.out, "Output folder")->required();
@@ -379,6 +389,22 @@ int main(int argc, char** argv) {
             Image sky = generateSkyEnvironment(envWidth);
             writeImage(envOut, sky, FileDepth::Float32);
             std::cout << "wrote " << envOut << " (" << sky.width << "x" << sky.height << ")\n";
+            return 0;
+        }
+        if (*convergeCmd) {
+            Session session(o);
+            setVerbose(true);
+            auto rows = runConverge(*session.renderer, session.paths, converge);
+            writeConvergeReport(rows, converge.out);
+            std::printf("%-9s %-20s %-26s %8s %10s %14s %11s %11s %13s\n", "term", "method",
+                        "setting", "samples", "ms", "precompute ms", "rmse", "max error",
+                        "display rmse");
+            for (const auto& r : rows)
+                std::printf("%-9s %-20s %-26s %8d %10.2f %14.1f %11.3g %11.3g %13.3g\n",
+                            r.term.c_str(), r.method.c_str(), r.setting.c_str(), r.samples, r.ms,
+                            r.precomputeMs, r.rmse, r.maxError, r.displayRmse);
+            std::cout << "wrote " << (converge.out / "converge.csv").string() << " and "
+                      << (converge.out / "converge.png").string() << "\n";
             return 0;
         }
         if (*kitCmd) {

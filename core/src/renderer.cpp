@@ -239,6 +239,7 @@ double LabRenderer::runView(const LoadedModule& module, const ParamValues& param
                 break;
         }
     }
+    if (extraUniforms_) extraUniforms_(*program);
     if (seamlessCubes_)
         gl::Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     else

@@ -75,6 +75,8 @@ public:
     // Seamless cube filtering (GL_TEXTURE_CUBE_MAP_SEAMLESS) in the view pass: on for
     // pictures; off for checks, so the GPU reads the texels CubeSampler reads on the CPU.
     void setSeamlessCubes(bool on) { seamlessCubes_ = on; }
+    // Sets uniforms a host-made view declares beyond the module's parameters (converge).
+    void setExtraUniforms(std::function<void(const Program&)> f) { extraUniforms_ = std::move(f); }
     const IblSettings& iblSettings() const { return iblSettings_; }
 
 private:
@@ -99,6 +101,7 @@ private:
     };
     IblSettings iblSettings_;
     bool seamlessCubes_ = true;
+    std::function<void(const Program&)> extraUniforms_;
     std::map<std::string, Environment> environments_;  // by source and settings
     std::unique_ptr<IblPrecompute> precompute_;
 };

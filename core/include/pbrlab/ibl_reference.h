@@ -106,7 +106,7 @@ dvec3 irradianceAt(const Environment& env, const dvec3& N, int thetaSteps = 256)
 // texels of L (N.l)+ times the texel's exact solid angle (2 pi / W)(cos theta_top -
 // cos theta_bottom), with l at the texel centre. The ground truth for small bright sources
 // (a sun a few texels wide), which point quadratures resolve only slowly: on the shipped sky,
-// irradianceAt(EquirectEnvironment) changes by 2.6% from 128 to 256 theta nodes.
+// irradianceAt(EquirectEnvironment) is off by 2.4% at 128 theta nodes, 2.4e-4 at 512.
 dvec3 irradianceAt(const Image& equirect, const dvec3& N);
 
 // Real spherical harmonics up to band 2 (9 coefficients, RGB each): index l (l + 1) + m.

@@ -1,0 +1,310 @@
+#include "converge.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <thread>
+
+#include "pbrlab/contract.h"
+#include "pbrlab/error.h"
+#include "pbrlab/ibl_reference.h"
+#include "pbrlab/log.h"
+
+namespace fs = std::filesystem;
+
+namespace pbrlab {
+
+namespace {
+
+// A host-made module: one of shaders/converge/<name>/view.glsl with the IBL lab's reference
+// library (the closure of split_sum holds every IBL step).
+struct Method {
+    ModuleDesc desc;
+    LoadedModule module;
+    Method(const DataPaths& paths, const std::string& name, std::vector<ParamDecl> params = {}) {
+        desc.id = "split_sum";
+        desc.step = 21;
+        desc.lab = "ibl";
+        desc.components = 3;
+        desc.needs = NeedsMaterial | NeedsEnvironment;
+        desc.params = std::move(params);
+        module = {&desc, {}, paths.shaders() / "converge" / name};
+    }
+};
+
+// Runs f(i) for i in [0, n) on all cores.
+template <typename F>
+void parallelFor(int n, F f) {
+    int workers = std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::thread> threads;
+    for (int w = 0; w < workers; ++w)
+        threads.emplace_back([&, w] {
+            for (int i = w; i < n; i += workers) f(i);
+        });
+    for (auto& t : threads) t.join();
+}
+
+// llvmpipe compiles a shader's machine code at its first draw: render once untimed, then keep
+// the fastest of three (the least disturbed by the rest of the machine).
+RenderResult timedRender(LabRenderer& renderer, const LoadedModule& m, const ParamValues& p,
+                         const Scene& scene, int size) {
+    RenderResult best = renderer.renderScene(m, p, scene, {}, size, size, false);
+    best.milliseconds = 1e300;
+    for (int i = 0; i < 3; ++i) {
+        RenderResult r = renderer.renderScene(m, p, scene, {}, size, size, false);
+        if (r.milliseconds < best.milliseconds) best = std::move(r);
+    }
+    return best;
+}
+
+// The specular integral of f_spec (N.L) L over the environment taken as piecewise constant
+// per texel: exact for that image, and converged where Monte Carlo with BRDF sampling is
+// not (rough lobes that contain a 20000-bright sun of a few texels). Same integrand as step 17:
+// D G F / (4 N.V) with G for IBL (k = r^2 / 2) and Schlick's F on V.H.
+glm::dvec3 specularByTexels(const Image& env, const glm::dvec3& N, const glm::dvec3& V,
+                            const glm::dvec3& F0, double roughness) {
+    const double NdotV = std::max(glm::dot(N, V), 1e-4);
+    glm::dvec3 sum(0);
+    for (int y = 0; y < env.height; ++y) {
+        double t0 = ref::kPi * y / env.height, t1 = ref::kPi * (y + 1) / env.height;
+        double solidAngle = 2 * ref::kPi / env.width * (std::cos(t0) - std::cos(t1));
+        for (int x = 0; x < env.width; ++x) {
+            glm::dvec3 L = ref::equirectDirection({(x + 0.5) / env.width, (y + 0.5) / env.height});
+            double NdotL = glm::dot(N, L);
+            if (NdotL <= 0) continue;
+            glm::dvec3 H = glm::normalize(L + V);
+            double D = ref::distributionGGX(N, H, roughness);
+            double G = ref::geometrySmithIBL(NdotV, NdotL, roughness);
+            glm::dvec3 F = ref::fresnelSchlick(std::max(glm::dot(V, H), 0.0), F0);
+            glm::dvec3 radiance(env.at(x, y, 0), env.at(x, y, 1), env.at(x, y, 2));
+            sum += radiance * F * (D * G / (4 * NdotV) * solidAngle);
+        }
+    }
+    return sum;
+}
+
+// A 2x box-filtered copy (energy kept): the texel sum at a quarter of the cost, for lobes
+// much wider than a texel.
+Image halve(const Image& im) {
+    Image h;
+    h.width = im.width / 2;
+    h.height = im.height / 2;
+    h.channels = 3;
+    h.pixels.resize(size_t(h.width) * h.height * 3);
+    for (int y = 0; y < h.height; ++y)
+        for (int x = 0; x < h.width; ++x)
+            for (int c = 0; c < 3; ++c)
+                h.at(x, y, c) =
+                    0.25f * (im.at(2 * x, 2 * y, c) + im.at(2 * x + 1, 2 * y, c) +
+                             im.at(2 * x, 2 * y + 1, c) + im.at(2 * x + 1, 2 * y + 1, c));
+    return h;
+}
+
+struct Truth {
+    std::vector<Surface> surfaces;
+    std::vector<glm::dvec3> specular, diffuse;
+};
+
+void score(ConvergeRow& row, const Image& value, const Truth& truth,
+           const std::vector<glm::dvec3>& reference) {
+    double sum = 0, sumDisplay = 0;
+    int n = 0;
+    row.maxError = 0;
+    for (size_t i = 0; i < truth.surfaces.size(); ++i) {
+        if (!truth.surfaces[i].covered) continue;
+        for (int c = 0; c < 3; ++c) {
+            double g = value.pixels[i * 4 + size_t(c)], r = reference[i][c];
+            double e = g - r;
+            sum += e * e;
+            auto reinhard = [](double x) { return std::max(x, 0.0) / (1 + std::max(x, 0.0)); };
+            double d = reinhard(g) - reinhard(r);
+            sumDisplay += d * d;
+            row.maxError = std::max(row.maxError, std::abs(e));
+            ++n;
+        }
+    }
+    row.rmse = n ? std::sqrt(sum / n) : 0;
+    row.displayRmse = n ? std::sqrt(sumDisplay / n) : 0;
+}
+
+}  // namespace
+
+std::vector<ConvergeRow> runConverge(LabRenderer& renderer, const DataPaths& paths,
+                                     const ConvergeOptions& o) {
+    Scene scene = loadScene(paths.scene(o.scene));
+    Image equirect = loadEnvironmentImage(scene.environment);
+    ref::EquirectEnvironment environment(equirect);
+    const IblSettings defaults = renderer.iblSettings();
+
+    Method bruteForce(paths, "specular_brute_force",
+                      {intParam("samples", 64, 1, 1 << 20, "Monte Carlo samples")});
+    Method splitSum(paths, "specular_split_sum");
+    Method convolution(paths, "diffuse_convolution");
+    Method harmonics(paths, "diffuse_sh");
+
+    // The truth, per pixel of the scene, in double precision on the CPU.
+    Truth truth;
+    truth.surfaces =
+        renderer.renderScene(splitSum.module, ParamValues(), scene, {}, o.size, o.size, true)
+            .surfaces;
+    truth.specular.assign(truth.surfaces.size(), glm::dvec3(0));
+    truth.diffuse = truth.specular;
+    auto start = std::chrono::steady_clock::now();
+    const Image coarse = halve(equirect);
+    parallelFor(int(truth.surfaces.size()), [&](int i) {
+        const Surface& s = truth.surfaces[size_t(i)];
+        if (!s.covered) return;
+        glm::dvec3 F0 = ref::baseReflectivity(s.albedo, s.metallic);
+        // Narrow lobes: BRDF-sampled Monte Carlo converges (the sun, when in the lobe, is hit
+        // often). Wide lobes (alpha = r^2 >= 0.25, > 14 degrees): the texel sum.
+        truth.specular[size_t(i)] =
+            s.roughness < 0.5 ? ref::specularIBLReference(environment, s.normal, s.view, F0,
+                                                          s.roughness, unsigned(o.truthSamples))
+                              : specularByTexels(coarse, s.normal, s.view, F0, s.roughness);
+        truth.diffuse[size_t(i)] = s.albedo * ref::irradianceAt(equirect, s.normal);
+    });
+    logLine(
+        "converge",
+        "CPU truth: " +
+            std::to_string(
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()) +
+            " s");
+
+    std::vector<ConvergeRow> rows;
+    auto precomputeMs = [](const IblMaps& maps, const std::string& prefix) {
+        double ms = 0;
+        for (const auto& [pass, t] : maps.milliseconds)
+            if (pass.rfind(prefix, 0) == 0) ms += t;
+        return ms;
+    };
+
+    // Brute force: every frame pays for every sample.
+    for (int n = 1; n <= o.maxBruteForce; n *= (o.quick ? 16 : 2)) {
+        ParamValues params(bruteForce.desc.params);
+        params.set("samples", glm::dvec3(n, 0, 0));
+        RenderResult r = timedRender(renderer, bruteForce.module, params, scene, o.size);
+        ConvergeRow row{"specular", "brute_force", "N=" + std::to_string(n), n, r.milliseconds};
+        score(row, r.value, truth, truth.specular);
+        rows.push_back(row);
+    }
+
+    // Split sum: a cheap frame, after a precompute whose quality varies.
+    auto splitSumRow = [&](IblSettings s, const std::string& setting, int samples) {
+        renderer.setIblSettings(s);
+        RenderResult r = timedRender(renderer, splitSum.module, ParamValues(), scene, o.size);
+        const IblMaps& maps = renderer.environmentMaps(scene);
+        ConvergeRow row{
+            "specular",     "split_sum",
+            setting,        samples,
+            r.milliseconds, precomputeMs(maps, "prefilter") + precomputeMs(maps, "brdf lut")};
+        score(row, r.value, truth, truth.specular);
+        rows.push_back(row);
+    };
+    std::vector<int> prefilterSamples =
+        o.quick ? std::vector<int>{16, 256} : std::vector<int>{16, 32, 64, 128, 256, 512, 1024};
+    for (bool fis : {false, true})
+        for (int samples : prefilterSamples) {
+            IblSettings s = defaults;
+            s.prefilterSamples = samples;
+            s.filteredSampling = fis;
+            splitSumRow(s,
+                        std::string("prefilter=") + std::to_string(samples) +
+                            (fis ? " fis=on" : " fis=off"),
+                        samples);
+        }
+    std::vector<int> lutSizes =
+        o.quick ? std::vector<int>{16, 128} : std::vector<int>{16, 32, 64, 128, 256, 512};
+    for (int size : lutSizes) {
+        IblSettings s = defaults;
+        s.lutSize = size;
+        splitSumRow(s, "lut=" + std::to_string(size), s.lutSamples);
+    }
+    renderer.setIblSettings(defaults);
+
+    // Diffuse: the irradiance cube against 9 spherical-harmonic coefficients.
+    {
+        RenderResult r = timedRender(renderer, convolution.module, ParamValues(), scene, o.size);
+        ConvergeRow row{"diffuse",
+                        "convolution",
+                        "irradiance " + std::to_string(defaults.irradianceSize) + "^2 x 6",
+                        32 * 128,
+                        r.milliseconds,
+                        precomputeMs(renderer.environmentMaps(scene), "irradiance")};
+        score(row, r.value, truth, truth.diffuse);
+        rows.push_back(row);
+    }
+    {
+        auto t0 = std::chrono::steady_clock::now();
+        ref::SH9 sh = ref::projectSH9(equirect);
+        double shMs =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                .count();
+        renderer.setExtraUniforms([&](const Program& p) {
+            std::vector<glm::vec3> c;
+            for (const auto& v : sh.c) c.emplace_back(v);
+            p.set("uSH[0]", c);
+        });
+        RenderResult r = timedRender(renderer, harmonics.module, ParamValues(), scene, o.size);
+        renderer.setExtraUniforms({});
+        ConvergeRow row{"diffuse", "spherical_harmonics", "9 coefficients (CPU projection)",
+                        9,         r.milliseconds,        shMs};
+        score(row, r.value, truth, truth.diffuse);
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+void writeConvergeReport(const std::vector<ConvergeRow>& rows, const fs::path& out) {
+    fs::create_directories(out);
+    {
+        std::ofstream csv(out / "converge.csv");
+        csv << "term,method,setting,samples,ms,precompute_ms,rmse,max_error,display_rmse\n";
+        for (const auto& r : rows)
+            csv << r.term << "," << r.method << ",\"" << r.setting << "\"," << r.samples << ","
+                << r.ms << "," << r.precomputeMs << "," << r.rmse << "," << r.maxError << ","
+                << r.displayRmse << "\n";
+    }
+    // One data file per series, so gnuplot needs no CSV parsing.
+    auto series = [&](const std::string& name, auto keep) {
+        std::ofstream dat(out / (name + ".dat"));
+        for (const auto& r : rows)
+            if (keep(r)) dat << r.ms << " " << r.displayRmse << " \"" << r.setting << "\"\n";
+    };
+    series("brute_force", [](const ConvergeRow& r) { return r.method == "brute_force"; });
+    series("split_sum_fis_off", [](const ConvergeRow& r) {
+        return r.method == "split_sum" && r.setting.find("fis=off") != std::string::npos;
+    });
+    series("split_sum_fis_on", [](const ConvergeRow& r) {
+        return r.method == "split_sum" && r.setting.find("fis=on") != std::string::npos;
+    });
+    series("split_sum_lut", [](const ConvergeRow& r) {
+        return r.method == "split_sum" && r.setting.rfind("lut=", 0) == 0;
+    });
+    series("diffuse", [](const ConvergeRow& r) { return r.term == "diffuse"; });
+    std::ofstream gp(out / "converge.gp");
+    gp << "# gnuplot converge.gp -> converge.png (written by pbrlab converge)\n"
+          "set terminal pngcairo size 1000,650 font 'DejaVu Sans,11'\n"
+          "set output 'converge.png'\n"
+          "set logscale xy\nset grid\n"
+          "set xlabel 'GPU time per frame, ms (view pass; precomputes in the CSV)'\n"
+          "set ylabel 'RMSE against the CPU reference (Reinhard-mapped, as seen)'\n"
+          "set title 'Specular and diffuse ambient light: error against run time'\n"
+          "set key outside right\n"
+          "plot 'brute_force.dat' using 1:2 with linespoints lw 2 title 'brute force, N = "
+          "1..1024', \\\n"
+          "     'split_sum_fis_off.dat' using 1:2 with points pt 7 ps 1.5 title 'split sum, "
+          "prefilter samples', \\\n"
+          "     'split_sum_fis_on.dat' using 1:2 with points pt 5 ps 1.5 title 'split sum, "
+          "filtered sampling', \\\n"
+          "     'split_sum_lut.dat' using 1:2 with points pt 9 ps 1.5 title 'split sum, LUT "
+          "sizes', \\\n"
+          "     'diffuse.dat' using 1:2:3 with labels point pt 13 offset 1,1 notitle\n";
+    gp.close();
+    std::string cmd = "cd '" + out.string() + "' && gnuplot converge.gp 2>/dev/null";
+    if (std::system("command -v gnuplot >/dev/null 2>&1") == 0 && std::system(cmd.c_str()) == 0)
+        logLine("converge", "plot: " + (out / "converge.png").string());
+    else
+        logLine("converge", "gnuplot not available: run converge.gp by hand for the plot");
+}
+
+}  // namespace pbrlab
