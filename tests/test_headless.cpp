@@ -6,6 +6,7 @@
 #include "gl/context.h"
 #include "pbrlab/error.h"
 #include "pbrlab/log.h"
+#include "ibl.h"
 #include "test_support.h"
 
 using namespace pbrlab;
@@ -114,4 +115,38 @@ TEST(Headless, HotReloadKeepsTheLastGoodProgramWhenAnEditBreaksIt) {
         file, std::filesystem::last_write_time(file) + std::chrono::seconds(4));
     Image fixed = h.renderer.renderScene(m, params, scene, {kit.path}, 64, 64, false).value;
     EXPECT_NE(fixed.pixels, good.pixels);
+}
+
+TEST(Headless, PrecomputedMapsAreCachedOnDiskAndReusedExactly) {
+    test::TempDir cache;
+    Headless h;
+    IblSettings small;  // small maps: this test is about the cache, not quality
+    small.environmentSize = 64;
+    small.irradianceSize = 8;
+    small.prefilterSize = 16;
+    small.prefilterMips = 3;
+    small.prefilterSamples = 16;
+    small.lutSize = 16;
+    small.lutSamples = 32;
+    const LoadedModule& m = h.modules.find("split_sum");
+    Scene scene = loadScene(h.paths.scene(m.desc->scene));
+    auto render = [&](LabRenderer& r) {
+        r.setIblSettings(small);
+        r.setIblCache(cache.path);
+        return r.renderScene(m, ParamValues(m.desc->params), scene, {}, 48, 48, false).value;
+    };
+    resetCounters();
+    Image first = render(h.renderer);
+    EXPECT_EQ(eventCount(Counter::PrecomputePasses), 4);  // cube, irradiance, prefilter, LUT
+    LabRenderer second{h.paths};
+    resetCounters();
+    Image again = render(second);
+    EXPECT_EQ(eventCount(Counter::PrecomputePasses), 1);  // only the environment cube
+    EXPECT_EQ(again.pixels, first.pixels);
+    // Another setting is another key: computed again.
+    small.lutSize = 32;
+    LabRenderer third{h.paths};
+    resetCounters();
+    render(third);
+    EXPECT_EQ(eventCount(Counter::PrecomputePasses), 4);
 }

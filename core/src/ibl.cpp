@@ -2,10 +2,15 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
 
 #include "pbrlab/contract.h"
 #include "pbrlab/error.h"
 #include "pbrlab/log.h"
+#include <cstring>
+#include <algorithm>
 
 namespace fs = std::filesystem;
 
@@ -104,9 +109,144 @@ void IblPrecompute::renderCube(GLuint cube, int size, int mip, const Program& pr
     gl::checkError(pass.c_str());
 }
 
-std::unique_ptr<IblMaps> IblPrecompute::build(const Image& equirect, const IblSettings& s) {
+fs::path IblDiskCache::defaultRoot() {
+    if (const char* c = std::getenv("PBRLAB_CACHE"); c && *c) return c;
+    if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return fs::path(x) / "pbrlab";
+    const char* home = std::getenv("HOME");
+    return fs::path(home ? home : ".") / ".cache" / "pbrlab";
+}
+
+namespace {
+
+// FNV-1a, 64 bits: stable across runs and compilers (std::hash is not promised to be).
+struct Fnv {
+    std::uint64_t h = 1469598103934665603ull;
+    void add(const void* data, size_t n) {
+        auto p = static_cast<const unsigned char*>(data);
+        for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
+    }
+    void add(const std::string& s) { add(s.data(), s.size()); }
+};
+
+constexpr char kCacheMagic[8] = {'P', 'B', 'R', 'L', 'C', 'U', 'B', '1'};
+
+// levels x faces square RGBA32F images, as read back.
+void writeMaps(const fs::path& file, const std::vector<std::vector<Image>>& levels) {
+    fs::path tmp = file;
+    tmp += ".tmp";
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        out.write(kCacheMagic, 8);
+        std::int32_t header[2] = {std::int32_t(levels.size()), std::int32_t(levels[0].size())};
+        out.write(reinterpret_cast<const char*>(header), sizeof header);
+        for (const auto& faces : levels)
+            for (const Image& im : faces) {
+                std::int32_t size = im.width;
+                out.write(reinterpret_cast<const char*>(&size), sizeof size);
+                out.write(reinterpret_cast<const char*>(im.pixels.data()),
+                          std::streamsize(im.pixels.size() * sizeof(float)));
+            }
+        if (!out) throw Error(tmp.string() + ": cannot write the IBL cache");
+    }
+    fs::rename(tmp, file);
+}
+
+bool readMaps(const fs::path& file, std::vector<std::vector<Image>>& levels) {
+    std::ifstream in(file, std::ios::binary);
+    char magic[8];
+    std::int32_t header[2];
+    if (!in.read(magic, 8) || std::memcmp(magic, kCacheMagic, 8) != 0 ||
+        !in.read(reinterpret_cast<char*>(header), sizeof header) || header[0] < 1 ||
+        header[0] > 16 || (header[1] != 1 && header[1] != 6))
+        return false;
+    levels.assign(size_t(header[0]), {});
+    for (auto& faces : levels)
+        for (int f = 0; f < header[1]; ++f) {
+            std::int32_t size = 0;
+            if (!in.read(reinterpret_cast<char*>(&size), sizeof size) || size < 1 || size > 8192)
+                return false;
+            Image im;
+            im.width = im.height = size;
+            im.channels = 4;
+            im.pixels.resize(size_t(size) * size * 4);
+            if (!in.read(reinterpret_cast<char*>(im.pixels.data()),
+                         std::streamsize(im.pixels.size() * sizeof(float))))
+                return false;
+            faces.push_back(std::move(im));
+        }
+    return true;
+}
+
+gl::Handle uploadCube(const std::vector<std::vector<Image>>& levels, int allocatedLevels) {
+    gl::Handle cube = makeCube(levels[0][0].width, allocatedLevels > 1);
+    gl::BindTexture(GL_TEXTURE_CUBE_MAP, cube.id());
+    for (size_t level = 0; level < levels.size(); ++level)
+        for (int face = 0; face < 6; ++face) {
+            const Image& im = levels[level][size_t(face)];
+            gl::TexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face, GLint(level), GL_RGBA32F,
+                           im.width, im.height, 0, GL_RGBA, GL_FLOAT, im.pixels.data());
+        }
+    gl::TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, GLint(levels.size()) - 1);
+    return cube;
+}
+
+}  // namespace
+
+std::string IblPrecompute::cacheKey(const Image& equirect, const IblSettings& s) const {
+    Fnv f;
+    f.add(equirect.pixels.data(), equirect.pixels.size() * sizeof(float));
+    f.add(std::to_string(equirect.width) + "x" + std::to_string(equirect.height) + s.key());
+    std::vector<fs::path> sources = {shaders_ / "common.glsl", shaders_ / "fullscreen.vert"};
+    for (const auto& e : fs::directory_iterator(shaders_ / "ibl")) sources.push_back(e.path());
+    for (const char* id : {"irradiance", "prefilter", "brdf_lut"})
+        for (const ContractStep* step : contractClosure(id, {}))
+            sources.push_back(labs_ / step->folder() / "solution.glsl");
+    std::sort(sources.begin(), sources.end());
+    for (const auto& p : sources) {
+        std::ifstream in(p, std::ios::binary);
+        std::stringstream text;
+        text << in.rdbuf();
+        f.add(p.filename().string() + text.str());
+    }
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(f.h));
+    return hex;
+}
+
+bool IblPrecompute::loadCached(const fs::path& dir, IblMaps& maps) const {
+    std::vector<std::vector<Image>> irradiance, prefilter, lut;
+    if (!readMaps(dir / "irradiance.bin", irradiance) || !readMaps(dir / "prefilter.bin", prefilter) ||
+        !readMaps(dir / "lut.bin", lut) ||
+        irradiance[0][0].width != maps.settings.irradianceSize ||
+        prefilter.size() != size_t(maps.settings.prefilterMips) ||
+        lut[0][0].width != maps.settings.lutSize)
+        return false;
+    maps.irradiance = uploadCube(irradiance, 1);
+    maps.prefilter = uploadCube(prefilter, 2);
+    maps.prefilterMaxLod = float(maps.settings.prefilterMips - 1);
+    maps.lut = gl::uploadTexture(lut[0][0], false, GL_RG32F);
+    gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl::checkError("loading cached IBL maps");
+    maps.fromCache = true;
+    return true;
+}
+
+void IblPrecompute::storeCached(const fs::path& dir, const IblMaps& maps) const {
+    const IblSettings& s = maps.settings;
+    fs::create_directories(dir);
+    writeMaps(dir / "irradiance.bin", readCube(maps.irradiance.id(), s.irradianceSize, 1));
+    writeMaps(dir / "prefilter.bin",
+              readCube(maps.prefilter.id(), s.prefilterSize, s.prefilterMips));
+    writeMaps(dir / "lut.bin", {{readTexture(maps.lut.id(), s.lutSize, s.lutSize)}});
+}
+
+std::unique_ptr<IblMaps> IblPrecompute::build(const Image& equirect, const IblSettings& s,
+                                              const IblDiskCache* cache) {
     auto maps = std::make_unique<IblMaps>();
     maps->settings = s;
+    fs::path cacheDir = cache ? cache->root_ / "ibl" / cacheKey(equirect, s) : fs::path();
     gl::Disable(GL_DEPTH_TEST);
     gl::Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);  // precomputed maps never depend on the caller
     {
@@ -123,6 +263,10 @@ std::unique_ptr<IblMaps> IblPrecompute::build(const Image& equirect, const IblSe
         renderCube(maps->environment.id(), s.environmentSize, 0, *p, "environment cube");
         gl::BindTexture(GL_TEXTURE_CUBE_MAP, maps->environment.id());
         gl::GenerateMipmap(GL_TEXTURE_CUBE_MAP);
+    }
+    if (cache && loadCached(cacheDir, *maps)) {
+        logLine("precompute", "irradiance, prefilter and LUT from " + cacheDir.string());
+        return maps;
     }
     auto bindEnvironment = [&](const Program& p) {
         p.use();
@@ -179,6 +323,13 @@ std::unique_ptr<IblMaps> IblPrecompute::build(const Image& equirect, const IblSe
         gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     }
     gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (cache) {
+        try {
+            storeCached(cacheDir, *maps);
+        } catch (const std::exception& e) {
+            logLine("precompute", std::string("cache not written: ") + e.what());
+        }
+    }
     return maps;
 }
 
@@ -199,6 +350,15 @@ Image IblPrecompute::readCubeFace(GLuint cube, int face, int mip, int size) {
     gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl::checkError("reading a cube face");
     return image;
+}
+
+std::vector<std::vector<Image>> IblPrecompute::readCube(GLuint cube, int size, int levels) {
+    std::vector<std::vector<Image>> out;
+    for (int level = 0; level < levels; ++level) {
+        out.emplace_back();
+        for (int face = 0; face < 6; ++face) out.back().push_back(readCubeFace(cube, face, level, size));
+    }
+    return out;
 }
 
 Image IblPrecompute::readTexture(GLuint texture, int width, int height) {

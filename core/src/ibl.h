@@ -34,16 +34,37 @@ struct IblMaps {
     gl::Handle environment, irradiance, prefilter, lut;
     float prefilterMaxLod = 0;
     std::map<std::string, double> milliseconds;  // per pass: glFinish + steady clock
+    bool fromCache = false;
+};
+
+// The precomputed maps on disk (irradiance cube, prefiltered mips, LUT), keyed by the
+// environment's pixels, the settings and every GLSL file that computes them, so that an edit
+// to a solution or a shader never reads stale maps.
+class IblDiskCache {
+public:
+    explicit IblDiskCache(std::filesystem::path root) : root_(std::move(root)) {}
+    // $PBRLAB_CACHE, else $XDG_CACHE_HOME/pbrlab, else ~/.cache/pbrlab.
+    static std::filesystem::path defaultRoot();
+    const std::filesystem::path& root() const { return root_; }
+
+private:
+    friend class IblPrecompute;
+    std::filesystem::path root_;
 };
 
 class IblPrecompute {
 public:
     IblPrecompute(ProgramCache& programs, std::filesystem::path shaders,
                   std::filesystem::path labs);
-    std::unique_ptr<IblMaps> build(const Image& equirect, const IblSettings& settings);
+    // With a cache: the maps come from disk when present (only the environment cube is built),
+    // else they are computed and stored.
+    std::unique_ptr<IblMaps> build(const Image& equirect, const IblSettings& settings,
+                                   const IblDiskCache* cache = nullptr);
 
     // Read-back for files and tests: one face (0..5 = +x -x +y -y +z -z) of a cube mip.
     static Image readCubeFace(GLuint cube, int face, int mip, int size);
+    // Mips 0..levels-1, six faces each.
+    static std::vector<std::vector<Image>> readCube(GLuint cube, int size, int levels);
     // A 2D texture's level 0, row 0 = t = 0 (as stored, not flipped).
     static Image readTexture(GLuint texture, int width, int height);
 
@@ -52,6 +73,9 @@ private:
                                      const Defines& extra = {});
     void renderCube(GLuint cube, int size, int mip, const Program& program,
                     const std::string& pass);
+    std::string cacheKey(const Image& equirect, const IblSettings& settings) const;
+    bool loadCached(const std::filesystem::path& dir, IblMaps& maps) const;
+    void storeCached(const std::filesystem::path& dir, const IblMaps& maps) const;
     ProgramCache& programs_;
     std::filesystem::path shaders_, labs_;
     gl::FullscreenTriangle fullscreen_;

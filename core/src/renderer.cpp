@@ -300,7 +300,9 @@ const IblMaps& LabRenderer::environmentMaps(const Scene& scene) {
             precompute_ =
                 std::make_unique<IblPrecompute>(programs_, paths_.shaders(), paths_.labs());
         logLine("environment", scene.environment + " (" + iblSettings_.key() + ")");
-        env.maps = precompute_->build(loadEnvironmentImage(scene.environment), iblSettings_);
+        IblDiskCache cache(iblCache_);
+        env.maps = precompute_->build(loadEnvironmentImage(scene.environment), iblSettings_,
+                                      iblCache_.empty() ? nullptr : &cache);
     }
     return *env.maps;
 }
@@ -311,12 +313,7 @@ const IblInputs& LabRenderer::environmentInputs(const Scene& scene) {
     if (!env.cpu) {
         auto cpu = std::make_unique<IblInputs>();
         auto cube = [](GLuint texture, int size, int levels) {
-            std::vector<std::vector<Image>> mips{size_t(levels)};
-            for (int level = 0; level < levels; ++level)
-                for (int face = 0; face < 6; ++face)
-                    mips[size_t(level)].push_back(
-                        IblPrecompute::readCubeFace(texture, face, level, size));
-            return CubeSampler(std::move(mips));
+            return CubeSampler(IblPrecompute::readCube(texture, size, levels));
         };
         const IblSettings& s = maps.settings;
         cpu->environment = cube(maps.environment.id(), s.environmentSize,

@@ -72,6 +72,8 @@ public:
     // CPU copies of the same maps, for references (read back on first use).
     const IblInputs& environmentInputs(const Scene& scene);
     void setIblSettings(const IblSettings& settings) { iblSettings_ = settings; }
+    // Where precomputed maps are kept between runs (empty: no disk cache).
+    void setIblCache(std::filesystem::path root) { iblCache_ = std::move(root); }
     // Seamless cube filtering (GL_TEXTURE_CUBE_MAP_SEAMLESS) in the view pass: on for
     // pictures; off for checks, so the GPU reads the texels CubeSampler reads on the CPU.
     void setSeamlessCubes(bool on) { seamlessCubes_ = on; }
@@ -101,6 +103,7 @@ private:
     };
     IblSettings iblSettings_;
     bool seamlessCubes_ = true;
+    std::filesystem::path iblCache_ = IblDiskCache::defaultRoot();
     std::function<void(const Program&)> extraUniforms_;
     std::map<std::string, Environment> environments_;  // by source and settings
     std::unique_ptr<IblPrecompute> precompute_;
