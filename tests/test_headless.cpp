@@ -150,3 +150,22 @@ TEST(Headless, PrecomputedMapsAreCachedOnDiskAndReusedExactly) {
     render(third);
     EXPECT_EQ(eventCount(Counter::PrecomputePasses), 4);
 }
+
+TEST(Headless, StudentFilesCannotIncludeTheReferenceSolutions) {
+    Headless h;
+    test::TempDir kit;
+    // Resolvable from the labs root for the host's own files, but not for a student's.
+    auto file = kit.write("ndotl.glsl", "#include \"04-ndotl/solution.glsl\"\n");
+    try {
+        h.check("ndotl", {kit.path});
+        FAIL() << "a student file read the reference solution";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(file.string() + ":1"), std::string::npos) << e.what();
+    }
+    // Their own helpers next to the file are fine.
+    kit.write("my_helpers.glsl", "float myClamp(float x) { return max(x, 0.0); }\n");
+    kit.write("ndotl.glsl",
+              "#include \"my_helpers.glsl\"\n"
+              "float lambertCosine(vec3 N, vec3 L) { return myClamp(dot(N, L)); }\n");
+    EXPECT_TRUE(h.check("ndotl", {kit.path}).passed);
+}

@@ -68,17 +68,18 @@ ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentS
     // The IBL lab's contract adds fresnelSchlickRoughness to the reference library.
     if (d.lab == "ibl") r.fragment.push_back(paths_.shaders() / "fresnel_roughness.glsl");
     for (const ContractStep* step : contractClosure(d.id, d.uses)) {
-        fs::path file = paths_.labs() / step->folder() / "solution.glsl";
+        ShaderPart part(paths_.labs() / step->folder() / "solution.glsl");
         if (!source.dir.empty() && (step->id == d.id || source.cumulative)) {
             fs::path student = source.dir / (step->id + ".glsl");
             if (fs::exists(student)) {
                 if (!isInside(student, source.dir))
                     throw Error(student.string() + ": refused, it points outside " +
                                 source.dir.string());
-                file = student;
+                part = ShaderPart(student);
+                part.includeRoots = {source.dir};  // never the reference solutions
             }
         }
-        r.fragment.push_back(file);
+        r.fragment.push_back(part);
     }
     r.fragment.push_back(paths_.shaders() / "surface.glsl");
     r.fragment.push_back(module.sourceDir / "view.glsl");

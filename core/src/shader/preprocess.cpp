@@ -30,7 +30,7 @@ std::string readText(const fs::path& path) {
 }
 
 struct Expander {
-    const std::vector<fs::path>& roots;
+    std::vector<fs::path> roots;
     ExpandedShader out;
     std::set<fs::path> included;
 
@@ -96,12 +96,14 @@ ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
     for (const auto& [name, value] : defines) ex.out.text += "#define " + name + " " + value + "\n";
     for (const auto& part : parts) {
         if (!part.text.empty() || part.file.empty()) {
+            ex.roots = roots_;
             ex.expandText(part.text, part.name.empty() ? "<generated>" : part.name, {});
             continue;
         }
         fs::path file = fs::weakly_canonical(part.file);
         if (!ex.included.insert(file).second) continue;
         ex.out.files.push_back(file);
+        ex.roots = part.includeRoots.empty() ? roots_ : part.includeRoots;
         ex.expandText(readText(file), file.string(), file);
     }
     return ex.out;

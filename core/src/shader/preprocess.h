@@ -20,6 +20,9 @@ struct ShaderPart {
     std::filesystem::path file;  // used when text is empty
     std::string text;
     std::string name;  // for generated text: what to call it in messages
+    // When set, the only folders this part's #includes may read (a student's file: its own
+    // submission folder, never the reference solutions); otherwise the preprocessor's roots.
+    std::vector<std::filesystem::path> includeRoots;
 };
 
 struct ExpandedShader {
