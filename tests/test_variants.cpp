@@ -1,9 +1,12 @@
 // Stepwise checking must accept correct solutions written differently and reject typical
-// mistakes at their own step. tests/variants/<id>/correct_*.glsl and mistake_*.glsl are
-// complete student files; each is checked the way `pbrlab check <id> --submission` does.
+// mistakes at their own step. Correct variants live in tests/variants/<id>/correct_*.glsl;
+// the typical mistakes in labs/NN-id/mistakes/*.glsl, where the grader also reads them to name
+// a student's mistake (tests/variants/<id>/mistake_*.glsl are still read, for modules in
+// progress). Each is a complete student file, checked as `pbrlab check <id> --submission` does.
 #include <gtest/gtest.h>
 
 #include "check.h"
+#include "pbrlab/contract.h"
 #include "gl/context.h"
 #include "test_support.h"
 
@@ -17,7 +20,8 @@ fs::path variantsRoot() {
 }
 
 struct Variant {
-    std::string module, file;
+    std::string module, file;  // file: "correct_x.glsl" or "mistake_x.glsl"
+    fs::path path;
 };
 void PrintTo(const Variant& v, std::ostream* os) {
     *os << v.module << "/" << v.file;
@@ -25,11 +29,19 @@ void PrintTo(const Variant& v, std::ostream* os) {
 
 std::vector<Variant> allVariants() {
     std::vector<Variant> v;
-    if (!fs::exists(variantsRoot())) return v;
-    for (const auto& dir : fs::directory_iterator(variantsRoot()))
-        for (const auto& f : fs::directory_iterator(dir.path()))
+    if (fs::exists(variantsRoot()))
+        for (const auto& dir : fs::directory_iterator(variantsRoot()))
+            for (const auto& f : fs::directory_iterator(dir.path()))
+                if (f.path().extension() == ".glsl")
+                    v.push_back({dir.path().filename().string(), f.path().filename().string(),
+                                 f.path()});
+    for (const auto& step : contractSteps()) {
+        fs::path dir = fs::path(PBRLAB_SOURCE_DIR) / "labs" / step.folder() / "mistakes";
+        if (!fs::exists(dir)) continue;
+        for (const auto& f : fs::directory_iterator(dir))
             if (f.path().extension() == ".glsl")
-                v.push_back({dir.path().filename().string(), f.path().filename().string()});
+                v.push_back({step.id, "mistake_" + f.path().filename().string(), f.path()});
+    }
     std::sort(v.begin(), v.end(), [](const Variant& a, const Variant& b) {
         return a.module + a.file < b.module + b.file;
     });
@@ -52,7 +64,7 @@ TEST_P(VariantTest, CorrectPassesAndMistakeFailsAtItsOwnStep) {
     Session s;
     const LoadedModule& m = s.modules.find(v.module);
     test::TempDir kit;
-    fs::copy(variantsRoot() / v.module / v.file, kit.path / (v.module + ".glsl"));
+    fs::copy(v.path, kit.path / (v.module + ".glsl"));
     Scene scene = loadScene(s.paths.scene(m.desc->scene));
     CheckResult r = checkModule(s.renderer, m, ParamValues(m.desc->params), scene, {kit.path}, 128,
                                 128);  // a mistake that does not compile throws: test fails

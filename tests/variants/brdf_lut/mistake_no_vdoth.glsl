@@ -1,0 +1,21 @@
+// mistake: G_vis = G / (N.H N.V): the V.H of the pdf's Jacobian is missing
+vec2 integrateBRDF(float NdotV, float roughness, uint sampleCount)
+{
+    NdotV = clamp(NdotV, 1e-4, 1.0);
+    vec3 N = vec3(0.0, 0.0, 1.0);
+    vec3 V = vec3(sqrt(1.0 - NdotV * NdotV), 0.0, NdotV);
+    float k = roughness * roughness / 2.0;
+    vec2 ab = vec2(0.0);
+    for (uint i = 0u; i < sampleCount; ++i) {
+        vec3 H = importanceSampleGGX(hammersley(i, sampleCount), N, roughness);
+        vec3 L = reflect(-V, H);
+        if (L.z > 0.0) {
+            float VdotH = clamp(dot(V, H), 0.0, 1.0);
+            float G = (NdotV / (NdotV * (1.0 - k) + k)) * (L.z / (L.z * (1.0 - k) + k));
+            float gVis = G / (max(H.z, 1e-4) * NdotV);
+            float fc = pow(1.0 - VdotH, 5.0);
+            ab += vec2(1.0 - fc, fc) * gVis;
+        }
+    }
+    return ab / float(sampleCount);
+}

@@ -1,0 +1,10 @@
+// correct: the bit reversal written as swaps (halves, bytes, nibbles, pairs, bits), then / 2^32
+vec2 hammersley(uint i, uint n)
+{
+    uint b = (i << 16u) | (i >> 16u);
+    b = ((b & 0x00FF00FFu) << 8u) | ((b & 0xFF00FF00u) >> 8u);
+    b = ((b & 0x0F0F0F0Fu) << 4u) | ((b & 0xF0F0F0F0u) >> 4u);
+    b = ((b & 0x33333333u) << 2u) | ((b & 0xCCCCCCCCu) >> 2u);
+    b = ((b & 0x55555555u) << 1u) | ((b & 0xAAAAAAAAu) >> 1u);
+    return vec2(float(i) / float(n), float(b) / 4294967296.0);
+}
