@@ -12,16 +12,17 @@
 #include <iostream>
 
 #include "check.h"
-#include "gl/context.h"
-#include "gui/gui.h"
 #include "converge.h"
+#include "gl/context.h"
+#include "grade.h"
+#include "gui/gui.h"
 #include "ibl.h"
 #include "kit.h"
 #include "pbrlab/contract.h"
 #include "pbrlab/display.h"
 #include "pbrlab/envgen.h"
-#include "pbrlab/ibl_reference.h"
 #include "pbrlab/error.h"
+#include "pbrlab/ibl_reference.h"
 #include "pbrlab/log.h"
 #include "pbrlab/texgen.h"
 #include "plugins.h"
@@ -220,8 +221,9 @@ int runPrecompute(const Options& o, const std::string& envFile, const IblSetting
         // the fast alternative to the irradiance cube: E(N)/pi = shIrradiance(sh, N).
         auto start = std::chrono::steady_clock::now();
         ref::SH9 sh = ref::projectSH9(equirect);
-        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
-                                                              start).count();
+        double ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
         std::ofstream json(out / "sh.json");
         json << "{\n  \"basis\": \"real SH, bands 0-2, index l(l+1)+m, radiance\",\n  "
                 "\"coefficients\": [\n";
@@ -322,6 +324,21 @@ int main(int argc, char** argv) {
         "environment", "Write the project's own HDR sky (equirectangular, deterministic)");
     envCmd->add_option("--out", envOut, "Output .exr or .hdr")->required();
     envCmd->add_option("--width", envWidth, "Width in texels (height = width / 2)");
+    GradeOptions gradeOptions;
+    std::string gradeJsonFile, gradescopeFile, gradeModules;
+    auto* gradeCmd = app.add_subcommand(
+        "grade",
+        "Grade a submission folder: every module isolated, stepwise; exit 0 when "
+        "grading ran, whatever the score");
+    gradeCmd->add_option("submission", gradeOptions.submission, "Folder with <id>.glsl files")
+        ->required();
+    gradeCmd->add_option("--modules", gradeModules, "Comma-separated ids (default: all)");
+    gradeCmd->add_option("--json", gradeJsonFile, "Write pbrlab's JSON report here");
+    gradeCmd->add_option("--gradescope", gradescopeFile, "Write Gradescope's results.json here");
+    gradeCmd->add_option("--html", gradeOptions.html, "Write an HTML report with images here");
+    gradeCmd->add_flag("--cumulative", gradeOptions.cumulative,
+                       "Use the student's own earlier steps too (default: stepwise)");
+    gradeCmd->add_option("--timeout", gradeOptions.timeoutSeconds, "Seconds per module (60)");
     ConvergeOptions converge;
     auto* convergeCmd = app.add_subcommand(
         "converge", "Error against run time of the IBL approximations: CSV, table and plot");
@@ -389,6 +406,26 @@ int main(int argc, char** argv) {
             Image sky = generateSkyEnvironment(envWidth);
             writeImage(envOut, sky, FileDepth::Float32);
             std::cout << "wrote " << envOut << " (" << sky.width << "x" << sky.height << ")\n";
+            return 0;
+        }
+        if (*gradeCmd) {
+            Session session(o, false);  // no GL in the parent: each module forks its own
+            if (!fs::is_directory(gradeOptions.submission))
+                throw Error(gradeOptions.submission.string() + ": not a directory");
+            gradeOptions.submission = fs::canonical(gradeOptions.submission);
+            std::stringstream ids(gradeModules);
+            for (std::string id; std::getline(ids, id, ',');)
+                if (!id.empty()) gradeOptions.modules.push_back(id);
+            GradeReport report = gradeSubmission(*session.modules, session.paths, gradeOptions);
+            for (const auto& g : report.modules)
+                std::printf("%-12s %-14s %4.1f / %-4.1f %s\n", g.id.c_str(), g.status.c_str(),
+                            g.score, g.maxScore, g.message.substr(0, 160).c_str());
+            std::printf("total %.1f / %.1f in %.1f s\n", report.score, report.maxScore,
+                        report.seconds);
+            if (!gradeJsonFile.empty()) writeFileAtomically(gradeJsonFile, toJson(report).dump(2));
+            if (!gradescopeFile.empty())
+                writeFileAtomically(gradescopeFile, toGradescope(report).dump(2));
+            if (!gradeOptions.html.empty()) writeHtml(report, gradeOptions.html);
             return 0;
         }
         if (*convergeCmd) {
