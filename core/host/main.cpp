@@ -330,8 +330,11 @@ int main(int argc, char** argv) {
         "grade",
         "Grade a submission folder: every module isolated, stepwise; exit 0 when "
         "grading ran, whatever the score");
-    gradeCmd->add_option("submission", gradeOptions.submission, "Folder with <id>.glsl files")
-        ->required();
+    std::string batchDir, batchOut;
+    gradeCmd->add_option("submission", gradeOptions.submission, "Folder with <id>.glsl files");
+    gradeCmd->add_option("--batch", batchDir,
+                         "Grade every sub-folder of this folder (one submission each)");
+    gradeCmd->add_option("--out", batchOut, "With --batch: where the reports go");
     gradeCmd->add_option("--modules", gradeModules, "Comma-separated ids (default: all)");
     gradeCmd->add_option("--json", gradeJsonFile, "Write pbrlab's JSON report here");
     gradeCmd->add_option("--gradescope", gradescopeFile, "Write Gradescope's results.json here");
@@ -409,13 +412,53 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (*gradeCmd) {
+            std::stringstream ids(gradeModules);
+            for (std::string id; std::getline(ids, id, ',');)
+                if (!id.empty()) gradeOptions.modules.push_back(id);
+        }
+        if (*gradeCmd && !batchDir.empty()) {
+            Session session(o, false);
+            if (batchOut.empty()) throw Error("--batch needs --out DIR for the reports");
+            std::vector<fs::path> subs;
+            for (const auto& e : fs::directory_iterator(batchDir))
+                if (e.is_directory()) subs.push_back(e.path());
+            std::sort(subs.begin(), subs.end());
+            std::ofstream summary;
+            fs::create_directories(batchOut);
+            std::string table = "submission,score,max_score,seconds\n";
+            for (size_t i = 0; i < subs.size(); ++i) {
+                // A progress bar on stderr: [#####.....] 5/10 name
+                const int width = 30;
+                int filled = int(width * i / std::max<size_t>(subs.size(), 1));
+                std::cerr << "\r[" << std::string(size_t(filled), '#')
+                          << std::string(size_t(width - filled), '.') << "] " << i << "/"
+                          << subs.size() << " " << subs[i].filename().string() << "   "
+                          << std::flush;
+                GradeOptions each = gradeOptions;
+                each.submission = fs::canonical(subs[i]);
+                fs::path out = fs::path(batchOut) / subs[i].filename();
+                each.html = out / "html";
+                GradeReport report = gradeSubmission(*session.modules, session.paths, each);
+                writeFileAtomically(out / "report.json", toJson(report).dump(2));
+                writeFileAtomically(out / "results.json", toGradescope(report).dump(2));
+                writeHtml(report, each.html);
+                table += subs[i].filename().string() + "," + std::to_string(report.score) + "," +
+                         std::to_string(report.maxScore) + "," + std::to_string(report.seconds) +
+                         "\n";
+            }
+            std::cerr << "\r[" << std::string(30, '#') << "] " << subs.size() << "/"
+                      << subs.size() << " done" << std::string(20, ' ') << "\n";
+            writeFileAtomically(fs::path(batchOut) / "summary.csv", table);
+            std::cout << table;
+            return 0;
+        }
+        if (*gradeCmd) {
+            if (gradeOptions.submission.empty())
+                throw Error("grade: give a SUBMISSION folder, or --batch DIR --out DIR");
             Session session(o, false);  // no GL in the parent: each module forks its own
             if (!fs::is_directory(gradeOptions.submission))
                 throw Error(gradeOptions.submission.string() + ": not a directory");
             gradeOptions.submission = fs::canonical(gradeOptions.submission);
-            std::stringstream ids(gradeModules);
-            for (std::string id; std::getline(ids, id, ',');)
-                if (!id.empty()) gradeOptions.modules.push_back(id);
             GradeReport report = gradeSubmission(*session.modules, session.paths, gradeOptions);
             for (const auto& g : report.modules)
                 std::printf("%-12s %-14s %4.1f / %-4.1f %s\n", g.id.c_str(), g.status.c_str(),
