@@ -189,11 +189,15 @@ ModuleGrade gradeModule(const LoadedModule& m, const DataPaths& paths, const Gra
                        FileDepth::Uint8, true);
             writeImage(dir / "reference.png", displayImage(ref, d.display, d.components),
                        FileDepth::Uint8, true);
-            writeImage(
-                dir / "difference.png",
-                differenceImage(yours.value, ref, d.components,
-                                std::max(10 * d.tolerance.maxError * d.tolerance.floor, 1e-6)),
-                FileDepth::Uint8, true);
+            // Colour scale: half the largest reference value, so a wrong step reads as bright
+            // and rounding stays dark.
+            double peak = 0;
+            for (const auto& v : reference)
+                for (int c = 0; c < d.components; ++c)
+                    if (std::isfinite(v[c])) peak = std::max(peak, std::abs(v[c]));
+            writeImage(dir / "difference.png",
+                       differenceImage(yours.value, ref, d.components, std::max(0.5 * peak, 1e-6)),
+                       FileDepth::Uint8, true);
         }
     } catch (const ShaderError& e) {
         g.status = "compile_error";
