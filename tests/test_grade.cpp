@@ -110,3 +110,23 @@ TEST(Grade, ReportsHaveTheFieldsGradescopeReads) {
     writeFileAtomically(file, gs.dump());
     EXPECT_EQ(nlohmann::json::parse(std::ifstream(file))["score"], 1);
 }
+
+TEST(Grade, InvariantsAreMeasuredOnTheStudentsFunction) {
+    Grader g;
+    fs::path kit = g.kit(true);
+    GradeReport good = g.grade(kit, {"ndf", "smith", "fresnel", "brdf"});
+    for (const auto& m : good.modules) {
+        ASSERT_TRUE(m.metrics.contains("invariants")) << m.id;
+        for (const auto& inv : m.metrics["invariants"]) EXPECT_TRUE(inv["holds"]) << m.id << inv;
+    }
+    // Without PI, D integrates to PI instead of 1.
+    fs::copy_file(g.paths.labs() / "05-ndf/mistakes/missing_pi.glsl", kit / "ndf.glsl",
+                  fs::copy_options::overwrite_existing);
+    GradeReport bad = g.grade(kit, {"ndf"});
+    const auto& invariants = bad.modules[0].metrics["invariants"];
+    ASSERT_FALSE(invariants.empty());
+    EXPECT_FALSE(invariants[0]["holds"]);
+    EXPECT_NEAR(double(invariants[0]["measured"]), 3.14159, 0.01);
+    EXPECT_NE(bad.modules[0].message.find("invariant integral of D"), std::string::npos)
+        << bad.modules[0].message;
+}

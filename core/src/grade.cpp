@@ -121,6 +121,33 @@ ModuleGrade gradeModule(const LoadedModule& m, const DataPaths& paths, const Gra
                                    {"inf", st.gpu.infCount},
                                    {"negative", d.nonNegative ? st.gpu.negativeCount : 0},
                                    {"first_problem", st.firstProblem}};
+        // Invariants of the student's function, where the module defines them: reported.
+        if (d.invariants) {
+            EvaluateFn evaluate = [&](const std::vector<Surface>& surfaces) {
+                const int width = 64, height = int((surfaces.size() + width - 1) / width);
+                std::vector<Surface> padded = surfaces;
+                padded.resize(size_t(width) * height);
+                RenderResult r =
+                    renderer.renderSurfaces(m, params, scene, source, padded, width, height);
+                std::vector<glm::dvec3> values;
+                for (size_t i = 0; i < surfaces.size(); ++i)
+                    values.emplace_back(r.value.pixels[i * 4], r.value.pixels[i * 4 + 1],
+                                        r.value.pixels[i * 4 + 2]);
+                return values;
+            };
+            json list = json::array();
+            for (const InvariantResult& inv : d.invariants(evaluate)) {
+                list.push_back({{"name", inv.name},
+                                {"measured", inv.measured},
+                                {"expected", inv.expected},
+                                {"holds", inv.holds}});
+                if (!inv.holds)
+                    g.message += (g.message.empty() ? "" : "; ") + std::string("invariant ") +
+                                 inv.name + " = " + std::to_string(inv.measured) + ", expected " +
+                                 inv.expected;
+            }
+            g.metrics["invariants"] = list;
+        }
         g.status = passed ? "passed" : "failed";
         g.score = passed ? g.maxScore : 0;
         if (!passed) {
@@ -171,7 +198,7 @@ ModuleGrade gradeModule(const LoadedModule& m, const DataPaths& paths, const Gra
                 }
             if (!best.empty() && bestDistance < 0.25 * toSolution)
                 message = "looks like: " + best + ". " + message;
-            g.message = message;
+            g.message = message + (g.message.empty() ? "" : "; " + g.message);
         }
         if (!o.html.empty()) {
             fs::path dir = o.html / d.id;

@@ -40,6 +40,27 @@ ModuleDesc describeModule() {
         s.roughness = 0.5;
         return s;
     };
+    // Bounds: 0 <= G <= 1 for every N.V, N.L in [0, 1] and roughness in [0.05, 1] (G is a
+    // visible fraction).
+    d.invariants = [](const EvaluateFn& evaluate) {
+        std::vector<Surface> grid;
+        for (double a : {0.0, 0.01, 0.1, 0.3, 0.7, 1.0})
+            for (double b : {0.0, 0.01, 0.1, 0.3, 0.7, 1.0})
+                for (double r : {0.05, 0.3, 0.6, 1.0}) {
+                    Surface s;
+                    s.covered = true;
+                    s.normal = {0, 0, 1};
+                    s.view = {std::sqrt(1 - a * a), 0, a};
+                    s.light = {-std::sqrt(1 - b * b), 0, b};
+                    s.roughness = r;
+                    grid.push_back(s);
+                }
+        std::vector<glm::dvec3> G = evaluate(grid);
+        double lo = 1e300, hi = -1e300;
+        for (const auto& g : G) lo = std::min(lo, g.x), hi = std::max(hi, g.x);
+        return std::vector<InvariantResult>{{"smallest G", lo, ">= 0", lo >= 0},
+                                            {"largest G", hi, "<= 1 (+1e-5)", hi <= 1 + 1e-5}};
+    };
     return d;
 }
 

@@ -59,6 +59,23 @@ ModuleDesc describeModule() {
         s.albedo = glm::dvec3(y);
         return s;
     };
+    // End values: F = F0 head-on (cos = 1) and F = 1 at grazing (cos = 0), here on a metal
+    // whose F0 is its albedo (0.3, 0.5, 0.7); the default view feeds N.V.
+    d.invariants = [](const EvaluateFn& evaluate) {
+        Surface s;
+        s.covered = true;
+        s.normal = {0, 0, 1};
+        s.albedo = s.albedoTexel = {0.3, 0.5, 0.7};
+        s.metallic = 1;
+        s.light = s.normal;
+        Surface headOn = s, grazing = s;
+        headOn.view = {0, 0, 1};
+        grazing.view = {1, 0, 0};
+        std::vector<glm::dvec3> F = evaluate({headOn, grazing});
+        double e0 = glm::length(F[0] - s.albedo), e90 = glm::length(F[1] - glm::dvec3(1));
+        return std::vector<InvariantResult>{{"|F(0 deg) - F0|", e0, "<= 1e-3", e0 <= 1e-3},
+                                            {"|F(90 deg) - 1|", e90, "<= 1e-3", e90 <= 1e-3}};
+    };
     return d;
 }
 

@@ -59,6 +59,38 @@ ModuleDesc describeModule() {
         s.roughness = 0.05 + 0.95 * y;
         return s;
     };
+    // Reciprocity (Helmholtz): f(V, L) = f(L, V). Pairs with N.V, N.L >= 0.3, dielectric and
+    // metal, two roughnesses; the largest relative difference over them.
+    d.invariants = [](const EvaluateFn& evaluate) {
+        std::vector<Surface> pairs;
+        const double cosines[] = {0.3, 0.6, 0.95};
+        for (double a : cosines)
+            for (double b : cosines)
+                for (double r : {0.3, 0.8})
+                    for (double m : {0.0, 1.0}) {
+                        Surface s;
+                        s.covered = true;
+                        s.normal = {0, 0, 1};
+                        s.albedo = s.albedoTexel = {0.8, 0.5, 0.2};
+                        s.metallic = m;
+                        s.roughness = r;
+                        s.view = {std::sqrt(1 - a * a), 0, a};
+                        s.light = glm::normalize(
+                            glm::dvec3(-0.6 * std::sqrt(1 - b * b), 0.8 * std::sqrt(1 - b * b), b));
+                        Surface swapped = s;
+                        std::swap(swapped.view, swapped.light);
+                        pairs.push_back(s);
+                        pairs.push_back(swapped);
+                    }
+        std::vector<glm::dvec3> f = evaluate(pairs);
+        double worst = 0;
+        for (size_t i = 0; i + 1 < f.size(); i += 2)
+            for (int c = 0; c < 3; ++c)
+                worst = std::max(
+                    worst, std::abs(f[i][c] - f[i + 1][c]) / std::max(std::abs(f[i][c]), 1e-3));
+        return std::vector<InvariantResult>{
+            {"reciprocity max |f(V,L) - f(L,V)| / f", worst, "<= 1e-4", worst <= 1e-4}};
+    };
     return d;
 }
 

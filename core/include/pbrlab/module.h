@@ -17,7 +17,7 @@
 namespace pbrlab {
 
 // Bump when ModuleDesc or anything it contains changes layout.
-constexpr int kModuleAbiVersion = 2;
+constexpr int kModuleAbiVersion = 3;
 
 // Everything a contract function may take, per pixel. The GPU fills the same fields in
 // GLSL (shaders/surface.glsl) from the G-buffer (scene) or from uploaded textures (probe), so
@@ -95,6 +95,20 @@ enum SurfaceNeeds : unsigned {
     NeedsMaterial = NeedsAlbedo | NeedsMetallic | NeedsRoughness | NeedsAo,
 };
 
+// Evaluates the module's view, with the code being graded, on the given surfaces (one value
+// each): what invariants are measured with.
+using EvaluateFn = std::function<std::vector<glm::dvec3>(const std::vector<Surface>&)>;
+
+// A property any correct answer has (normalisation, bounds, reciprocity, end values),
+// reported with the measured value to the student.
+struct InvariantResult {
+    std::string name;      // "∫ D(h) (n·h) dω = 1 at roughness 0.5"
+    double measured = 0;   // the quantity that should meet `expected`
+    std::string expected;  // "1 ± 0.02"
+    bool holds = false;
+};
+using InvariantsFn = std::function<std::vector<InvariantResult>(const EvaluateFn&)>;
+
 struct ModuleDesc {
     int abiVersion = kModuleAbiVersion;
     std::string id;        // contract id, e.g. "ndotl"
@@ -113,6 +127,7 @@ struct ModuleDesc {
     Tolerance tolerance;
     ReferenceFn reference;
     Probe probe;
+    InvariantsFn invariants;  // optional
 };
 
 }  // namespace pbrlab
