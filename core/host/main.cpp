@@ -68,6 +68,8 @@ struct Session {
         context = createHeadlessContext();
         logLine("gl", context->description());
         renderer = std::make_unique<LabRenderer>(paths);
+        renderer->setPrecomputeProgress(
+            [](const std::string& pass) { std::cerr << "precompute " << pass << "\n"; });
     }
 };
 

@@ -1,16 +1,16 @@
 #include "ibl.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
 #include "pbrlab/contract.h"
 #include "pbrlab/error.h"
 #include "pbrlab/log.h"
-#include <cstring>
-#include <algorithm>
 
 namespace fs = std::filesystem;
 
@@ -48,7 +48,10 @@ gl::Handle makeCube(int size, bool mips) {
 
 class PassTimer {
 public:
-    PassTimer(IblMaps& maps, std::string name) : maps_(maps), name_(std::move(name)) {
+    PassTimer(IblMaps& maps, std::string name,
+              const std::function<void(const std::string&)>& onPass = {})
+        : maps_(maps), name_(std::move(name)) {
+        if (onPass) onPass("[" + std::to_string(maps.milliseconds.size() + 1) + "/4] " + name_);
         gl::Finish();
         start_ = std::chrono::steady_clock::now();
     }
@@ -215,8 +218,8 @@ std::string IblPrecompute::cacheKey(const Image& equirect, const IblSettings& s)
 
 bool IblPrecompute::loadCached(const fs::path& dir, IblMaps& maps) const {
     std::vector<std::vector<Image>> irradiance, prefilter, lut;
-    if (!readMaps(dir / "irradiance.bin", irradiance) || !readMaps(dir / "prefilter.bin", prefilter) ||
-        !readMaps(dir / "lut.bin", lut) ||
+    if (!readMaps(dir / "irradiance.bin", irradiance) ||
+        !readMaps(dir / "prefilter.bin", prefilter) || !readMaps(dir / "lut.bin", lut) ||
         irradiance[0][0].width != maps.settings.irradianceSize ||
         prefilter.size() != size_t(maps.settings.prefilterMips) ||
         lut[0][0].width != maps.settings.lutSize)
@@ -250,7 +253,7 @@ std::unique_ptr<IblMaps> IblPrecompute::build(const Image& equirect, const IblSe
     gl::Disable(GL_DEPTH_TEST);
     gl::Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);  // precomputed maps never depend on the caller
     {
-        PassTimer timer(*maps, "environment cube " + std::to_string(s.environmentSize));
+        PassTimer timer(*maps, "environment cube " + std::to_string(s.environmentSize), onPass);
         gl::Handle source = gl::uploadTexture(equirect, false);
         gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -275,17 +278,19 @@ std::unique_ptr<IblMaps> IblPrecompute::build(const Image& equirect, const IblSe
         p.set("uEnvironment", 0);
     };
     {
-        PassTimer timer(*maps, "irradiance " + std::to_string(s.irradianceSize));
+        PassTimer timer(*maps, "irradiance " + std::to_string(s.irradianceSize), onPass);
         maps->irradiance = makeCube(s.irradianceSize, false);
         auto p = program("irradiance", "irradiance");
         bindEnvironment(*p);
         renderCube(maps->irradiance.id(), s.irradianceSize, 0, *p, "irradiance");
     }
     {
-        PassTimer timer(*maps, "prefilter " + std::to_string(s.prefilterSize) + " x" +
-                                   std::to_string(s.prefilterMips) + " mips, " +
-                                   std::to_string(s.prefilterSamples) + " samples" +
-                                   (s.filteredSampling ? ", filtered" : ""));
+        PassTimer timer(*maps,
+                        "prefilter " + std::to_string(s.prefilterSize) + " x" +
+                            std::to_string(s.prefilterMips) + " mips, " +
+                            std::to_string(s.prefilterSamples) + " samples" +
+                            (s.filteredSampling ? ", filtered" : ""),
+                        onPass);
         maps->prefilter = makeCube(s.prefilterSize, true);
         gl::TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAX_LEVEL, s.prefilterMips - 1);
         maps->prefilterMaxLod = float(s.prefilterMips - 1);
@@ -301,8 +306,10 @@ std::unique_ptr<IblMaps> IblPrecompute::build(const Image& equirect, const IblSe
         }
     }
     {
-        PassTimer timer(*maps, "brdf lut " + std::to_string(s.lutSize) + ", " +
-                                   std::to_string(s.lutSamples) + " samples");
+        PassTimer timer(*maps,
+                        "brdf lut " + std::to_string(s.lutSize) + ", " +
+                            std::to_string(s.lutSamples) + " samples",
+                        onPass);
         gl::RenderTarget target(s.lutSize, s.lutSize, 1, false);
         target.bind();
         auto p = program("brdf_lut", "brdf_lut");
@@ -356,7 +363,8 @@ std::vector<std::vector<Image>> IblPrecompute::readCube(GLuint cube, int size, i
     std::vector<std::vector<Image>> out;
     for (int level = 0; level < levels; ++level) {
         out.emplace_back();
-        for (int face = 0; face < 6; ++face) out.back().push_back(readCubeFace(cube, face, level, size));
+        for (int face = 0; face < 6; ++face)
+            out.back().push_back(readCubeFace(cube, face, level, size));
     }
     return out;
 }

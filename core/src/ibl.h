@@ -5,6 +5,7 @@
 // observable.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -60,6 +61,8 @@ public:
     // else they are computed and stored.
     std::unique_ptr<IblMaps> build(const Image& equirect, const IblSettings& settings,
                                    const IblDiskCache* cache = nullptr);
+    // Called as each pass starts ("[2/4] irradiance 32"): progress for people waiting.
+    std::function<void(const std::string&)> onPass;
 
     // Read-back for files and tests: one face (0..5 = +x -x +y -y +z -z) of a cube mip.
     static Image readCubeFace(GLuint cube, int face, int mip, int size);

@@ -86,7 +86,9 @@ ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentS
     r.fragment.push_back(paths_.shaders() / "view_main.frag");
     r.defines["NUM_LIGHTS"] = std::to_string(std::max(lightCount, 1));
     if (probe) r.defines["PBRLAB_PROBE"] = "1";
-    if (d.needs & NeedsEnvironment) r.defines["PBRLAB_IBL"] = "1";
+    // The IBL lab's programs include its earlier steps, some of which name the IBL samplers:
+    // every IBL-lab program declares them; only modules that need the environment get maps.
+    if ((d.needs & NeedsEnvironment) || d.lab == "ibl") r.defines["PBRLAB_IBL"] = "1";
     if ((d.needs & NeedsEnvironment) && d.skyBackground && !probe) r.defines["PBRLAB_SKY"] = "1";
     return r;
 }
@@ -301,6 +303,7 @@ const IblMaps& LabRenderer::environmentMaps(const Scene& scene) {
             precompute_ =
                 std::make_unique<IblPrecompute>(programs_, paths_.shaders(), paths_.labs());
         logLine("environment", scene.environment + " (" + iblSettings_.key() + ")");
+        precompute_->onPass = precomputeProgress_;
         IblDiskCache cache(iblCache_);
         env.maps = precompute_->build(loadEnvironmentImage(scene.environment), iblSettings_,
                                       iblCache_.empty() ? nullptr : &cache);

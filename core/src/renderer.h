@@ -72,6 +72,15 @@ public:
     // CPU copies of the same maps, for references (read back on first use).
     const IblInputs& environmentInputs(const Scene& scene);
     void setIblSettings(const IblSettings& settings) { iblSettings_ = settings; }
+    // True when the scene's environment maps are ready (no precompute on the next render).
+    bool hasEnvironmentMaps(const Scene& scene) const {
+        auto it = environments_.find(scene.environment + "|" + iblSettings_.key());
+        return it != environments_.end() && it->second.maps;
+    }
+    // Told as each precompute pass starts, for progress output.
+    void setPrecomputeProgress(std::function<void(const std::string&)> f) {
+        precomputeProgress_ = std::move(f);
+    }
     // Where precomputed maps are kept between runs (empty: no disk cache).
     void setIblCache(std::filesystem::path root) { iblCache_ = std::move(root); }
     // Seamless cube filtering (GL_TEXTURE_CUBE_MAP_SEAMLESS) in the view pass: on for
@@ -105,6 +114,7 @@ private:
     bool seamlessCubes_ = true;
     std::filesystem::path iblCache_ = IblDiskCache::defaultRoot();
     std::function<void(const Program&)> extraUniforms_;
+    std::function<void(const std::string&)> precomputeProgress_;
     std::map<std::string, Environment> environments_;  // by source and settings
     std::unique_ptr<IblPrecompute> precompute_;
 };

@@ -124,6 +124,9 @@ public:
         if (registry_->modules().empty())
             throw Error("no modules in " + options.modulesDir.string());
         renderer_ = std::make_unique<LabRenderer>(paths_);
+        // Views read cube maps as the CPU reference does (see LabRenderer::setSeamlessCubes),
+        // so the statistics under the image mean what `pbrlab check` means.
+        renderer_->setSeamlessCubes(false);
         submission_ = options.submission;
         if (submission_.empty()) {
             for (const auto& m : registry_->modules())
@@ -313,6 +316,13 @@ private:
                 dirty_ = true;
             }
         }
+        // The first render of an environment precomputes for seconds: show a frame that says so.
+        if (dirty_ && (module().needs & NeedsEnvironment) &&
+            !renderer_->hasEnvironmentMaps(currentScene()) && !precomputeNoticeShown_) {
+            precomputeNoticeShown_ = true;
+            return;
+        }
+        precomputeNoticeShown_ = false;
         if (dirty_) render();
         updateOneStatus();
     }
@@ -331,6 +341,8 @@ private:
             std::vector<glm::dvec3> reference;
             Scene bound = applyParamBindings(scene, module(), st.params);
             ReferenceContext context = referenceContext(bound, st.params);
+            if (module().needs & NeedsEnvironment)
+                context.ibl = &renderer_->environmentInputs(bound);
             solutionStats_ =
                 compareWithReference(solution.value, surfaces_, module(), context, &reference);
             referenceValue_ = solution.value;
@@ -352,8 +364,11 @@ private:
                         m, st.params, scene, studentSource(), kRenderSize, kRenderSize, false);
                     studentValue_ = student.value;
                     Scene bound = applyParamBindings(scene, module(), st.params);
-                    studentStats_ = compareWithReference(student.value, surfaces_, module(),
-                                                         referenceContext(bound, st.params));
+                    ReferenceContext studentContext = referenceContext(bound, st.params);
+                    if (module().needs & NeedsEnvironment)
+                        studentContext.ibl = &renderer_->environmentInputs(bound);
+                    studentStats_ =
+                        compareWithReference(student.value, surfaces_, module(), studentContext);
                     probeStudent_ =
                         renderer_->renderProbe(m, st.params, scene, studentSource()).value;
                     if (attempt == 0) compileLog_.clear();
@@ -560,15 +575,16 @@ private:
     // font has none of them. DejaVu Sans (Debian's fonts-dejavu-core) has all; without it the
     // built-in font is kept and those characters show as '?'.
     void loadFont() {
-        static const ImWchar ranges[] = {0x0020, 0x00FF,   // Latin-1: ·, ², °, ×
-                                         0x0370, 0x03FF,   // Greek
-                                         0x2010, 0x205E,   // dashes, quotes, ′
-                                         0x2070, 0x209F,   // super- and subscripts
-                                         0x2190, 0x21FF,   // arrows
-                                         0x2200, 0x22FF,   // maths operators
+        static const ImWchar ranges[] = {0x0020, 0x00FF,  // Latin-1: ·, ², °, ×
+                                         0x0370, 0x03FF,  // Greek
+                                         0x2010, 0x205E,  // dashes, quotes, ′
+                                         0x2070, 0x209F,  // super- and subscripts
+                                         0x2190, 0x21FF,  // arrows
+                                         0x2200, 0x22FF,  // maths operators
                                          0};
         const char* file = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
-        if (fs::exists(file) && ImGui::GetIO().Fonts->AddFontFromFileTTF(file, 15.0f, nullptr, ranges))
+        if (fs::exists(file) &&
+            ImGui::GetIO().Fonts->AddFontFromFileTTF(file, 15.0f, nullptr, ranges))
             return;
         messages_ += std::string("font ") + file + " not found: Greek letters show as '?'\n";
     }
@@ -927,6 +943,26 @@ private:
                 dirty_ = true;
             }
         }
+        if (module().needs & NeedsEnvironment) {
+            if (environmentInput_[0] == 0)
+                std::snprintf(environmentInput_, sizeof environmentInput_, "%s",
+                              scene_.environment.c_str());
+            ImGui::SetNextItemWidth(220);
+            ImGui::InputText("environment", environmentInput_, sizeof environmentInput_);
+            ImGui::SameLine();
+            if (ImGui::Button("load")) {
+                std::string env = environmentInput_;
+                if (env != "sky" && !fs::exists(env)) {
+                    sceneError_ = env + ": no such file (use \"sky\" or an .hdr/.exr path)";
+                } else {
+                    scene_.environment = env;
+                    sceneError_.clear();
+                    dirty_ = true;
+                }
+            }
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("\"sky\" (the project's own) or an equirectangular .hdr/.exr");
+        }
         if (ImGui::Button("reset camera")) loadScene();
         ImGui::SameLine();
         ImGui::TextDisabled("drag: orbit, wheel: zoom");
@@ -1019,6 +1055,8 @@ private:
     Scene scene_;
     double yaw_ = 0, pitch_ = 0, distance_ = 3;
     bool dirty_ = true, hasStudent_ = false, screenshotRequested_ = false;
+    bool precomputeNoticeShown_ = false;
+    char environmentInput_[512] = "";
     fs::file_time_type lastStudentStamp_{};
     Image studentValue_, solutionValue_, referenceValue_, probeSolution_, probeStudent_;
     std::vector<Surface> surfaces_;

@@ -1,0 +1,66 @@
+// Step 20, brdf_lut: the split sum's second factor, scale A and bias B of F0 as functions of
+// N·V and roughness (what uBrdfLut stores; IBL k = roughness^2 / 2).
+#include "pbrlab/module.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "pbrlab/ibl_reference.h"
+
+using namespace pbrlab;
+
+namespace {
+
+// N·V as the view passes it: floored at 1e-3, so that correct guards between 1e-4 and 1e-3
+// inside integrateBRDF see the same input (README.md, edge cases).
+constexpr double kViewMinNdotV = 1e-3;
+
+ModuleDesc describeModule() {
+    ModuleDesc d;
+    d.id = "brdf_lut";
+    d.step = 20;
+    d.lab = "ibl";
+    d.title = "Split-sum BRDF LUT (scale A, bias B)";
+    d.function = "vec2 integrateBRDF(float NdotV, float roughness, uint sampleCount)";
+    d.params = {intParam("samples", 256, 1, 4096,
+                         "GGX samples per value (the host's LUT precompute uses 512)")};
+    d.components = 2;
+    // A in red, B in green, as stored (linear, like the published LUT images).
+    d.display = {DisplayMode::Grey, 0, 1};
+    // The LUT reads no environment: no precompute runs for this step.
+    d.needs = NeedsRoughness;
+    d.scene = "sphere-grid";
+    // Set from measurement (README.md): same Hammersley points on both sides, so GPU and CPU
+    // differ by float rounding (1.8e-6). Another frame (V in the yz plane) gives other samples:
+    // 6.6e-2 at the 99th percentile of the probe at 256 samples, up to 0.24 in the grazing,
+    // smooth corner. Every mistake is off by >= 0.48 at the 99th percentile.
+    d.tolerance = {0.05, 0.15, 0.01};
+    d.reference = [](const Surface& s, const ReferenceContext& c) {
+        const double NdotV = std::max(glm::dot(s.normal, s.view), kViewMinNdotV);
+        const auto n = std::uint32_t(std::max(c.params.number("samples"), 1.0));
+        const glm::dvec2 ab = ref::integrateBRDF(NdotV, s.roughness, n);
+        return glm::dvec3(ab, 0.0);
+    };
+    // The probe is the LUT itself: x = N·V from 0 (grazing; evaluated at 1e-3) to 1, y =
+    // roughness from 0.05 to 1 (roughness 0 is scored by the robustness sweep). Bottom row =
+    // smoothest, as uBrdfLut's t = roughness; the published LUT images put roughness 1 on top
+    // too. N = +z, V in the xz-plane.
+    d.probe.xAxis = "N·V 0..1";
+    d.probe.yAxis = "roughness 0.05..1";
+    d.probe.width = 65;
+    d.probe.height = 65;
+    d.probe.at = [](double x, double y) {
+        Surface s;
+        s.covered = true;
+        s.normal = {0, 0, 1};
+        s.view = {std::sqrt(1 - x * x), 0, x};
+        s.roughness = 0.05 + 0.95 * y;
+        return s;
+    };
+    return d;
+}
+
+}  // namespace
+
+PBRLAB_MODULE(describeModule)
