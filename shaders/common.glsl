@@ -24,3 +24,11 @@ vec3 pbrlab_safeNormalize(vec3 v, vec3 fallback)
     float len2 = dot(v, v);
     return len2 < 1e-12 ? fallback : v * inversesqrt(len2);
 }
+
+// 0 over the grazing band 4 N.V N.L < 0.05, 1 above 0.1: views of the specular terms fade it
+// out, because there the result depends only on each solution's own epsilon (see the
+// specular and brdf handouts). Mirrored by pbrlab::grazingBand on the CPU.
+float pbrlab_grazingBand(vec3 N, vec3 V, vec3 L)
+{
+    return smoothstep(0.05, 0.1, 4.0 * max(dot(N, V), 0.0) * max(dot(N, L), 0.0));
+}

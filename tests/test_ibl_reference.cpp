@@ -55,33 +55,7 @@ dvec3 dirAround(const dvec3& N, double theta, double phi) {
            N * std::cos(theta);
 }
 
-// Gauss-Legendre nodes and weights on [-1, 1] by Newton iteration on P_n.
-struct GaussRule {
-    std::vector<double> x, w;
-};
-
-GaussRule gaussLegendre(int n) {
-    GaussRule g;
-    for (int i = 0; i < n; ++i) {
-        double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
-        double dp = 1.0;
-        for (int it = 0; it < 100; ++it) {
-            double p0 = 1.0, p1 = x;
-            for (int k = 2; k <= n; ++k) {
-                const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n * (x * p1 - p0) / (x * x - 1.0);
-            const double dx = p1 / dp;
-            x -= dx;
-            if (std::abs(dx) < 1e-16) break;
-        }
-        g.x.push_back(x);
-        g.w.push_back(2.0 / ((1.0 - x * x) * dp * dp));
-    }
-    return g;
-}
+// gaussLegendre (pbrlab/ibl_reference.h): plain numerics, not the code under test here.
 
 // Integral of f over [a, b] by composite 8-point Gauss-Legendre on panels that grow
 // geometrically (x1.2) from `first` at a, then stay `step` wide: resolves a peak at a of width

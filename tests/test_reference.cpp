@@ -9,6 +9,7 @@
 #include <limits>
 #include <vector>
 
+#include "pbrlab/ibl_reference.h"
 #include "pbrlab/reference.h"
 
 namespace {
@@ -35,34 +36,7 @@ dvec3 dirAround(const dvec3& N, double theta, double phi) {
     return T * d.x + B * d.y + N * d.z;
 }
 
-// Gauss-Legendre nodes and weights on [-1, 1], by Newton iteration on P_n (plain numerics,
-// independent of the code under test).
-struct GaussRule {
-    std::vector<double> x, w;
-};
-
-GaussRule gaussLegendre(int n) {
-    GaussRule g;
-    for (int i = 0; i < n; ++i) {
-        double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
-        double dp = 1.0;
-        for (int it = 0; it < 100; ++it) {
-            double p0 = 1.0, p1 = x;
-            for (int k = 2; k <= n; ++k) {
-                const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n * (x * p1 - p0) / (x * x - 1.0);
-            const double dx = p1 / dp;
-            x -= dx;
-            if (std::abs(dx) < 1e-16) break;
-        }
-        g.x.push_back(x);
-        g.w.push_back(2.0 / ((1.0 - x * x) * dp * dp));
-    }
-    return g;
-}
+// gaussLegendre (pbrlab/ibl_reference.h): plain numerics, not the code under test here.
 
 // Integral over a polar angle in [0, pi/2] by composite 8-point Gauss-Legendre. Panels grow
 // geometrically (ratio 1.25) from 1e-7 rad up to 0.05 rad, so a lobe around theta = 0 as

@@ -18,39 +18,12 @@ namespace {
 constexpr double kTwoPi = 2.0 * kPi;
 
 // Gauss-Legendre nodes and weights on [-1, 1] (Newton on the Legendre recurrence).
-struct GaussRule {
-    std::vector<double> x, w;
-};
-
-GaussRule makeGaussLegendre(int n) {
-    GaussRule g;
-    for (int i = 0; i < n; ++i) {
-        double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
-        double dp = 1.0;
-        for (int it = 0; it < 100; ++it) {
-            double p0 = 1.0, p1 = x;
-            for (int k = 2; k <= n; ++k) {
-                const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n * (x * p1 - p0) / (x * x - 1.0);
-            const double dx = p1 / dp;
-            x -= dx;
-            if (std::abs(dx) < 1e-16) break;
-        }
-        g.x.push_back(x);
-        g.w.push_back(2.0 / ((1.0 - x * x) * dp * dp));
-    }
-    return g;
-}
-
 const GaussRule& gauss8() {
-    static const GaussRule rule = makeGaussLegendre(8);
+    static const GaussRule rule = gaussLegendre(8);
     return rule;
 }
 const GaussRule& gauss16() {
-    static const GaussRule rule = makeGaussLegendre(16);
+    static const GaussRule rule = gaussLegendre(16);
     return rule;
 }
 
@@ -457,6 +430,30 @@ dvec3 ambientIBL(const dvec3& N, const dvec3& V, const dvec3& albedo, double met
     const dvec3 diffuse = albedo * irradiance;
     const dvec3 specular = prefiltered * (F0 * lut.x + lut.y);  // Karis: F0, not F
     return (kD * diffuse + specular) * ao;
+}
+
+// Nodes by Newton's method on the Legendre recurrence, from Tricomi's initial guesses.
+GaussRule gaussLegendre(int n) {
+    GaussRule g;
+    for (int i = 0; i < n; ++i) {
+        double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
+        double dp = 1.0;
+        for (int it = 0; it < 100; ++it) {
+            double p0 = 1.0, p1 = x;
+            for (int k = 2; k <= n; ++k) {
+                const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+                p0 = p1;
+                p1 = p2;
+            }
+            dp = n * (x * p1 - p0) / (x * x - 1.0);
+            const double dx = p1 / dp;
+            x -= dx;
+            if (std::abs(dx) < 1e-16) break;
+        }
+        g.x.push_back(x);
+        g.w.push_back(2.0 / ((1.0 - x * x) * dp * dp));
+    }
+    return g;
 }
 
 }  // namespace pbrlab::ref

@@ -9,14 +9,6 @@ using namespace pbrlab;
 
 namespace {
 
-// view.glsl's fade over the grazing band: smoothstep(0.05, 0.1, 4 N·V N·L).
-double grazingFade(const Surface& s) {
-    const double d =
-        4 * std::max(glm::dot(s.normal, s.view), 0.0) * std::max(glm::dot(s.normal, s.light), 0.0);
-    const double t = std::clamp((d - 0.05) / 0.05, 0.0, 1.0);
-    return t * t * (3 - 2 * t);
-}
-
 ModuleDesc describeModule() {
     ModuleDesc d;
     d.id = "specular";
@@ -35,7 +27,7 @@ ModuleDesc describeModule() {
     // the faded band. 0.2 leaves 3x; mistakes are off by >= 0.75.
     d.tolerance = {1e-3, 0.2};
     d.reference = [](const Surface& s, const ReferenceContext&) {
-        return grazingFade(s) *
+        return grazingBand(s) *
                ref::cookTorranceSpecular(s.normal, s.view, s.light,
                                          ref::baseReflectivity(s.albedo, s.metallic), s.roughness);
     };

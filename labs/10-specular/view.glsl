@@ -7,8 +7,7 @@
 // (+0.001, max(d, 1e-4)); the stability sweep checks that band.
 vec3 view(Surface s)
 {
-    float band = smoothstep(0.05, 0.1, 4.0 * max(dot(s.normal, s.view), 0.0) *
-                                           max(dot(s.normal, s.light), 0.0));
+    float band = pbrlab_grazingBand(s.normal, s.view, s.light);
     return band * cookTorranceSpecular(s.normal, s.view, s.light,
                                        baseReflectivity(s.albedo, s.metallic), s.roughness);
 }

@@ -7,7 +7,6 @@
 // between solutions (+0.001, max(d, 1e-4)); the stability sweep checks it.
 vec3 view(Surface s)
 {
-    float band = smoothstep(0.05, 0.1, 4.0 * max(dot(s.normal, s.view), 0.0) *
-                                           max(dot(s.normal, s.light), 0.0));
+    float band = pbrlab_grazingBand(s.normal, s.view, s.light);
     return band * cookTorranceBRDF(s.normal, s.view, s.light, s.albedo, s.metallic, s.roughness);
 }

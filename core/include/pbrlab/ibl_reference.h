@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "pbrlab/image.h"
 #include "pbrlab/reference.h"
@@ -24,6 +25,13 @@ namespace pbrlab::ref {
 constexpr double kIblMinNdotV = 1e-4;  // N.V floor in the IBL weights and the LUT (N.V = 0)
 constexpr double kIblMinNdotH = 1e-4;  // N.H floor in the weight G V.H / (N.H N.V)
 constexpr double kIblMinAlpha = 3.1622776601683794e-4;  // sqrt(kMinAlpha2): alpha floor in k
+
+// Gauss-Legendre nodes x and weights w on [-1, 1] (n points: exact for polynomials of degree
+// 2n - 1); the quadrature behind the ground truths here and in the tests.
+struct GaussRule {
+    std::vector<double> x, w;
+};
+GaussRule gaussLegendre(int n);
 
 // ---- 15 hammersley --------------------------------------------------------------------------
 

@@ -4,6 +4,7 @@
 // (`vec3 view(Surface s)`: what the step shows, evaluated per pixel).
 #pragma once
 
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 #include <glm/glm.hpp>
@@ -36,6 +37,14 @@ struct Surface {
     glm::dvec3 normalTexel{0.5, 0.5, 1};  // tangent-space normal map texel in [0, 1]
     glm::dvec4 extra{0};                  // probe-only inputs; meaning given by the module
 };
+
+// shaders/common.glsl's pbrlab_grazingBand: smoothstep(0.05, 0.1, 4 N.V N.L).
+inline double grazingBand(const Surface& s) {
+    double d =
+        4 * std::max(glm::dot(s.normal, s.view), 0.0) * std::max(glm::dot(s.normal, s.light), 0.0);
+    double t = std::clamp((d - 0.05) / 0.05, 0.0, 1.0);
+    return t * t * (3 - 2 * t);
+}
 
 // What a CPU reference may read besides the surface.
 struct ReferenceContext {
