@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 using namespace pbrlab;
@@ -51,6 +52,42 @@ ModuleDesc describeModule() {
         s.albedo = {0.95, 0.5, 0.04};
         s.roughness = 0.05 + 0.95 * y;
         return s;
+    };
+    // White furnace: with F0 = 1 and uniform white light the specular lobe reflects at most
+    // what arrives: integral of f_spec (N.L) dL <= 1 for any V. Midpoint rule over the
+    // hemisphere, 128 theta x 128 phi, at N.V = 0.7 and roughness 0.5 / 1 (smooth lobes need
+    // finer grids than a grader should spend). The view's grazing fade only removes energy.
+    d.invariants = [](const EvaluateFn& evaluate) {
+        std::vector<InvariantResult> out;
+        const int thetas = 128, phis = 128;
+        const double pi = std::numbers::pi, dTheta = pi / 2 / thetas, dPhi = 2 * pi / phis;
+        for (double r : {0.5, 1.0}) {
+            std::vector<Surface> ls;
+            for (int i = 0; i < thetas; ++i)
+                for (int j = 0; j < phis; ++j) {
+                    double theta = (i + 0.5) * dTheta, phi = (j + 0.5) * dPhi;
+                    Surface s;
+                    s.covered = true;
+                    s.normal = {0, 0, 1};
+                    s.view = {std::sqrt(1 - 0.49), 0, 0.7};
+                    s.light = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                               std::cos(theta)};
+                    s.albedo = s.albedoTexel = glm::dvec3(1);
+                    s.metallic = 1;  // F0 = albedo = 1 for the view's baseReflectivity
+                    s.roughness = r;
+                    ls.push_back(s);
+                }
+            std::vector<glm::dvec3> f = evaluate(ls);
+            double albedo = 0;
+            for (size_t k = 0; k < ls.size(); ++k) {
+                double cosTheta = ls[k].light.z;
+                albedo += f[k].x * cosTheta * std::sqrt(1 - cosTheta * cosTheta) * dTheta * dPhi;
+            }
+            char name[96];
+            std::snprintf(name, sizeof name, "white-furnace albedo at roughness %.1f", r);
+            out.push_back({name, albedo, "<= 1 (+0.01)", albedo <= 1.01});
+        }
+        return out;
     };
     return d;
 }

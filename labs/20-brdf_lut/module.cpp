@@ -58,6 +58,27 @@ ModuleDesc describeModule() {
         s.roughness = 0.05 + 0.95 * y;
         return s;
     };
+    // Bounds: A, B >= 0 and A + B <= 1 over the LUT (with F0 = 1 the specular lobe reflects
+    // at most all the light: a white furnace). 1e-3 of slack for Monte Carlo noise at the
+    // default sample count (the reference reaches 1.000000 at its maximum).
+    d.invariants = [](const EvaluateFn& evaluate) {
+        std::vector<Surface> grid;
+        for (int i = 0; i < 16; ++i)
+            for (int j = 0; j < 16; ++j) {
+                double NdotV = (i + 0.5) / 16, r = 0.05 + 0.95 * j / 15;
+                Surface s;
+                s.covered = true;
+                s.normal = {0, 0, 1};
+                s.view = {std::sqrt(1 - NdotV * NdotV), 0, NdotV};
+                s.roughness = r;
+                grid.push_back(s);
+            }
+        std::vector<glm::dvec3> ab = evaluate(grid);
+        double lo = 1e300, sum = 0;
+        for (const auto& v : ab) lo = std::min({lo, v.x, v.y}), sum = std::max(sum, v.x + v.y);
+        return std::vector<InvariantResult>{{"smallest of A, B", lo, ">= 0", lo >= 0},
+                                            {"largest A + B", sum, "<= 1 (+1e-3)", sum <= 1.001}};
+    };
     return d;
 }
 
