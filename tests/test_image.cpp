@@ -460,3 +460,21 @@ TEST_F(ImageTest, MetalPlatesRejectsBadSize) {
     EXPECT_THROW(pbrlab::generateMetalPlates(dir_, 0), pbrlab::Error);
     EXPECT_THROW(pbrlab::generateMetalPlates(dir_, -5), pbrlab::Error);
 }
+
+TEST_F(ImageTest, ShippedTexturesAreWhatTheGeneratorMakes) {
+    // assets/textures/metal-plates is `pbrlab textures` output, committed so a fresh clone
+    // needs no generation step. Regenerating must give the same pixels; one code value of
+    // slack (1/255, 1/65535) because another compiler's libm may round a sin() differently.
+    pbrlab::generateMetalPlates(dir_ / "fresh");
+    const fs::path shipped = fs::path(PBRLAB_SOURCE_DIR) / "assets/textures/metal-plates";
+    for (const char* name : kMaps) {
+        const Image a = pbrlab::readImage(dir_ / "fresh" / name);
+        const Image b = pbrlab::readImage(shipped / name);
+        ASSERT_EQ(a.pixels.size(), b.pixels.size()) << name;
+        const double step = a.sourceBitsPerChannel == 16 ? 1.0 / 65535 : 1.0 / 255;
+        double worst = 0;
+        for (size_t i = 0; i < a.pixels.size(); ++i)
+            worst = std::max(worst, double(std::abs(a.pixels[i] - b.pixels[i])));
+        EXPECT_LE(worst, step * 1.01) << name;
+    }
+}
