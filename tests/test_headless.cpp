@@ -4,9 +4,9 @@
 
 #include "check.h"
 #include "gl/context.h"
+#include "ibl.h"
 #include "pbrlab/error.h"
 #include "pbrlab/log.h"
-#include "ibl.h"
 #include "test_support.h"
 
 using namespace pbrlab;

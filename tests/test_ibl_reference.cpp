@@ -20,6 +20,7 @@
 #include "pbrlab/error.h"
 #include "pbrlab/ibl_reference.h"
 #include "pbrlab/image.h"
+#include "test_support.h"
 
 namespace {
 
@@ -81,35 +82,6 @@ auto integrateGraded(const F& f, double a, double b, double first, double step) 
 // D(theta) through the contract's step 5 reference (its own tests check normalisation).
 double ggxD(double theta, double roughness) {
     return distributionGGX(dvec3(0, 0, 1), dvec3(std::sin(theta), 0, std::cos(theta)), roughness);
-}
-
-// Regularised upper incomplete gamma Q(a, x): series for x < a + 1, Lentz continued fraction
-// otherwise (the textbook expansions). The chi-square p-value is Q(dof / 2, chi2 / 2).
-double gammaQ(double a, double x) {
-    if (x <= 0.0) return 1.0;
-    const double logPrefix = a * std::log(x) - x - std::lgamma(a);
-    if (x < a + 1.0) {
-        double term = 1.0 / a, sum = term;
-        for (int n = 1; n < 10000 && std::abs(term) > std::abs(sum) * 1e-15; ++n) {
-            term *= x / (a + n);
-            sum += term;
-        }
-        return 1.0 - sum * std::exp(logPrefix);
-    }
-    double b = x + 1.0 - a, c = 1e300, d = 1.0 / b, h = d;
-    for (int i = 1; i < 10000; ++i) {
-        const double an = -i * (i - a);
-        b += 2.0;
-        d = an * d + b;
-        if (std::abs(d) < 1e-300) d = 1e-300;
-        c = b + an / c;
-        if (std::abs(c) < 1e-300) c = 1e-300;
-        d = 1.0 / d;
-        const double delta = d * c;
-        h *= delta;
-        if (std::abs(delta - 1.0) < 1e-15) break;
-    }
-    return std::exp(logPrefix) * h;
 }
 
 // The generated environment at the shipped size, made once for the whole file (~0.8 s).
@@ -209,7 +181,7 @@ double chiSquarePValue(const Sampler& sample, const dvec3& N, double roughness, 
             const double o = observed[size_t(j * phiBins + k)];
             chi2 += (o - e) * (o - e) / e;
         }
-    return gammaQ((thetaBins * phiBins - 1) / 2.0, chi2 / 2.0);
+    return pbrlab::test::gammaQ((thetaBins * phiBins - 1) / 2.0, chi2 / 2.0);
 }
 
 TEST(IblImportance, SampledHalfVectorsFollowTheGgxDensityChiSquare) {

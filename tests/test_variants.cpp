@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "check.h"
-#include "pbrlab/contract.h"
 #include "gl/context.h"
+#include "pbrlab/contract.h"
 #include "test_support.h"
 
 using namespace pbrlab;
@@ -33,8 +33,8 @@ std::vector<Variant> allVariants() {
         for (const auto& dir : fs::directory_iterator(variantsRoot()))
             for (const auto& f : fs::directory_iterator(dir.path()))
                 if (f.path().extension() == ".glsl")
-                    v.push_back({dir.path().filename().string(), f.path().filename().string(),
-                                 f.path()});
+                    v.push_back(
+                        {dir.path().filename().string(), f.path().filename().string(), f.path()});
     for (const auto& step : contractSteps()) {
         fs::path dir = fs::path(PBRLAB_SOURCE_DIR) / "labs" / step.folder() / "mistakes";
         if (!fs::exists(dir)) continue;
