@@ -1,0 +1,316 @@
+#include "pbrlab/gltf.h"
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "pbrlab/error.h"
+
+namespace fs = std::filesystem;
+
+namespace pbrlab {
+
+namespace {
+
+[[noreturn]] void fail(const fs::path& file, const std::string& why) {
+    throw Error(file.string() + ": " + why);
+}
+
+// Reads accessor `index` as `components` floats per element (float data only, as glTF
+// requires for these attributes), honouring byte strides; checks every range.
+std::vector<float> readFloats(const tinygltf::Model& m, int index, int components,
+                              const fs::path& file, const std::string& what) {
+    if (index < 0 || index >= int(m.accessors.size())) fail(file, what + ": no such accessor");
+    const auto& a = m.accessors[size_t(index)];
+    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+        fail(file, what + ": expected float components");
+    if (tinygltf::GetNumComponentsInType(uint32_t(a.type)) != components)
+        fail(file, what + ": expected " + std::to_string(components) + " components");
+    if (a.bufferView < 0 || a.bufferView >= int(m.bufferViews.size()))
+        fail(file, what + ": no buffer view");
+    const auto& view = m.bufferViews[size_t(a.bufferView)];
+    if (view.buffer < 0 || view.buffer >= int(m.buffers.size())) fail(file, what + ": no buffer");
+    const auto& buffer = m.buffers[size_t(view.buffer)].data;
+    const size_t stride = view.byteStride ? view.byteStride : size_t(components) * 4;
+    const size_t begin = view.byteOffset + a.byteOffset;
+    if (a.count > 0 && begin + stride * (a.count - 1) + size_t(components) * 4 > buffer.size())
+        fail(file, what + ": data runs past the end of its buffer");
+    std::vector<float> out(a.count * size_t(components));
+    for (size_t i = 0; i < a.count; ++i)
+        std::memcpy(out.data() + i * size_t(components), buffer.data() + begin + i * stride,
+                    size_t(components) * 4);
+    return out;
+}
+
+std::vector<std::uint32_t> readIndices(const tinygltf::Model& m, int index, size_t vertexCount,
+                                       const fs::path& file) {
+    std::vector<std::uint32_t> out;
+    if (index < 0) {  // non-indexed: consecutive triangles
+        for (size_t i = 0; i < vertexCount; ++i) out.push_back(std::uint32_t(i));
+        return out;
+    }
+    if (index >= int(m.accessors.size())) fail(file, "indices: no such accessor");
+    const auto& a = m.accessors[size_t(index)];
+    if (a.bufferView < 0 || a.bufferView >= int(m.bufferViews.size()))
+        fail(file, "indices: no buffer view");
+    const auto& view = m.bufferViews[size_t(a.bufferView)];
+    if (view.buffer < 0 || view.buffer >= int(m.buffers.size())) fail(file, "indices: no buffer");
+    const auto& buffer = m.buffers[size_t(view.buffer)].data;
+    const size_t size = a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
+                        : a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                        : a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT   ? 4
+                                                                                    : 0;
+    if (!size) fail(file, "indices: expected unsigned integers");
+    const size_t begin = view.byteOffset + a.byteOffset;
+    if (begin + size * a.count > buffer.size()) fail(file, "indices run past their buffer");
+    for (size_t i = 0; i < a.count; ++i) {
+        std::uint32_t v = 0;
+        std::memcpy(&v, buffer.data() + begin + i * size, size);  // little-endian
+        if (v >= vertexCount) fail(file, "index " + std::to_string(v) + " past the vertices");
+        out.push_back(v);
+    }
+    if (out.size() % 3) fail(file, "index count is not a multiple of 3");
+    return out;
+}
+
+glm::dmat4 nodeMatrix(const tinygltf::Node& n) {
+    if (n.matrix.size() == 16) return glm::make_mat4(n.matrix.data());
+    glm::dmat4 m(1);
+    if (n.translation.size() == 3) m = glm::translate(m, glm::make_vec3(n.translation.data()));
+    if (n.rotation.size() == 4)
+        m *= glm::mat4_cast(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]));
+    if (n.scale.size() == 3) m = glm::scale(m, glm::make_vec3(n.scale.data()));
+    return m;
+}
+
+int textureImage(const tinygltf::Model& m, int texture) {
+    if (texture < 0 || texture >= int(m.textures.size())) return -1;
+    return m.textures[size_t(texture)].source;
+}
+
+}  // namespace
+
+void generateTangents(MeshData& mesh) {
+    std::vector<glm::dvec3> t(mesh.vertices.size(), glm::dvec3(0)), b = t;
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+        const Vertex* v[3] = {&mesh.vertices[mesh.indices[i]], &mesh.vertices[mesh.indices[i + 1]],
+                              &mesh.vertices[mesh.indices[i + 2]]};
+        glm::dvec3 e1 = glm::dvec3(v[1]->position - v[0]->position),
+                   e2 = glm::dvec3(v[2]->position - v[0]->position);
+        glm::dvec2 d1 = glm::dvec2(v[1]->uv - v[0]->uv), d2 = glm::dvec2(v[2]->uv - v[0]->uv);
+        double det = d1.x * d2.y - d2.x * d1.y;
+        if (std::abs(det) < 1e-20) continue;  // no uv extent: contributes no direction
+        glm::dvec3 tangent = (e1 * d2.y - e2 * d1.y) / det,
+                   bitangent = (e2 * d1.x - e1 * d2.x) / det;
+        for (int k = 0; k < 3; ++k) {
+            t[mesh.indices[i + size_t(k)]] += tangent;
+            b[mesh.indices[i + size_t(k)]] += bitangent;
+        }
+    }
+    for (size_t i = 0; i < mesh.vertices.size(); ++i) {
+        glm::dvec3 n = glm::normalize(glm::dvec3(mesh.vertices[i].normal));
+        glm::dvec3 tangent = t[i] - n * glm::dot(n, t[i]);
+        if (glm::dot(tangent, tangent) < 1e-24)  // any perpendicular keeps the frame valid
+            tangent =
+                glm::cross(n, std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0));
+        tangent = glm::normalize(tangent);
+        // glTF uv has v = 0 at the image top, and a normal map's +Y points up the image: the
+        // bitangent cross(N, T) * w must point towards decreasing v, i.e. against d P / d v.
+        double w = glm::dot(glm::cross(n, tangent), -b[i]) < 0 ? -1.0 : 1.0;
+        mesh.vertices[i].tangent = glm::vec4(glm::vec3(tangent), float(w));
+    }
+}
+
+ModelData loadGltf(const fs::path& file) {
+    if (!fs::exists(file)) fail(file, "no such file");
+    tinygltf::TinyGLTF loader;
+    tinygltf::Model model;
+    std::string err, warn;
+    bool binary = file.extension() == ".glb";
+    bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, file.string())
+                     : loader.LoadASCIIFromFile(&model, &err, &warn, file.string());
+    if (!ok)
+        fail(file, "not a valid glTF " + std::string(binary ? "binary" : "file") +
+                       (err.empty() ? "" : ": " + err));
+    ModelData data;
+    data.file = file;
+    data.meshCount = int(model.meshes.size());
+    data.imageCount = int(model.images.size());
+    for (const auto& mat : model.materials) {
+        ModelMaterial mm;
+        mm.name = mat.name;
+        const auto& pbr = mat.pbrMetallicRoughness;
+        if (pbr.baseColorFactor.size() == 4)
+            mm.baseColorFactor = glm::make_vec4(pbr.baseColorFactor.data());
+        mm.metallicFactor = pbr.metallicFactor;
+        mm.roughnessFactor = pbr.roughnessFactor;
+        if (mat.emissiveFactor.size() == 3)
+            mm.emissiveFactor = glm::make_vec3(mat.emissiveFactor.data());
+        mm.baseColorTexture = textureImage(model, pbr.baseColorTexture.index);
+        mm.metallicRoughnessTexture = textureImage(model, pbr.metallicRoughnessTexture.index);
+        mm.normalTexture = textureImage(model, mat.normalTexture.index);
+        mm.occlusionTexture = textureImage(model, mat.occlusionTexture.index);
+        mm.emissiveTexture = textureImage(model, mat.emissiveTexture.index);
+        data.materials.push_back(mm);
+    }
+    // Walk the default scene (or every root) applying node transforms.
+    std::vector<std::pair<int, glm::dmat4>> stack;
+    int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
+    if (sceneIndex < int(model.scenes.size()))
+        for (int n : model.scenes[size_t(sceneIndex)].nodes) stack.push_back({n, glm::dmat4(1)});
+    int visited = 0;
+    while (!stack.empty()) {
+        auto [index, parent] = stack.back();
+        stack.pop_back();
+        if (index < 0 || index >= int(model.nodes.size()) || ++visited > 100000)
+            fail(file, "node " + std::to_string(index) + " does not exist (or the nodes loop)");
+        const auto& node = model.nodes[size_t(index)];
+        glm::dmat4 world = parent * nodeMatrix(node);
+        for (int c : node.children) stack.push_back({c, world});
+        if (node.mesh < 0) continue;
+        if (node.mesh >= int(model.meshes.size())) fail(file, "node mesh index out of range");
+        for (const auto& prim : model.meshes[size_t(node.mesh)].primitives) {
+            if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES)
+                fail(file, "only triangle primitives are supported");
+            auto attribute = [&](const char* name) {
+                auto it = prim.attributes.find(name);
+                return it == prim.attributes.end() ? -1 : it->second;
+            };
+            if (attribute("POSITION") < 0 || attribute("NORMAL") < 0)
+                fail(file, "a primitive has no POSITION or NORMAL");
+            auto positions = readFloats(model, attribute("POSITION"), 3, file, "POSITION");
+            auto normals = readFloats(model, attribute("NORMAL"), 3, file, "NORMAL");
+            size_t count = positions.size() / 3;
+            if (normals.size() != positions.size())
+                fail(file, "NORMAL count differs from POSITION");
+            std::vector<float> uvs =
+                attribute("TEXCOORD_0") >= 0
+                    ? readFloats(model, attribute("TEXCOORD_0"), 2, file, "TEXCOORD_0")
+                    : std::vector<float>(count * 2, 0.0f);
+            bool hasTangents = attribute("TANGENT") >= 0;
+            std::vector<float> tangents =
+                hasTangents ? readFloats(model, attribute("TANGENT"), 4, file, "TANGENT")
+                            : std::vector<float>();
+            if (uvs.size() != count * 2 || (hasTangents && tangents.size() != count * 4))
+                fail(file, "attribute counts differ");
+            ModelPrimitive p;
+            p.transform = world;
+            p.material = prim.material;
+            for (size_t i = 0; i < count; ++i) {
+                Vertex v;
+                v.position = glm::make_vec3(&positions[i * 3]);
+                v.normal = glm::make_vec3(&normals[i * 3]);
+                v.uv = glm::make_vec2(&uvs[i * 2]);
+                v.tangent = hasTangents ? glm::make_vec4(&tangents[i * 4]) : glm::vec4(1, 0, 0, 1);
+                p.mesh.vertices.push_back(v);
+            }
+            p.mesh.indices = readIndices(model, prim.indices, count, file);
+            if (!hasTangents) {
+                generateTangents(p.mesh);
+                p.generatedTangents = true;
+            }
+            data.primitives.push_back(std::move(p));
+        }
+    }
+    return data;
+}
+
+void writeSphereGridGlb(const fs::path& file) {
+    MeshData sphere = makeUvSphere(48, 24);
+    tinygltf::Model m;
+    m.asset.version = "2.0";
+    m.asset.generator = "pbrlab";
+    tinygltf::Buffer buffer;
+    auto append = [&](const void* data, size_t bytes) {
+        size_t offset = buffer.data.size();
+        auto p = static_cast<const unsigned char*>(data);
+        buffer.data.insert(buffer.data.end(), p, p + bytes);
+        while (buffer.data.size() % 4) buffer.data.push_back(0);
+        return offset;
+    };
+    auto addView = [&](size_t offset, size_t bytes, int target) {
+        tinygltf::BufferView v;
+        v.buffer = 0;
+        v.byteOffset = offset;
+        v.byteLength = bytes;
+        v.target = target;
+        m.bufferViews.push_back(v);
+        return int(m.bufferViews.size() - 1);
+    };
+    // One interleaving-free view per attribute keeps the file simple to read back.
+    const size_t n = sphere.vertices.size();
+    std::vector<float> pos, nor, uv, tan;
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const auto& v : sphere.vertices) {
+        pos.insert(pos.end(), {v.position.x, v.position.y, v.position.z});
+        nor.insert(nor.end(), {v.normal.x, v.normal.y, v.normal.z});
+        uv.insert(uv.end(), {v.uv.x, v.uv.y});
+        tan.insert(tan.end(), {v.tangent.x, v.tangent.y, v.tangent.z, v.tangent.w});
+        lo = glm::min(lo, v.position);
+        hi = glm::max(hi, v.position);
+    }
+    auto addAccessor = [&](const std::vector<float>& values, int type, int components) {
+        int view = addView(append(values.data(), values.size() * 4), values.size() * 4,
+                           TINYGLTF_TARGET_ARRAY_BUFFER);
+        tinygltf::Accessor a;
+        a.bufferView = view;
+        a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+        a.count = values.size() / size_t(components);
+        a.type = type;
+        m.accessors.push_back(a);
+        return int(m.accessors.size() - 1);
+    };
+    tinygltf::Primitive prim;
+    prim.attributes["POSITION"] = addAccessor(pos, TINYGLTF_TYPE_VEC3, 3);
+    m.accessors.back().minValues = {lo.x, lo.y, lo.z};
+    m.accessors.back().maxValues = {hi.x, hi.y, hi.z};
+    prim.attributes["NORMAL"] = addAccessor(nor, TINYGLTF_TYPE_VEC3, 3);
+    prim.attributes["TEXCOORD_0"] = addAccessor(uv, TINYGLTF_TYPE_VEC2, 2);
+    prim.attributes["TANGENT"] = addAccessor(tan, TINYGLTF_TYPE_VEC4, 4);
+    {
+        int view = addView(append(sphere.indices.data(), sphere.indices.size() * 4),
+                           sphere.indices.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+        tinygltf::Accessor a;
+        a.bufferView = view;
+        a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+        a.count = sphere.indices.size();
+        a.type = TINYGLTF_TYPE_SCALAR;
+        m.accessors.push_back(a);
+        prim.indices = int(m.accessors.size() - 1);
+    }
+    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    (void)n;
+    m.buffers.push_back(buffer);
+    tinygltf::Scene scene;
+    for (int row = 0; row < 7; ++row)
+        for (int col = 0; col < 7; ++col) {
+            tinygltf::Material mat;
+            mat.name = "row" + std::to_string(row) + "-col" + std::to_string(col);
+            mat.pbrMetallicRoughness.baseColorFactor = {0.5, 0, 0, 1};
+            mat.pbrMetallicRoughness.metallicFactor = row / 7.0;
+            mat.pbrMetallicRoughness.roughnessFactor = std::clamp(col / 7.0, 0.05, 1.0);
+            m.materials.push_back(mat);
+            tinygltf::Mesh mesh;
+            tinygltf::Primitive p = prim;
+            p.material = int(m.materials.size() - 1);
+            mesh.primitives.push_back(p);
+            m.meshes.push_back(mesh);
+            tinygltf::Node node;
+            node.mesh = int(m.meshes.size() - 1);
+            node.translation = {(col - 3) * 2.5, (row - 3) * 2.5, 0.0};
+            m.nodes.push_back(node);
+            scene.nodes.push_back(int(m.nodes.size() - 1));
+        }
+    m.scenes.push_back(scene);
+    m.defaultScene = 0;
+    fs::create_directories(file.parent_path().empty() ? "." : file.parent_path());
+    tinygltf::TinyGLTF writer;
+    if (!writer.WriteGltfSceneToFile(&m, file.string(), true, true, false, true))
+        fail(file, "cannot write the glTF binary");
+}
+
+}  // namespace pbrlab

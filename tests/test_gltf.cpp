@@ -1,0 +1,101 @@
+// glTF loading: the project's own generated asset, tangent generation, and bad files as
+// errors (a small deterministic fuzz run over truncations and byte flips).
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <random>
+
+#include "pbrlab/error.h"
+#include "pbrlab/gltf.h"
+#include "test_support.h"
+
+using namespace pbrlab;
+namespace fs = std::filesystem;
+
+TEST(Gltf, GeneratedSphereGridHasTheLessonsLayout) {
+    test::TempDir dir;
+    writeSphereGridGlb(dir.path / "grid.glb");
+    ModelData m = loadGltf(dir.path / "grid.glb");
+    ASSERT_EQ(m.primitives.size(), 49u);
+    ASSERT_EQ(m.materials.size(), 49u);
+    EXPECT_EQ(m.meshCount, 49);
+    EXPECT_EQ(m.imageCount, 0);
+    for (const auto& p : m.primitives) {
+        const ModelMaterial& mat = m.materials.at(size_t(p.material));
+        glm::dvec3 at(p.transform[3]);
+        int col = int(std::lround(at.x / 2.5)) + 3, row = int(std::lround(at.y / 2.5)) + 3;
+        EXPECT_NEAR(mat.metallicFactor, row / 7.0, 1e-6);
+        EXPECT_NEAR(mat.roughnessFactor, std::clamp(col / 7.0, 0.05, 1.0), 1e-6);
+        EXPECT_EQ(mat.baseColorFactor, glm::dvec4(0.5, 0, 0, 1));
+        EXPECT_FALSE(p.generatedTangents);  // written with tangents
+        EXPECT_EQ(p.mesh.indices.size() % 3, 0u);
+    }
+}
+
+TEST(Gltf, GeneratedTangentsAreUnitPerpendicularAndFollowU) {
+    MeshData sphere = makeUvSphere(32, 16);
+    MeshData generated = sphere;
+    generateTangents(generated);
+    for (size_t i = 0; i < sphere.vertices.size(); ++i) {
+        const Vertex& v = generated.vertices[i];
+        glm::vec3 t(v.tangent);
+        EXPECT_NEAR(glm::length(t), 1.0f, 1e-5f);
+        EXPECT_NEAR(glm::dot(t, v.normal), 0.0f, 1e-5f);
+        EXPECT_EQ(std::abs(v.tangent.w), 1.0f);
+        // Away from the poles the analytic tangent (d position / du) is the answer.
+        if (std::abs(v.normal.y) < 0.9f) {
+            EXPECT_GT(glm::dot(t, glm::vec3(sphere.vertices[i].tangent)), 0.99f) << i;
+            EXPECT_EQ(v.tangent.w, sphere.vertices[i].tangent.w) << i;
+        }
+    }
+    // Mirrored uvs flip the handedness.
+    MeshData mirrored = sphere;
+    for (auto& v : mirrored.vertices) v.uv.x = 1 - v.uv.x;
+    generateTangents(mirrored);
+    EXPECT_EQ(mirrored.vertices[sphere.vertices.size() / 2].tangent.w, -1.0f);
+}
+
+TEST(Gltf, BrokenFilesAreErrorsNamingTheFile) {
+    test::TempDir dir;
+    writeSphereGridGlb(dir.path / "grid.glb");
+    std::ifstream in(dir.path / "grid.glb", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    auto expectError = [&](const std::string& content, const std::string& name) {
+        fs::path f = dir.path / name;
+        std::ofstream(f, std::ios::binary) << content;
+        try {
+            loadGltf(f);
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(f.string()), std::string::npos) << e.what();
+            return true;
+        }
+        return false;
+    };
+    EXPECT_TRUE(expectError(bytes.substr(0, bytes.size() / 2), "half.glb"));
+    EXPECT_TRUE(expectError(bytes.substr(0, 20), "header.glb"));
+    EXPECT_TRUE(expectError("", "empty.glb"));
+    EXPECT_TRUE(expectError("{ \"asset\": ", "cut.gltf"));
+    EXPECT_THROW(loadGltf(dir.path / "missing.glb"), Error);
+    // Fuzz: random truncations and byte flips must load or throw pbrlab::Error, never crash.
+    std::mt19937 rng(7);
+    for (int i = 0; i < 200; ++i) {
+        std::string b = bytes;
+        if (i % 2) b.resize(rng() % b.size());
+        for (int k = 0; k < 8; ++k) b[rng() % b.size()] = char(rng());
+        fs::path f = dir.path / "fuzz.glb";
+        std::ofstream(f, std::ios::binary) << b;
+        try {
+            loadGltf(f);
+        } catch (const Error&) {
+        }
+    }
+}
+
+TEST(Gltf, LoadsTheSharedTangentTestModelWhenPresent) {
+    fs::path file = fs::path(PBRLAB_SOURCE_DIR) / "../shared/data/gltf/NormalTangentTest.glb";
+    if (!fs::exists(file)) GTEST_SKIP() << "shared data absent";
+    ModelData m = loadGltf(file);
+    EXPECT_FALSE(m.primitives.empty());
+    EXPECT_FALSE(m.materials.empty());
+    EXPECT_GE(m.materials[0].normalTexture, 0);
+}
