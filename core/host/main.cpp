@@ -22,6 +22,7 @@
 #include "pbrlab/display.h"
 #include "pbrlab/envgen.h"
 #include "pbrlab/error.h"
+#include "pbrlab/gltf.h"
 #include "pbrlab/ibl_reference.h"
 #include "pbrlab/log.h"
 #include "pbrlab/texgen.h"
@@ -320,6 +321,10 @@ int main(int argc, char** argv) {
     guiCmd->add_option("--screenshot", gui.screenshot,
                        "With --frames: save the window to this PNG");
     guiCmd->add_option("--size", guiSize, "Window size WxH (default 1600x960)");
+    std::string modelsDir;
+    auto* modelsCmd = app.add_subcommand(
+        "models", "Write the project's own glTF test assets (deterministic): sphere-grid.glb");
+    modelsCmd->add_option("--out", modelsDir, "Output folder")->required();
     std::string envOut;
     int envWidth = 512;
     auto* envCmd = app.add_subcommand(
@@ -407,6 +412,14 @@ int main(int argc, char** argv) {
         if (*check) return runCheck(o, id, submission, cumulative, sets, size, scene);
         if (*gallery) return runGallery(o, galleryDir, size);
         if (*stability) return runStability(o, stabilityIds, stabilitySubmission);
+        if (*modelsCmd) {
+            writeSphereGridGlb(fs::path(modelsDir) / "sphere-grid.glb");
+            ModelData check = loadGltf(fs::path(modelsDir) / "sphere-grid.glb");
+            std::cout << "wrote " << (fs::path(modelsDir) / "sphere-grid.glb").string() << " ("
+                      << check.primitives.size() << " primitives, " << check.materials.size()
+                      << " materials)\n";
+            return 0;
+        }
         if (*envCmd) {
             Image sky = generateSkyEnvironment(envWidth);
             writeImage(envOut, sky, FileDepth::Float32);
@@ -448,8 +461,8 @@ int main(int argc, char** argv) {
                          std::to_string(report.maxScore) + "," + std::to_string(report.seconds) +
                          "\n";
             }
-            std::cerr << "\r[" << std::string(30, '#') << "] " << subs.size() << "/"
-                      << subs.size() << " done" << std::string(20, ' ') << "\n";
+            std::cerr << "\r[" << std::string(30, '#') << "] " << subs.size() << "/" << subs.size()
+                      << " done" << std::string(20, ' ') << "\n";
             writeFileAtomically(fs::path(batchOut) / "summary.csv", table);
             std::cout << table;
             return 0;
