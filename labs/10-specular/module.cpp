@@ -32,27 +32,12 @@ ModuleDesc describeModule() {
                ref::cookTorranceSpecular(s.normal, s.view, s.light,
                                          ref::baseReflectivity(s.albedo, s.metallic), s.roughness);
     };
-    // In the plane of incidence: V fixed 45° from N; x: L from -90° (grazing, on the mirror
-    // side) through the mirror direction (x = 0.25), N (x = 0.5) and V itself (x = 0.75) to
-    // +90°; y: roughness 0.05..1. F0 = (0.95, 0.5, 0.04): a metal's, an in-between one and a
-    // dielectric's (metallic 1, albedo = F0).
-    d.probe.xAxis = "angle(N, L) -90..90 deg (V at +45, mirror at -45)";
-    d.probe.yAxis = "roughness 0.05..1";
-    d.probe.width = 61;
-    d.probe.height = 39;
-    d.probe.at = [](double x, double y) {
-        const double theta = (x - 0.5) * std::numbers::pi;
-        const double v = std::numbers::pi / 3;
-        Surface s;
-        s.covered = true;
-        s.normal = {0, 0, 1};
-        s.view = {std::sin(v), 0, std::cos(v)};
-        s.light = {std::sin(theta), 0, std::cos(theta)};
+    // In the plane of incidence (planeOfIncidenceProbe), F0 = (0.95, 0.5, 0.04): a metal's,
+    // an in-between one and a dielectric's (metallic 1, albedo = F0).
+    d.probe = planeOfIncidenceProbe([](Surface& s) {
         s.metallic = 1;
-        s.albedo = {0.95, 0.5, 0.04};
-        s.roughness = 0.05 + 0.95 * y;
-        return s;
-    };
+        s.albedo = s.albedoTexel = glm::dvec3(0.95, 0.5, 0.04);
+    });
     // White furnace: with F0 = 1 and uniform white light the specular lobe reflects at most
     // what arrives: integral of f_spec (N.L) dL <= 1 for any V. Midpoint rule over the
     // hemisphere, 128 theta x 128 phi, at N.V = 0.7 and roughness 0.5 / 1 (smooth lobes need

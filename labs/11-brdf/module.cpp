@@ -31,26 +31,13 @@ ModuleDesc describeModule() {
         return grazingBand(s) *
                ref::cookTorranceBRDF(s.normal, s.view, s.light, s.albedo, s.metallic, s.roughness);
     };
-    // As step 10's probe (V 45° from N, L swept in the plane of incidence, roughness up), for a
-    // half-metallic orange: albedo (0.9, 0.5, 0.1), metallic 0.5, so that both the diffuse
-    // and the specular term are present in every channel.
-    d.probe.xAxis = "angle(N, L) -90..90 deg (V at +45, mirror at -45)";
-    d.probe.yAxis = "roughness 0.05..1";
-    d.probe.width = 61;
-    d.probe.height = 39;
-    d.probe.at = [](double x, double y) {
-        const double theta = (x - 0.5) * std::numbers::pi;
-        const double v = std::numbers::pi / 3;
-        Surface s;
-        s.covered = true;
-        s.normal = {0, 0, 1};
-        s.view = {std::sin(v), 0, std::cos(v)};
-        s.light = {std::sin(theta), 0, std::cos(theta)};
+    // As step 10's probe (planeOfIncidenceProbe), for a half-metallic orange: albedo
+    // (0.9, 0.5, 0.1), metallic 0.5, so both the diffuse and the specular term show in every
+    // channel.
+    d.probe = planeOfIncidenceProbe([](Surface& s) {
         s.metallic = 0.5;
-        s.albedo = {0.9, 0.5, 0.1};
-        s.roughness = 0.05 + 0.95 * y;
-        return s;
-    };
+        s.albedo = s.albedoTexel = glm::dvec3(0.9, 0.5, 0.1);
+    });
     // Reciprocity (Helmholtz): f(V, L) = f(L, V). Pairs with N.V, N.L >= 0.3, dielectric and
     // metal, two roughnesses; the largest relative difference over them.
     d.invariants = [](const EvaluateFn& evaluate) {

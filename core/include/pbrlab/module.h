@@ -5,9 +5,11 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <glm/glm.hpp>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -91,6 +93,30 @@ struct Probe {
     int width = 65, height = 65;
     std::function<Surface(double x, double y)> at;
 };
+
+// The plane-of-incidence probe the specular steps share: N = +z, V 60 degrees from N, L swept
+// in the same plane from -90 degrees (x = 0, grazing on the mirror side) through the mirror
+// direction (x = 1/6), N (x = 1/2) and V itself (x = 5/6) to +90 degrees; y = roughness
+// 0.05..1. `material` sets albedo and metallic.
+inline Probe planeOfIncidenceProbe(void (*material)(Surface&)) {
+    Probe p;
+    p.xAxis = "angle(N, L) -90..90 deg (V at +60, mirror at -60)";
+    p.yAxis = "roughness 0.05..1";
+    p.width = 61;
+    p.height = 39;
+    p.at = [material](double x, double y) {
+        const double theta = (x - 0.5) * std::numbers::pi, v = std::numbers::pi / 3;
+        Surface s;
+        s.covered = true;
+        s.normal = {0, 0, 1};
+        s.view = {std::sin(v), 0, std::cos(v)};
+        s.light = {std::sin(theta), 0, std::cos(theta)};
+        s.roughness = 0.05 + 0.95 * y;
+        material(s);
+        return s;
+    };
+    return p;
+}
 
 // Which surface inputs the module's view reads, so that nothing else is loaded or compiled.
 enum SurfaceNeeds : unsigned {
