@@ -232,7 +232,6 @@ bool IblPrecompute::loadCached(const fs::path& dir, IblMaps& maps) const {
     gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     gl::checkError("loading cached IBL maps");
-    maps.fromCache = true;
     return true;
 }
 

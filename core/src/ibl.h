@@ -35,7 +35,6 @@ struct IblMaps {
     gl::Handle environment, irradiance, prefilter, lut;
     float prefilterMaxLod = 0;
     std::map<std::string, double> milliseconds;  // per pass: glFinish + steady clock
-    bool fromCache = false;
 };
 
 // The precomputed maps on disk (irradiance cube, prefiltered mips, LUT), keyed by the

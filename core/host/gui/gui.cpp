@@ -349,7 +349,6 @@ private:
             for (size_t i = 0; i < reference.size(); ++i)
                 for (int c = 0; c < 3; ++c)
                     referenceValue_.pixels[i * 4 + size_t(c)] = float(reference[i][c]);
-            lights_ = context.lights;
             probeSolution_ = renderer_->renderProbe(m, st.params, scene, {}).value;
             renderError_.clear();
         } catch (const Error& e) {
@@ -428,7 +427,6 @@ private:
     // ---- images -----------------------------------------------------------------------------
     Image termImage(int term) const {
         Image out = solutionValue_;
-        const ModuleDesc& d = module();
         for (size_t i = 0; i < surfaces_.size(); ++i) {
             const Surface& s = surfaces_[i];
             glm::dvec3 c(0);
@@ -492,7 +490,6 @@ private:
                 out.pixels[i * 4 + size_t(k)] = s.covered ? float(c[k]) : 0.12f;
             out.pixels[i * 4 + 3] = 1;
         }
-        (void)d;
         return out;
     }
 
@@ -1060,7 +1057,6 @@ private:
     fs::file_time_type lastStudentStamp_{};
     Image studentValue_, solutionValue_, referenceValue_, probeSolution_, probeStudent_;
     std::vector<Surface> surfaces_;
-    std::vector<ref::PointLight> lights_;
     ErrorStats studentStats_, solutionStats_;
     gl::Handle imageTexture_;
     int imageWidth_ = 1, imageHeight_ = 1, nanCount_ = 0, infCount_ = 0, plotRow_ = 0;

@@ -160,10 +160,4 @@ std::shared_ptr<Program> ProgramCache::reloadIfChanged(const ProgramRecipe& reci
     return program;
 }
 
-std::vector<std::string> ProgramCache::keys() const {
-    std::vector<std::string> k;
-    for (const auto& [key, _] : programs_) k.push_back(key);
-    return k;
-}
-
 }  // namespace pbrlab

@@ -71,7 +71,6 @@ public:
     std::shared_ptr<Program> reloadIfChanged(const ProgramRecipe& recipe);
 
     int compileCount() const { return compiles_; }  // observable: tests count compiles
-    std::vector<std::string> keys() const;          // the permutations compiled so far
     const ShaderPreprocessor& preprocessor() const { return pre_; }
 
 private:
