@@ -18,6 +18,7 @@ struct Surface {
     float roughness;
     float ao;
     vec3 normalTexel;    // tangent-space normal map texel in [0, 1]
+    vec3 emissive;       // emitted radiance, linear (what the final-picture views add)
     vec4 extra;          // probe-only inputs, meaning given by the module
 };
 
@@ -53,9 +54,13 @@ Surface loadSurface()
     s.uv = t3.xy;
     s.metallic = t3.z;
     s.ao = t3.w;
-    s.albedoTexel = texelFetch(uSurface4, p, 0).rgb;
-    s.albedo = texelFetch(uSurface5, p, 0).rgb;
-    s.normalTexel = texelFetch(uSurface6, p, 0).rgb;
+    vec4 t4 = texelFetch(uSurface4, p, 0);
+    vec4 t5 = texelFetch(uSurface5, p, 0);
+    vec4 t6 = texelFetch(uSurface6, p, 0);
+    s.albedoTexel = t4.rgb;
+    s.albedo = t5.rgb;
+    s.normalTexel = t6.rgb;
+    s.emissive = vec3(t4.a, t5.a, t6.a);
 #ifdef PBRLAB_PROBE
     s.view = texelFetch(uSurface7, p, 0).xyz;
     s.light = texelFetch(uSurface8, p, 0).xyz;

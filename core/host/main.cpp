@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <set>
 
 #include "check.h"
 #include "converge.h"
@@ -116,9 +117,27 @@ void writeOutput(const ModuleDesc& m, const RenderResult& r, const fs::path& out
     }
 }
 
-void printStats() {
+// The scene a command renders: --model frames a glTF model lit like the module's (or
+// --scene's) scene; otherwise --scene, else the module's own scene.
+Scene sceneFor(const Session& session, const ModuleDesc& m, const std::string& sceneName,
+               const std::string& model) {
+    Scene scene = loadScene(session.paths.scene(sceneName.empty() ? m.scene : sceneName));
+    if (model.empty()) return scene;
+    Scene framed = sceneForModel(scene, model);
+    for (const auto& model : framed.models)
+        for (const auto& w : model.data->warnings)
+            std::cerr << "note: " << model.data->file.string() << ": " << w << "\n";
+    return framed;
+}
+
+// What the run loaded, compiled and precomputed, with times (the journal keeps the lines).
+void printStats(const Session& session) {
     for (int c = 0; c < int(Counter::Count); ++c)
         std::cout << counterName(Counter(c)) << ": " << eventCount(Counter(c)) << "\n";
+    if (session.renderer)
+        for (const CompiledProgram& p : session.renderer->programs().compiled())
+            std::printf("  program %-26s {%s} %.1f ms\n", p.label.c_str(), p.defines.c_str(),
+                        p.milliseconds);
     std::cout << journal();
 }
 
@@ -132,12 +151,13 @@ int runList(const Options& o) {
 
 int runRender(const Options& o, const std::string& id, const std::string& submission,
               bool cumulative, const std::vector<std::string>& sets, const std::string& size,
-              const std::string& sceneName, bool probe, const std::string& out) {
+              const std::string& sceneName, const std::string& model, bool probe,
+              const std::string& out) {
     Session session(o);
     const LoadedModule& m = session.modules->find(id);
     ParamValues values = parseSets(*m.desc, sets);
     Size s = parseSize(size);
-    Scene scene = loadScene(session.paths.scene(sceneName.empty() ? m.desc->scene : sceneName));
+    Scene scene = sceneFor(session, *m.desc, sceneName, model);
     StudentSource source = studentSource(submission, cumulative, id);
     RenderResult r =
         probe ? session.renderer->renderProbe(*&m, values, scene, source)
@@ -145,18 +165,18 @@ int runRender(const Options& o, const std::string& id, const std::string& submis
     writeOutput(*m.desc, r, out);
     std::cout << "wrote " << out << " (" << r.value.width << "x" << r.value.height << ", view "
               << r.milliseconds << " ms)\n";
-    if (o.stats) printStats();
+    if (o.stats) printStats(session);
     return 0;
 }
 
 int runCheck(const Options& o, const std::string& id, const std::string& submission,
              bool cumulative, const std::vector<std::string>& sets, const std::string& size,
-             const std::string& sceneName) {
+             const std::string& sceneName, const std::string& model) {
     Session session(o);
     const LoadedModule& m = session.modules->find(id);
     ParamValues values = parseSets(*m.desc, sets);
     Size s = parseSize(size);
-    Scene scene = loadScene(session.paths.scene(sceneName.empty() ? m.desc->scene : sceneName));
+    Scene scene = sceneFor(session, *m.desc, sceneName, model);
     CheckResult r = checkModule(*session.renderer, m, values, scene,
                                 studentSource(submission, cumulative, id), s.width, s.height);
     const Tolerance& t = m.desc->tolerance;
@@ -165,7 +185,7 @@ int runCheck(const Options& o, const std::string& id, const std::string& submiss
               << id << " probe (x: " << m.desc->probe.xAxis << "; y: " << m.desc->probe.yAxis
               << "): " << describe(r.probe, t) << "\n"
               << id << ": " << (r.passed ? "PASS" : "FAIL") << "\n";
-    if (o.stats) printStats();
+    if (o.stats) printStats(session);
     return r.passed ? 0 : 1;
 }
 
@@ -192,6 +212,42 @@ int runStability(const Options& o, const std::vector<std::string>& ids,
     std::printf("(%zu extreme inputs per module; error = |gpu - ref| / max(|ref|, module floor))\n",
                 extremeSurfaces().labels.size());
     return bad ? 1 : 0;
+}
+
+// Which shader permutations each module compiles for a scene (rendered small, so the list is
+// what really compiled), then every distinct program with its compile time.
+int runPermutations(const Options& o, std::vector<std::string> ids, const std::string& sceneName,
+                    const std::string& model) {
+    Session session(o);
+    if (ids.empty())
+        for (const auto& m : session.modules->modules()) ids.push_back(m.desc->id);
+    std::printf("%-12s %-20s %s\n", "module", "program", "defines");
+    for (const std::string& id : ids) {
+        const LoadedModule& m = session.modules->find(id);
+        Scene scene = applyParamBindings(sceneFor(session, *m.desc, sceneName, model), *m.desc,
+                                         ParamValues(m.desc->params));
+        session.renderer->renderScene(m, ParamValues(m.desc->params), scene, {}, 32, 32, false);
+        std::set<std::string> gbuffers;
+        for (const DrawItem& item : drawItems(scene))
+            gbuffers.insert(definesText(
+                session.renderer
+                    ->gbufferRecipe(scene.materials.at(size_t(item.material)), m.desc->needs)
+                    .defines));
+        for (const std::string& d : gbuffers)
+            std::printf("%-12s %-20s {%s}\n", id.c_str(), "G-buffer", d.c_str());
+        std::printf(
+            "%-12s %-20s {%s}\n", "", ("view " + id).c_str(),
+            definesText(
+                session.renderer->viewRecipe(m, {}, false, int(scene.lights.size())).defines)
+                .c_str());
+    }
+    const auto& compiled = session.renderer->programs().compiled();
+    std::printf("\n%zu programs compiled:\n", compiled.size());
+    for (const CompiledProgram& p : compiled)
+        std::printf("  %-26s {%s} %.1f ms\n", p.label.c_str(), p.defines.c_str(), p.milliseconds);
+    std::printf("textures loaded: %d, precompute passes: %d\n", eventCount(Counter::TextureLoads),
+                eventCount(Counter::PrecomputePasses));
+    return 0;
 }
 
 int runPrecompute(const Options& o, const std::string& envFile, const IblSettings& settings,
@@ -284,7 +340,7 @@ int main(int argc, char** argv) {
 
     auto* list = app.add_subcommand("list", "List the modules, one a line, id first, lab order");
 
-    std::string id, submission, size = "512x512", scene, out;
+    std::string id, submission, size = "512x512", scene, model, out;
     std::vector<std::string> sets;
     bool cumulative = false, probe = false;
     auto addCommon = [&](CLI::App* cmd) {
@@ -296,7 +352,12 @@ int main(int argc, char** argv) {
         cmd->add_option("--set", sets, "Parameter name=value (repeatable)");
         cmd->add_option("--size", size, "Image size WxH (default 512x512)");
         cmd->add_option("--scene", scene, "Scene name in assets/scenes or a .json file");
-        cmd->add_flag("--stats", o.stats, "Print what was compiled, loaded and precomputed");
+        cmd->add_option("--model", model,
+                        "A glTF model (.glb/.gltf) to view instead, framed and lit like the "
+                        "scene");
+        cmd->add_flag("--stats", o.stats,
+                      "Print what was compiled (each permutation), loaded and precomputed, "
+                      "with times");
     };
     auto* render = app.add_subcommand("render", "Render a module's view to PNG or EXR");
     addCommon(render);
@@ -321,9 +382,18 @@ int main(int argc, char** argv) {
     guiCmd->add_option("--screenshot", gui.screenshot,
                        "With --frames: save the window to this PNG");
     guiCmd->add_option("--size", guiSize, "Window size WxH (default 1600x960)");
+    std::vector<std::string> permutationIds;
+    auto* permutationsCmd = app.add_subcommand(
+        "permutations", "List the shader permutations each module compiles for a scene");
+    permutationsCmd->add_option("ids", permutationIds, "Module ids (default: all)");
+    permutationsCmd->add_option("--scene", scene,
+                                "Scene name or .json (default: each module's own)");
+    permutationsCmd->add_option("--model", model, "A glTF model, framed and lit like the scene");
     std::string modelsDir;
     auto* modelsCmd = app.add_subcommand(
-        "models", "Write the project's own glTF test assets (deterministic): sphere-grid.glb");
+        "models",
+        "Write the project's own glTF test assets (deterministic): sphere-grid.glb, "
+        "textured-sphere.glb");
     modelsCmd->add_option("--out", modelsDir, "Output folder")->required();
     std::string envOut;
     int envWidth = 512;
@@ -408,16 +478,24 @@ int main(int argc, char** argv) {
     setVerbose(o.verbose);
     try {
         if (*list) return runList(o);
-        if (*render) return runRender(o, id, submission, cumulative, sets, size, scene, probe, out);
-        if (*check) return runCheck(o, id, submission, cumulative, sets, size, scene);
+        if (*render)
+            return runRender(o, id, submission, cumulative, sets, size, scene, model, probe, out);
+        if (*check) return runCheck(o, id, submission, cumulative, sets, size, scene, model);
+        if (*permutationsCmd) return runPermutations(o, permutationIds, scene, model);
         if (*gallery) return runGallery(o, galleryDir, size);
         if (*stability) return runStability(o, stabilityIds, stabilitySubmission);
         if (*modelsCmd) {
-            writeSphereGridGlb(fs::path(modelsDir) / "sphere-grid.glb");
-            ModelData check = loadGltf(fs::path(modelsDir) / "sphere-grid.glb");
-            std::cout << "wrote " << (fs::path(modelsDir) / "sphere-grid.glb").string() << " ("
-                      << check.primitives.size() << " primitives, " << check.materials.size()
-                      << " materials)\n";
+            const fs::path grid = fs::path(modelsDir) / "sphere-grid.glb",
+                           textured = fs::path(modelsDir) / "textured-sphere.glb";
+            writeSphereGridGlb(grid);
+            writeTexturedSphereGlb(textured);
+            for (const fs::path& file : {grid, textured}) {
+                ModelData check = loadGltf(file);
+                std::cout << "wrote " << file.string() << " (" << check.primitives.size()
+                          << " primitives, " << check.vertexCount() << " vertices, "
+                          << check.materials.size() << " materials, " << check.images.size()
+                          << " images)\n";
+            }
             return 0;
         }
         if (*envCmd) {

@@ -1,14 +1,20 @@
 #include "pbrlab/gltf.h"
 
 #include <tiny_gltf.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstring>
+#include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <set>
 
 #include "pbrlab/error.h"
+#include "pbrlab/texgen.h"
 
 namespace fs = std::filesystem;
 
@@ -92,6 +98,91 @@ int textureImage(const tinygltf::Model& m, int texture) {
     return m.textures[size_t(texture)].source;
 }
 
+// "%20" -> " ": glTF URIs are percent-encoded.
+std::string percentDecode(const std::string& uri) {
+    std::string out;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) &&
+            std::isxdigit(uint8_t(uri[i + 2]))) {
+            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+// The external image files a glTF names (its JSON read before tinygltf reads anything), so
+// that the file-reading callback below can leave them unread. Any problem: an empty set, and
+// tinygltf reports the error itself.
+std::set<fs::path> externalImageFiles(const fs::path& file) {
+    std::set<fs::path> files;
+    try {
+        std::ifstream in(file, std::ios::binary);
+        std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        std::string text = bytes;
+        if (bytes.size() >= 20 && bytes.compare(0, 4, "glTF") == 0) {  // binary: chunk 0 is JSON
+            uint32_t length = 0;
+            std::memcpy(&length, bytes.data() + 12, 4);
+            if (length > bytes.size() - 20) return files;
+            text = bytes.substr(20, length);
+        }
+        auto doc = nlohmann::json::parse(text);
+        for (const auto& image : doc.value("images", nlohmann::json::array())) {
+            if (!image.is_object() || !image.contains("uri") || !image["uri"].is_string()) continue;
+            std::string uri = image["uri"].get<std::string>();
+            if (uri.rfind("data:", 0) == 0) continue;
+            files.insert(fs::weakly_canonical(file.parent_path() / percentDecode(uri)));
+        }
+    } catch (const std::exception&) {
+        files.clear();
+    }
+    return files;
+}
+
+// Reads what tinygltf asks for, except the external image files: for those it hands back one
+// placeholder byte (tinygltf refuses an empty read) and the image is read on first use.
+bool readWholeFileExceptImages(std::vector<unsigned char>* out, std::string* err,
+                               const std::string& path, void* userData) {
+    const auto* skip = static_cast<const std::set<fs::path>*>(userData);
+    std::error_code ec;
+    if (skip->count(fs::weakly_canonical(path, ec)) && fs::is_regular_file(path, ec)) {
+        out->assign(1, 0);
+        return true;
+    }
+    return tinygltf::ReadWholeFile(out, err, path, nullptr);
+}
+
+// Keeps images encoded: embedded bytes are copied (decoded later, if ever), external files
+// are remembered by path. Nothing is decoded here.
+struct ImageCollector {
+    fs::path file;
+    std::vector<TextureSource>* images;
+};
+
+bool collectImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                  const unsigned char* bytes, int size, void* userData) {
+    auto* c = static_cast<ImageCollector*>(userData);
+    if (index < 0 || size_t(index) >= c->images->size()) {
+        if (err) *err += "image index " + std::to_string(index) + " out of range\n";
+        return false;
+    }
+    TextureSource& t = (*c->images)[size_t(index)];
+    t.repeatV = true;
+    if (!image->uri.empty() && image->uri.rfind("data:", 0) != 0) {
+        t.file = c->file.parent_path() / percentDecode(image->uri);
+        t.key = t.file.string();
+        t.extension = t.file.extension().string();
+    } else {
+        t.key = c->file.string() + "#image " + std::to_string(index) +
+                (image->name.empty() ? "" : " (" + image->name + ")");
+        t.encoded = std::make_shared<const std::vector<unsigned char>>(bytes, bytes + size);
+        t.extension = image->mimeType == "image/jpeg" ? ".jpg" : ".png";
+    }
+    return true;
+}
+
 }  // namespace
 
 void generateTangents(MeshData& mesh) {
@@ -127,7 +218,18 @@ void generateTangents(MeshData& mesh) {
 
 ModelData loadGltf(const fs::path& file) {
     if (!fs::exists(file)) fail(file, "no such file");
+    if (fs::is_directory(file)) fail(file, "is a directory, not a glTF file");
+    ModelData data;
+    data.file = file;
+    // Sized generously first: tinygltf calls back with each image's index before we know
+    // the count; trimmed to the real count below.
+    std::vector<TextureSource> images(4096);
+    ImageCollector collector{file, &images};
+    std::set<fs::path> externalImages = externalImageFiles(file);
     tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(collectImage, &collector);
+    loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath,
+                           &readWholeFileExceptImages, &tinygltf::WriteWholeFile, &externalImages});
     tinygltf::Model model;
     std::string err, warn;
     bool binary = file.extension() == ".glb";
@@ -136,10 +238,27 @@ ModelData loadGltf(const fs::path& file) {
     if (!ok)
         fail(file, "not a valid glTF " + std::string(binary ? "binary" : "file") +
                        (err.empty() ? "" : ": " + err));
-    ModelData data;
-    data.file = file;
+    if (model.images.size() > images.size())
+        fail(file, "more than " + std::to_string(images.size()) + " images");
+    images.resize(model.images.size());
+    for (size_t i = 0; i < images.size(); ++i) {
+        if (!images[i].empty()) continue;
+        // tinygltf skips the callback for an external file it could not find.
+        fail(file, "image " + std::to_string(i) + " ('" + model.images[i].uri +
+                       "'): file not found or not readable");
+    }
+    data.images = std::move(images);
     data.meshCount = int(model.meshes.size());
     data.imageCount = int(model.images.size());
+    auto image = [&](const tinygltf::TextureInfo& info, const std::string& what) {
+        if (info.texCoord != 0)
+            data.warnings.push_back(what + " uses TEXCOORD_" + std::to_string(info.texCoord) +
+                                    "; pbrlab reads TEXCOORD_0");
+        int index = textureImage(model, info.index);
+        if (info.index >= 0 && (index < 0 || index >= int(data.images.size())))
+            fail(file, what + ": texture " + std::to_string(info.index) + " has no image");
+        return index;
+    };
     for (const auto& mat : model.materials) {
         ModelMaterial mm;
         mm.name = mat.name;
@@ -150,11 +269,22 @@ ModelData loadGltf(const fs::path& file) {
         mm.roughnessFactor = pbr.roughnessFactor;
         if (mat.emissiveFactor.size() == 3)
             mm.emissiveFactor = glm::make_vec3(mat.emissiveFactor.data());
-        mm.baseColorTexture = textureImage(model, pbr.baseColorTexture.index);
-        mm.metallicRoughnessTexture = textureImage(model, pbr.metallicRoughnessTexture.index);
-        mm.normalTexture = textureImage(model, mat.normalTexture.index);
-        mm.occlusionTexture = textureImage(model, mat.occlusionTexture.index);
-        mm.emissiveTexture = textureImage(model, mat.emissiveTexture.index);
+        mm.normalScale = mat.normalTexture.scale;
+        mm.occlusionStrength = mat.occlusionTexture.strength;
+        const std::string what = "material '" + mat.name + "'";
+        mm.baseColorTexture = image(pbr.baseColorTexture, what + " baseColorTexture");
+        mm.metallicRoughnessTexture =
+            image(pbr.metallicRoughnessTexture, what + " metallicRoughnessTexture");
+        tinygltf::TextureInfo normal, occlusion;
+        normal.index = mat.normalTexture.index;
+        normal.texCoord = mat.normalTexture.texCoord;
+        occlusion.index = mat.occlusionTexture.index;
+        occlusion.texCoord = mat.occlusionTexture.texCoord;
+        mm.normalTexture = image(normal, what + " normalTexture");
+        mm.occlusionTexture = image(occlusion, what + " occlusionTexture");
+        mm.emissiveTexture = image(mat.emissiveTexture, what + " emissiveTexture");
+        if (mat.alphaMode != "OPAQUE" && !mat.alphaMode.empty())
+            data.warnings.push_back(what + ": alphaMode " + mat.alphaMode + " is drawn opaque");
         data.materials.push_back(mm);
     }
     // Walk the default scene (or every root) applying node transforms.
@@ -199,6 +329,9 @@ ModelData loadGltf(const fs::path& file) {
                 fail(file, "attribute counts differ");
             ModelPrimitive p;
             p.transform = world;
+            if (prim.material >= int(data.materials.size()))
+                fail(file, "a primitive names material " + std::to_string(prim.material) +
+                               ", which does not exist");
             p.material = prim.material;
             for (size_t i = 0; i < count; ++i) {
                 Vertex v;
@@ -219,72 +352,132 @@ ModelData loadGltf(const fs::path& file) {
     return data;
 }
 
-void writeSphereGridGlb(const fs::path& file) {
-    MeshData sphere = makeUvSphere(48, 24);
+size_t ModelData::vertexCount() const {
+    size_t n = 0;
+    for (const auto& p : primitives) n += p.mesh.vertices.size();
+    return n;
+}
+
+glm::dvec3 ModelData::boundsMin() const {
+    glm::dvec3 lo(std::numeric_limits<double>::infinity());
+    for (const auto& p : primitives)
+        for (const auto& v : p.mesh.vertices)
+            lo = glm::min(lo, glm::dvec3(p.transform * glm::dvec4(glm::dvec3(v.position), 1)));
+    return lo;
+}
+
+glm::dvec3 ModelData::boundsMax() const {
+    glm::dvec3 hi(-std::numeric_limits<double>::infinity());
+    for (const auto& p : primitives)
+        for (const auto& v : p.mesh.vertices)
+            hi = glm::max(hi, glm::dvec3(p.transform * glm::dvec4(glm::dvec3(v.position), 1)));
+    return hi;
+}
+
+namespace {
+
+// Builds a one-buffer glTF binary: one view per attribute keeps the file simple to read back.
+struct GlbWriter {
     tinygltf::Model m;
-    m.asset.version = "2.0";
-    m.asset.generator = "pbrlab";
     tinygltf::Buffer buffer;
-    auto append = [&](const void* data, size_t bytes) {
+
+    GlbWriter() {
+        m.asset.version = "2.0";
+        m.asset.generator = "pbrlab";
+    }
+    size_t append(const void* data, size_t bytes) {
         size_t offset = buffer.data.size();
         auto p = static_cast<const unsigned char*>(data);
         buffer.data.insert(buffer.data.end(), p, p + bytes);
         while (buffer.data.size() % 4) buffer.data.push_back(0);
         return offset;
-    };
-    auto addView = [&](size_t offset, size_t bytes, int target) {
+    }
+    int addView(const void* data, size_t bytes, int target) {
         tinygltf::BufferView v;
         v.buffer = 0;
-        v.byteOffset = offset;
+        v.byteOffset = append(data, bytes);
         v.byteLength = bytes;
         v.target = target;
         m.bufferViews.push_back(v);
         return int(m.bufferViews.size() - 1);
-    };
-    // One interleaving-free view per attribute keeps the file simple to read back.
-    const size_t n = sphere.vertices.size();
-    std::vector<float> pos, nor, uv, tan;
-    glm::vec3 lo(1e30f), hi(-1e30f);
-    for (const auto& v : sphere.vertices) {
-        pos.insert(pos.end(), {v.position.x, v.position.y, v.position.z});
-        nor.insert(nor.end(), {v.normal.x, v.normal.y, v.normal.z});
-        uv.insert(uv.end(), {v.uv.x, v.uv.y});
-        tan.insert(tan.end(), {v.tangent.x, v.tangent.y, v.tangent.z, v.tangent.w});
-        lo = glm::min(lo, v.position);
-        hi = glm::max(hi, v.position);
     }
-    auto addAccessor = [&](const std::vector<float>& values, int type, int components) {
-        int view = addView(append(values.data(), values.size() * 4), values.size() * 4,
-                           TINYGLTF_TARGET_ARRAY_BUFFER);
+    int addAccessor(const std::vector<float>& values, int type, int components) {
         tinygltf::Accessor a;
-        a.bufferView = view;
+        a.bufferView = addView(values.data(), values.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER);
         a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
         a.count = values.size() / size_t(components);
         a.type = type;
         m.accessors.push_back(a);
         return int(m.accessors.size() - 1);
-    };
-    tinygltf::Primitive prim;
-    prim.attributes["POSITION"] = addAccessor(pos, TINYGLTF_TYPE_VEC3, 3);
-    m.accessors.back().minValues = {lo.x, lo.y, lo.z};
-    m.accessors.back().maxValues = {hi.x, hi.y, hi.z};
-    prim.attributes["NORMAL"] = addAccessor(nor, TINYGLTF_TYPE_VEC3, 3);
-    prim.attributes["TEXCOORD_0"] = addAccessor(uv, TINYGLTF_TYPE_VEC2, 2);
-    prim.attributes["TANGENT"] = addAccessor(tan, TINYGLTF_TYPE_VEC4, 4);
-    {
-        int view = addView(append(sphere.indices.data(), sphere.indices.size() * 4),
-                           sphere.indices.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    }
+    tinygltf::Primitive addMesh(const MeshData& mesh, bool withTangents) {
+        std::vector<float> pos, nor, uv, tan;
+        glm::vec3 lo(1e30f), hi(-1e30f);
+        for (const auto& v : mesh.vertices) {
+            pos.insert(pos.end(), {v.position.x, v.position.y, v.position.z});
+            nor.insert(nor.end(), {v.normal.x, v.normal.y, v.normal.z});
+            uv.insert(uv.end(), {v.uv.x, v.uv.y});
+            tan.insert(tan.end(), {v.tangent.x, v.tangent.y, v.tangent.z, v.tangent.w});
+            lo = glm::min(lo, v.position);
+            hi = glm::max(hi, v.position);
+        }
+        tinygltf::Primitive prim;
+        prim.attributes["POSITION"] = addAccessor(pos, TINYGLTF_TYPE_VEC3, 3);
+        m.accessors.back().minValues = {lo.x, lo.y, lo.z};  // required for POSITION
+        m.accessors.back().maxValues = {hi.x, hi.y, hi.z};
+        prim.attributes["NORMAL"] = addAccessor(nor, TINYGLTF_TYPE_VEC3, 3);
+        prim.attributes["TEXCOORD_0"] = addAccessor(uv, TINYGLTF_TYPE_VEC2, 2);
+        if (withTangents) prim.attributes["TANGENT"] = addAccessor(tan, TINYGLTF_TYPE_VEC4, 4);
         tinygltf::Accessor a;
-        a.bufferView = view;
+        a.bufferView = addView(mesh.indices.data(), mesh.indices.size() * 4,
+                               TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
         a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-        a.count = sphere.indices.size();
+        a.count = mesh.indices.size();
         a.type = TINYGLTF_TYPE_SCALAR;
         m.accessors.push_back(a);
         prim.indices = int(m.accessors.size() - 1);
+        prim.mode = TINYGLTF_MODE_TRIANGLES;
+        return prim;
     }
-    prim.mode = TINYGLTF_MODE_TRIANGLES;
-    (void)n;
-    m.buffers.push_back(buffer);
+    // An embedded PNG; returns the texture index.
+    int addPng(const fs::path& pngFile, const std::string& name) {
+        std::ifstream in(pngFile, std::ios::binary);
+        std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
+                                         std::istreambuf_iterator<char>());
+        if (bytes.empty()) fail(pngFile, "cannot read the image to embed");
+        tinygltf::Image image;
+        image.name = name;
+        image.mimeType = "image/png";
+        image.bufferView = addView(bytes.data(), bytes.size(), 0);
+        m.images.push_back(image);
+        tinygltf::Texture texture;
+        texture.source = int(m.images.size() - 1);
+        m.textures.push_back(texture);
+        return int(m.textures.size() - 1);
+    }
+    void addNode(int mesh, const std::vector<double>& translation, tinygltf::Scene& scene) {
+        tinygltf::Node node;
+        node.mesh = mesh;
+        node.translation = translation;
+        m.nodes.push_back(node);
+        scene.nodes.push_back(int(m.nodes.size() - 1));
+    }
+    void write(const fs::path& file, tinygltf::Scene scene) {
+        m.buffers.push_back(buffer);
+        m.scenes.push_back(std::move(scene));
+        m.defaultScene = 0;
+        fs::create_directories(file.parent_path().empty() ? "." : file.parent_path());
+        tinygltf::TinyGLTF writer;
+        if (!writer.WriteGltfSceneToFile(&m, file.string(), true, true, false, true))
+            fail(file, "cannot write the glTF binary");
+    }
+};
+
+}  // namespace
+
+void writeSphereGridGlb(const fs::path& file) {
+    GlbWriter w;
+    const tinygltf::Primitive sphere = w.addMesh(makeUvSphere(48, 24), true);
     tinygltf::Scene scene;
     for (int row = 0; row < 7; ++row)
         for (int col = 0; col < 7; ++col) {
@@ -293,24 +486,68 @@ void writeSphereGridGlb(const fs::path& file) {
             mat.pbrMetallicRoughness.baseColorFactor = {0.5, 0, 0, 1};
             mat.pbrMetallicRoughness.metallicFactor = row / 7.0;
             mat.pbrMetallicRoughness.roughnessFactor = std::clamp(col / 7.0, 0.05, 1.0);
-            m.materials.push_back(mat);
+            w.m.materials.push_back(mat);
             tinygltf::Mesh mesh;
-            tinygltf::Primitive p = prim;
-            p.material = int(m.materials.size() - 1);
+            tinygltf::Primitive p = sphere;
+            p.material = int(w.m.materials.size() - 1);
             mesh.primitives.push_back(p);
-            m.meshes.push_back(mesh);
-            tinygltf::Node node;
-            node.mesh = int(m.meshes.size() - 1);
-            node.translation = {(col - 3) * 2.5, (row - 3) * 2.5, 0.0};
-            m.nodes.push_back(node);
-            scene.nodes.push_back(int(m.nodes.size() - 1));
+            w.m.meshes.push_back(mesh);
+            w.addNode(int(w.m.meshes.size() - 1), {(col - 3) * 2.5, (row - 3) * 2.5, 0.0}, scene);
         }
-    m.scenes.push_back(scene);
-    m.defaultScene = 0;
-    fs::create_directories(file.parent_path().empty() ? "." : file.parent_path());
-    tinygltf::TinyGLTF writer;
-    if (!writer.WriteGltfSceneToFile(&m, file.string(), true, true, false, true))
-        fail(file, "cannot write the glTF binary");
+    w.write(file, scene);
+}
+
+void writeTexturedSphereGlb(const fs::path& file, int size) {
+    // The maps are made by the texture generator, then repacked the way glTF wants them.
+    const fs::path work =
+        fs::temp_directory_path() / ("pbrlab-textured-sphere-" + std::to_string(::getpid()));
+    fs::remove_all(work);
+    generateMetalPlates(work, size);
+    struct Cleanup {
+        fs::path dir;
+        ~Cleanup() {
+            std::error_code ec;
+            fs::remove_all(dir, ec);
+        }
+    } cleanup{work};
+    const Image roughness = readImage(work / "roughness.png"),
+                metallic = readImage(work / "metallic.png"), ao = readImage(work / "ao.png");
+    Image orm = ao, emissive = ao;
+    orm.channels = emissive.channels = 3;
+    orm.pixels.assign(size_t(size) * size * 3, 0);
+    emissive.pixels.assign(size_t(size) * size * 3, 0);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            orm.at(x, y, 0) = ao.at(x, y, 0);
+            orm.at(x, y, 1) = roughness.at(x, y, 0);
+            orm.at(x, y, 2) = metallic.at(x, y, 0);
+            // Seams glow: the deepest grooves (lowest ao) emit, the plates do not.
+            float glow = std::clamp((0.55f - ao.at(x, y, 0)) / 0.25f, 0.0f, 1.0f);
+            for (int c = 0; c < 3; ++c) emissive.at(x, y, c) = glow;
+        }
+    // Linear data: no sRGB tag (glTF reads metallic-roughness and occlusion as linear).
+    writeImage(work / "orm.png", orm, FileDepth::Uint8, false);
+    writeImage(work / "emissive.png", emissive, FileDepth::Uint8, true);
+
+    GlbWriter w;
+    tinygltf::Material mat;
+    mat.name = "metal-plates";
+    mat.pbrMetallicRoughness.baseColorTexture.index = w.addPng(work / "albedo.png", "albedo");
+    const int ormTexture = w.addPng(work / "orm.png", "occlusion-roughness-metallic");
+    mat.pbrMetallicRoughness.metallicRoughnessTexture.index = ormTexture;
+    mat.occlusionTexture.index = ormTexture;
+    mat.normalTexture.index = w.addPng(work / "normal.png", "normal");
+    mat.emissiveTexture.index = w.addPng(work / "emissive.png", "emissive seams");
+    mat.emissiveFactor = {1.0, 0.45, 0.1};
+    w.m.materials.push_back(mat);
+    tinygltf::Mesh mesh;
+    tinygltf::Primitive p = w.addMesh(makeUvSphere(96, 48), false);
+    p.material = 0;
+    mesh.primitives.push_back(p);
+    w.m.meshes.push_back(mesh);
+    tinygltf::Scene scene;
+    w.addNode(0, {}, scene);
+    w.write(file, scene);
 }
 
 }  // namespace pbrlab

@@ -80,6 +80,7 @@ std::shared_ptr<Program> IblPrecompute::program(const std::string& pass,
                                                 const std::string& contractId,
                                                 const Defines& extra) {
     ProgramRecipe r;
+    r.label = "precompute " + pass;
     r.vertex = {shaders_ / "fullscreen.vert"};
     r.fragment.push_back(shaders_ / "common.glsl");
     if (!contractId.empty())

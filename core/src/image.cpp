@@ -1,5 +1,6 @@
 #include "pbrlab/image.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -67,28 +68,22 @@ struct PngScan {
     std::string problem;
 };
 
-PngScan scanPng(const fs::path& path) {
+PngScan scanPng(const unsigned char* bytes, std::size_t size) {
     PngScan scan;
-    std::ifstream in(path, std::ios::binary);
-    std::error_code ec;
-    const std::uintmax_t size = fs::file_size(path, ec);
-    unsigned char sig[8];
     const unsigned char pngSig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    if (ec || !in.read(reinterpret_cast<char*>(sig), 8) || !std::equal(sig, sig + 8, pngSig)) {
+    if (size < 8 || !std::equal(bytes, bytes + 8, pngSig)) {
         scan.problem = "not a PNG signature";
         return scan;
     }
     bool beforeData = true;
-    std::uintmax_t pos = 8;
+    std::size_t pos = 8;
     while (pos + 12 <= size) {
-        unsigned char head[8];
-        in.seekg(std::streamoff(pos));
-        if (!in.read(reinterpret_cast<char*>(head), 8)) break;
+        const unsigned char* head = bytes + pos;
         const std::uint32_t length = (std::uint32_t(head[0]) << 24) |
                                      (std::uint32_t(head[1]) << 16) |
                                      (std::uint32_t(head[2]) << 8) | std::uint32_t(head[3]);
         const std::string type(reinterpret_cast<const char*>(head + 4), 4);
-        const std::uintmax_t next = pos + 12 + std::uintmax_t(length);
+        const std::uintmax_t next = std::uintmax_t(pos) + 12 + std::uintmax_t(length);
         if (length > 0x7fffffffu || next > size) {
             scan.problem = "truncated: the file ends inside its " + type + " chunk";
             return scan;
@@ -99,14 +94,20 @@ PngScan scanPng(const fs::path& path) {
             scan.colourTagged = true;
         if (beforeData && (type == "tEXt" || type == "iTXt" || type == "zTXt")) {
             const std::string key = "oiio:ColorSpace";
-            std::string keyword(std::min<std::size_t>(length, key.size() + 1), '\0');
-            if (in.read(keyword.data(), std::streamsize(keyword.size())) && keyword == key + '\0')
+            const std::size_t n = std::min<std::size_t>(length, key.size() + 1);
+            if (std::string(reinterpret_cast<const char*>(head + 8), n) == key + '\0')
                 scan.colourTagged = true;
         }
-        pos = next;
+        pos = std::size_t(next);
     }
     scan.problem = "truncated: the file ends before its IEND chunk";
     return scan;
+}
+
+std::vector<unsigned char> readBytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::vector<unsigned char>(std::istreambuf_iterator<char>(in),
+                                      std::istreambuf_iterator<char>());
 }
 
 // Whether OIIO's colour-space name means display-encoded (sRGB-like) values.
@@ -158,20 +159,21 @@ std::vector<T> toCodes(const std::vector<float>& in) {
     return out;
 }
 
-}  // namespace
-
-Image readImage(const fs::path& path) {
-    const std::string what = "cannot read image " + quoted(path) + ": ";
-    std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (!fs::exists(status)) throw Error(what + "file not found");
-    if (fs::is_directory(status)) throw Error(what + "it is a directory, not a file");
-    const auto fileSize = fs::file_size(path, ec);
-    if (!ec && fileSize == 0) throw Error(what + "the file is empty (0 bytes)");
-
+// Decodes from the file `path`, or from `memory` when given (then `path` only names it and
+// picks the format by its extension).
+Image decode(const fs::path& path, const std::string& what,
+             const std::vector<unsigned char>* memory) {
     // Keep straight alpha as stored: OIIO would otherwise premultiply PNG/TGA colour by alpha.
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
+    std::unique_ptr<OIIO::Filesystem::IOMemReader> reader;
+    if (memory) {
+        // OIIO 2.4's readers take the proxy from this attribute (open()'s own proxy
+        // argument is ignored by the PNG reader).
+        reader = std::make_unique<OIIO::Filesystem::IOMemReader>(memory->data(), memory->size());
+        void* proxy = reader.get();
+        config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+    }
     auto in = OIIO::ImageInput::open(path.string(), &config);
     if (!in) {
         throw Error(what + "not a readable image file (" + oiioReason(OIIO::geterror()) + ")");
@@ -192,7 +194,15 @@ Image readImage(const fs::path& path) {
     }
 
     const bool isPng = lower(in->format_name()) == "png";
-    const PngScan png = isPng ? scanPng(path) : PngScan{};
+    PngScan png;
+    if (isPng) {
+        if (memory) {
+            png = scanPng(memory->data(), memory->size());
+        } else {
+            const std::vector<unsigned char> bytes = readBytes(path);
+            png = scanPng(bytes.data(), bytes.size());
+        }
+    }
     if (!png.problem.empty()) throw Error(what + png.problem);
 
     Image image;
@@ -241,6 +251,31 @@ Image readImage(const fs::path& path) {
         image.sourceIsSrgb = false;
     }
     return image;
+}
+
+}  // namespace
+
+Image readImage(const fs::path& path) {
+    const std::string what = "cannot read image " + quoted(path) + ": ";
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (!fs::exists(status)) throw Error(what + "file not found");
+    if (fs::is_directory(status)) throw Error(what + "it is a directory, not a file");
+    const auto fileSize = fs::file_size(path, ec);
+    if (!ec && fileSize == 0) throw Error(what + "the file is empty (0 bytes)");
+    return decode(path, what, nullptr);
+}
+
+Image decodeImage(const std::vector<unsigned char>& bytes, const std::string& name) {
+    const std::string what = "cannot decode image " + name + ": ";
+    if (bytes.empty()) throw Error(what + "no data (0 bytes)");
+    return decode(name, what, &bytes);
+}
+
+Image readTexture(const TextureSource& source) {
+    if (source.encoded) return decodeImage(*source.encoded, source.key + source.extension);
+    if (source.file.empty()) throw Error("texture " + source.key + ": no file and no data");
+    return readImage(source.file);
 }
 
 FileDepth defaultDepthFor(const fs::path& path) {

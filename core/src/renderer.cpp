@@ -62,6 +62,7 @@ LabRenderer::LabRenderer(const DataPaths& paths)
 ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentSource& source,
                                       bool probe, int lightCount) const {
     ProgramRecipe r;
+    r.label = "view " + module.desc->id;
     r.vertex = {paths_.shaders() / "fullscreen.vert"};
     r.fragment.push_back(paths_.shaders() / "common.glsl");
     const ModuleDesc& d = *module.desc;
@@ -93,20 +94,48 @@ ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentS
     return r;
 }
 
-GLuint LabRenderer::texture(const fs::path& file) {
-    auto it = textures_.find(file);
+GLuint LabRenderer::texture(const TextureSource& source) {
+    auto it = textures_.find(source.key);
     if (it != textures_.end()) return it->second.id();
     auto start = std::chrono::steady_clock::now();
-    Image image = readImage(file);
-    GLuint id = textures_.emplace(file, gl::uploadTexture(image, true)).first->second.id();
+    Image image = readTexture(source);
+    GLuint id = textures_.emplace(source.key, gl::uploadTexture(image, true)).first->second.id();
+    if (source.repeatV) gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
     countEvent(Counter::TextureLoads);
     double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    logLine("texture", file.string() + " " + std::to_string(image.width) + "x" +
+    logLine("texture", source.key + " " + std::to_string(image.width) + "x" +
                            std::to_string(image.height) + " " +
                            std::to_string(image.sourceBitsPerChannel) + "-bit, " +
                            std::to_string(ms) + " ms");
     return id;
+}
+
+const gl::GpuMesh& LabRenderer::mesh(const MeshData* data) {
+    auto& slot = meshes_[data];
+    if (!slot) slot = std::make_unique<gl::GpuMesh>(data ? *data : makeUvSphere(96, 48));
+    return *slot;
+}
+
+ProgramRecipe LabRenderer::gbufferRecipe(const MaterialDesc& m, unsigned needs) const {
+    ProgramRecipe recipe;
+    recipe.label = "G-buffer";
+    recipe.vertex = {paths_.shaders() / "gbuffer.vert"};
+    recipe.fragment = {paths_.shaders() / "gbuffer.frag"};
+    for (const MaterialMap& map : materialMaps(m))
+        if ((needs & map.need) && !map.source->empty()) recipe.defines[map.define] = "1";
+    return recipe;
+}
+
+std::vector<LabRenderer::MaterialMap> LabRenderer::materialMaps(const MaterialDesc& m) {
+    return {{NeedsAlbedo, &m.albedoMap, "HAS_ALBEDO_MAP", "uAlbedoMap"},
+            {NeedsMetallic | NeedsRoughness, &m.metallicRoughnessMap, "HAS_METALLIC_ROUGHNESS_MAP",
+             "uMetallicRoughnessMap"},
+            {NeedsRoughness, &m.roughnessMap, "HAS_ROUGHNESS_MAP", "uRoughnessMap"},
+            {NeedsMetallic, &m.metallicMap, "HAS_METALLIC_MAP", "uMetallicMap"},
+            {NeedsAo, &m.aoMap, "HAS_AO_MAP", "uAoMap"},
+            {NeedsNormalMap, &m.normalMap, "HAS_NORMAL_MAP", "uNormalMap"},
+            {NeedsEmissive, &m.emissiveMap, "HAS_EMISSIVE_MAP", "uEmissiveMap"}};
 }
 
 void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int height) {
@@ -120,54 +149,41 @@ void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int
     gl::DepthFunc(GL_LESS);
 
     const Camera& cam = scene.camera;
+    // Near and far planes from the camera's distance, so models of any size keep depth
+    // precision (a unit sphere at distance 3: 0.05 .. 200, as before).
+    const double distance = glm::length(cam.position - cam.target);
     glm::mat4 view =
         glm::lookAt(glm::vec3(cam.position), glm::vec3(cam.target), glm::vec3(0, 1, 0));
     glm::mat4 proj = glm::perspective(glm::radians(float(cam.fovY)), float(width) / float(height),
-                                      0.05f, 200.0f);
-    auto& sphere = meshes_["sphere"];
-    if (!sphere) sphere = std::make_unique<gl::GpuMesh>(makeUvSphere(96, 48));
+                                      float(distance / 60), float(distance * 60));
+    viewProjection_ = proj * view;
+    for (const SceneModel& model : scene.models) keepModels_.insert(model.data);
 
-    for (const ObjectDesc& object : scene.objects) {
-        const MaterialDesc& m = scene.materials.at(size_t(object.material));
-        // Only the maps this module reads become part of the permutation (and get loaded).
-        struct Map {
-            unsigned need;
-            const fs::path* file;
-            const char* define;
-            const char* sampler;
-        };
-        const Map maps[] = {{NeedsAlbedo, &m.albedoMap, "HAS_ALBEDO_MAP", "uAlbedoMap"},
-                            {NeedsRoughness, &m.roughnessMap, "HAS_ROUGHNESS_MAP", "uRoughnessMap"},
-                            {NeedsMetallic, &m.metallicMap, "HAS_METALLIC_MAP", "uMetallicMap"},
-                            {NeedsAo, &m.aoMap, "HAS_AO_MAP", "uAoMap"},
-                            {NeedsNormalMap, &m.normalMap, "HAS_NORMAL_MAP", "uNormalMap"}};
-        ProgramRecipe recipe;
-        recipe.vertex = {paths_.shaders() / "gbuffer.vert"};
-        recipe.fragment = {paths_.shaders() / "gbuffer.frag"};
-        for (const Map& map : maps)
-            if ((needs & map.need) && !map.file->empty()) recipe.defines[map.define] = "1";
-        auto program = programs_.get(recipe);
+    for (const DrawItem& item : drawItems(scene)) {
+        const MaterialDesc& m = scene.materials.at(size_t(item.material));
+        auto program = programs_.get(gbufferRecipe(m, needs));
         program->use();
-        glm::mat4 model = glm::translate(glm::mat4(1), glm::vec3(object.translate)) *
-                          glm::scale(glm::mat4(1), glm::vec3(float(object.scale)));
+        const glm::mat4 model(item.transform);
         program->set("uModel", model);
         glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
         gl::UniformMatrix3fv(program->location("uNormalMatrix"), 1, GL_FALSE, &normalMatrix[0][0]);
-        program->set("uViewProjection", proj * view);
-        viewProjection_ = proj * view;
+        program->set("uViewProjection", viewProjection_);
         program->set("uAlbedo", glm::vec3(m.albedo));
         program->set("uAlbedoTexel", glm::vec3(srgbEncode(m.albedo)));
         program->set("uMetallic", float(m.metallic));
         program->set("uRoughness", float(m.roughness));
         program->set("uAo", float(m.ao));
+        program->set("uOcclusionStrength", float(m.occlusionStrength));
+        program->set("uNormalScale", float(m.normalScale));
+        program->set("uEmissive", glm::vec3(m.emissive));
         int unit = 0;
-        for (const Map& map : maps) {
+        for (const MaterialMap& map : materialMaps(m)) {
             if (!program->uses(map.sampler)) continue;  // not compiled in: never loaded
             gl::ActiveTexture(GL_TEXTURE0 + unit);
-            gl::BindTexture(GL_TEXTURE_2D, texture(*map.file));
+            gl::BindTexture(GL_TEXTURE_2D, texture(*map.source));
             program->set(map.sampler, unit++);
         }
-        sphere->draw();
+        mesh(item.mesh).draw();
     }
     gl::Disable(GL_DEPTH_TEST);
     gl::checkError("G-buffer pass");

@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 
 #include "gl/objects.h"
 #include "ibl.h"
@@ -90,19 +91,34 @@ public:
     void setExtraUniforms(std::function<void(const Program&)> f) { extraUniforms_ = std::move(f); }
     const IblSettings& iblSettings() const { return iblSettings_; }
 
+    // The G-buffer program for a material: one HAS_*_MAP define per map the material has and
+    // the module reads.
+    ProgramRecipe gbufferRecipe(const MaterialDesc& material, unsigned needs) const;
+
 private:
+    struct MaterialMap {
+        unsigned need;  // SurfaceNeeds bits that read the map
+        const TextureSource* source;
+        const char* define;
+        const char* sampler;
+    };
+    static std::vector<MaterialMap> materialMaps(const MaterialDesc& m);
+    const gl::GpuMesh& mesh(const MeshData* data);  // nullptr: the unit sphere
     void drawGBuffer(const Scene& scene, unsigned needs, int width, int height);
     double runView(const LoadedModule& module, const ParamValues& params, const Scene& scene,
                    const StudentSource& source, bool probe, const std::vector<GLuint>& inputs,
                    int width, int height);
-    GLuint texture(const std::filesystem::path& file);
+    GLuint texture(const TextureSource& source);  // read and uploaded on first use
 
     DataPaths paths_;
     ProgramCache programs_;
     gl::FullscreenTriangle fullscreen_;
     std::unique_ptr<gl::RenderTarget> gbuffer_, valueTarget_;
-    std::map<std::string, std::unique_ptr<gl::GpuMesh>> meshes_;
-    std::map<std::filesystem::path, gl::Handle> textures_;
+    // GPU meshes by the CPU mesh they came from; the models stay alive while cached, so no
+    // address is reused for another mesh.
+    std::map<const MeshData*, std::unique_ptr<gl::GpuMesh>> meshes_;
+    std::set<std::shared_ptr<const ModelData>> keepModels_;
+    std::map<std::string, gl::Handle> textures_;  // by TextureSource::key
     std::vector<gl::Handle> probeInputs_;
     glm::mat4 viewProjection_{1};
 

@@ -22,9 +22,10 @@ std::vector<Image> packSurfaces(const std::vector<Surface>& surfaces, int width,
             put(1, {s.normal, s.roughness});
             put(2, s.tangent);
             put(3, {s.uv, s.metallic, s.ao});
-            put(4, {s.albedoTexel, 0});
-            put(5, {s.albedo, 0});
-            put(6, {s.normalTexel, 0});
+            // Emission rides in the alpha channels (the G-buffer's layout).
+            put(4, {s.albedoTexel, s.emissive.r});
+            put(5, {s.albedo, s.emissive.g});
+            put(6, {s.normalTexel, s.emissive.b});
             put(7, {s.view, 0});
             put(8, {s.light, 0});
             put(9, {s.lightPosition, 0});
@@ -57,9 +58,11 @@ std::vector<Surface> unpackSurfaces(const std::vector<Image>& t, const glm::dvec
             s.uv = glm::dvec2(t3);
             s.metallic = t3.z;
             s.ao = t3.w;
-            s.albedoTexel = glm::dvec3(get(4));
-            s.albedo = glm::dvec3(get(5));
-            s.normalTexel = glm::dvec3(get(6));
+            const glm::dvec4 t4 = get(4), t5 = get(5), t6 = get(6);
+            s.albedoTexel = glm::dvec3(t4);
+            s.albedo = glm::dvec3(t5);
+            s.normalTexel = glm::dvec3(t6);
+            s.emissive = {t4.w, t5.w, t6.w};
             if (probe) {
                 s.view = glm::dvec3(get(7));
                 s.light = glm::dvec3(get(8));

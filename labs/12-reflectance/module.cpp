@@ -17,14 +17,15 @@ ModuleDesc describeModule() {
         "roughness, float ao)";
     d.components = 3;
     d.display = {DisplayMode::HdrColor, 0, 1};
-    d.needs = NeedsMaterial;
+    d.needs = NeedsMaterial | NeedsEmissive;
     // The lesson's denominator + 0.001 legitimately changes the terminator pixels: measured up
     // to 0.30 (sphere grid, 1024^2; the reference itself: 6e-6 on the sphere, 5.8% on the grid).
     // 0.5 passes it; every mistake is off by >= 0.6 on the scene (README.md).
     d.tolerance = {1e-2, 0.5};
     d.reference = [](const Surface& s, const ReferenceContext& c) {
         return ref::reflectedRadiance(s.position, s.normal, s.view, s.albedo, s.metallic,
-                                      s.roughness, s.ao, c.lights.data(), int(c.lights.size()));
+                                      s.roughness, s.ao, c.lights.data(), int(c.lights.size())) +
+               s.emissive;
     };
     // The lesson's sphere grid as a continuous chart: x roughness 0.05..1, y metallic 0..1,
     // albedo (0.5, 0, 0), ao 1, at the origin with N = +z and V the mirror image of the

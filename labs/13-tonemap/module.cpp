@@ -17,7 +17,8 @@ glm::dvec3 hdrInput(const Surface& s, const ReferenceContext& c) {
     if (glm::any(glm::greaterThanEqual(glm::abs(s.extra), glm::dvec4(minNormal))))
         return glm::dvec3(s.extra);
     return ref::reflectedRadiance(s.position, s.normal, s.view, s.albedo, s.metallic, s.roughness,
-                                  s.ao, c.lights.data(), int(c.lights.size()));
+                                  s.ao, c.lights.data(), int(c.lights.size())) +
+           s.emissive;
 }
 
 ModuleDesc describeModule() {
@@ -29,7 +30,7 @@ ModuleDesc describeModule() {
     d.function = "vec3 displayEncode(vec3 hdr)";
     d.components = 3;
     d.display = {DisplayMode::Encoded, 0, 1};
-    d.needs = NeedsMaterial;
+    d.needs = NeedsMaterial | NeedsEmissive;
     // Display values in [0, 1]: absolute error (floor 1). Measured <= 9e-4 (sphere grid; 7e-7
     // on the sphere), 5.3e-4 for 1 - 1/(1 + x); 4e-3, one 8-bit step, leaves 4x. Mistakes >= 0.05.
     d.tolerance = {1, 4e-3};

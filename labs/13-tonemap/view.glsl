@@ -7,6 +7,7 @@ vec3 view(Surface s)
     vec3 hdr = any(greaterThanEqual(abs(s.extra), vec4(1.17549435e-38)))
                    ? s.extra.xyz
                    : reflectedRadiance(s.position, s.normal, s.view, s.albedo, s.metallic,
-                                       s.roughness, s.ao);
+                                       s.roughness, s.ao) +
+                         s.emissive;
     return displayEncode(hdr);
 }

@@ -32,7 +32,7 @@ ModuleDesc describeModule() {
         "vec3 ambientIBL(vec3 N, vec3 V, vec3 albedo, float metallic, float roughness, float ao)";
     d.components = 3;
     d.display = {DisplayMode::HdrColor};
-    d.needs = NeedsMaterial | NeedsEnvironment;
+    d.needs = NeedsMaterial | NeedsEmissive | NeedsEnvironment;
     d.skyBackground = true;
     d.scene = "sphere-grid";
     // Set from measurement (README.md): GPU and CPU read the same maps; what differs is float
@@ -40,7 +40,7 @@ ModuleDesc describeModule() {
     // does not do (max 1.6e-3 on the sphere grid, 2.4e-5 on the probe).
     d.tolerance = {0.05, 2e-2, 1e-3};
     d.reference = [](const Surface& s, const ReferenceContext& c) {
-        return c.ibl ? splitSum(s, *c.ibl) : glm::dvec3(0);
+        return (c.ibl ? splitSum(s, *c.ibl) : glm::dvec3(0)) + s.emissive;
     };
     // x: N·V from 0 (grazing) to 1; y: roughness 0 to 1, on an orange half-metal (so both the
     // diffuse and the specular term show). N = +z; V turns in the xz-plane.

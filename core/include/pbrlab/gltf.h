@@ -1,6 +1,8 @@
 // glTF 2.0 models (.gltf and .glb) through tinygltf: meshes with positions, normals, uvs and
 // tangents (generated, with handedness, when the file has none), node transforms, and the
-// metallic-roughness material's factors and which texture maps it uses. Errors name the file.
+// metallic-roughness material's factors and maps. Images are not decoded here, nor are
+// external image files read: each becomes a TextureSource that a renderer reads on first use,
+// so a module that samples no map costs no image work. Errors name the file.
 #pragma once
 
 #include <filesystem>
@@ -8,16 +10,20 @@
 #include <string>
 #include <vector>
 
+#include "pbrlab/image.h"
 #include "pbrlab/mesh.h"
 
 namespace pbrlab {
 
+// The glTF metallic-roughness material (defaults as the specification gives them).
 struct ModelMaterial {
     std::string name;
-    glm::dvec4 baseColorFactor{1};
-    double metallicFactor = 1, roughnessFactor = 1;
-    glm::dvec3 emissiveFactor{0};
-    // Which maps the material samples (image indices into the file, -1: none).
+    glm::dvec4 baseColorFactor{1};                   // linear; the map is sRGB and multiplies it
+    double metallicFactor = 1, roughnessFactor = 1;  // multiply the map's B and G channels
+    double normalScale = 1;                          // scales the normal map's x and y
+    double occlusionStrength = 1;                    // ao = 1 + strength * (map.r - 1)
+    glm::dvec3 emissiveFactor{0};                    // linear; the map is sRGB and multiplies it
+    // Which maps the material samples (image indices into ModelData::images, -1: none).
     int baseColorTexture = -1, metallicRoughnessTexture = -1, normalTexture = -1,
         occlusionTexture = -1, emissiveTexture = -1;
 };
@@ -33,7 +39,14 @@ struct ModelData {
     std::filesystem::path file;
     std::vector<ModelPrimitive> primitives;
     std::vector<ModelMaterial> materials;
+    std::vector<TextureSource> images;  // not decoded (see above)
     int meshCount = 0, imageCount = 0;
+    std::vector<std::string> warnings;  // features read but not rendered (e.g. TEXCOORD_1)
+
+    size_t vertexCount() const;
+    // World-space bounds of every primitive (node transforms applied).
+    glm::dvec3 boundsMin() const;
+    glm::dvec3 boundsMax() const;
 };
 
 // Throws pbrlab::Error "FILE: ..." for a missing, truncated or invalid file, or a primitive
@@ -48,5 +61,11 @@ void generateTangents(MeshData& mesh);
 // The lesson's 7x7 sphere grid as a .glb (one shared sphere mesh, 49 nodes and materials:
 // metallic = row / 7, roughness = clamp(column / 7, 0.05, 1), base colour (0.5, 0, 0)).
 void writeSphereGridGlb(const std::filesystem::path& file);
+
+// A unit sphere wearing the project's metal-plates set as glTF maps embedded in the .glb:
+// base colour, metallic-roughness packed with occlusion (R = ao, G = roughness, B = metal, as
+// many exporters write it: one image shared by two maps), normal map and emissive glowing
+// seams. No TANGENT attribute, so loaders must generate them. `size` is the texture size.
+void writeTexturedSphereGlb(const std::filesystem::path& file, int size = 128);
 
 }  // namespace pbrlab

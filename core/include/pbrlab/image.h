@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,26 @@ struct Image {
 // integer formats (16-bit stays 16-bit precise: no detour through 8 bits) and unchanged for
 // float formats; no colour conversion is applied (sourceIsSrgb says how to interpret them).
 Image readImage(const std::filesystem::path& path);
+
+// The same from an encoded file held in memory (an image embedded in a glTF binary). `name`
+// picks the format by its extension (e.g. "model.glb#image2.png") and names it in errors.
+Image decodeImage(const std::vector<unsigned char>& bytes, const std::string& name);
+
+// Where a material map's pixels come from, read only when a program samples the map: an image
+// file, or an encoded image held in memory (embedded in a glTF file).
+struct TextureSource {
+    std::string key;             // unique, for caches and logs: the file, or "MODEL#image N"
+    std::filesystem::path file;  // the image file; empty when `encoded` holds the image
+    std::shared_ptr<const std::vector<unsigned char>> encoded;
+    std::string extension = ".png";  // of the encoded image (picks the decoder)
+    // Texture wrap along v: glTF's default is repeat; the scene's sphere maps clamp, so the
+    // poles do not bleed into each other.
+    bool repeatV = false;
+    bool empty() const { return key.empty(); }
+};
+
+// Reads or decodes the source. Throws pbrlab::Error naming the key.
+Image readTexture(const TextureSource& source);
 
 enum class FileDepth { Uint8, Uint16, Float32 };
 

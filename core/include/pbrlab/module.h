@@ -20,7 +20,7 @@
 namespace pbrlab {
 
 // Bump when ModuleDesc or anything it contains changes layout.
-constexpr int kModuleAbiVersion = 3;
+constexpr int kModuleAbiVersion = 4;
 
 // Everything a contract function may take, per pixel. The GPU fills the same fields in
 // GLSL (shaders/surface.glsl) from the G-buffer (scene) or from uploaded textures (probe), so
@@ -37,6 +37,7 @@ struct Surface {
     glm::dvec3 albedo{0};       // linear
     double metallic = 0, roughness = 0.5, ao = 1;
     glm::dvec3 normalTexel{0.5, 0.5, 1};  // tangent-space normal map texel in [0, 1]
+    glm::dvec3 emissive{0};               // emitted radiance, linear
     glm::dvec4 extra{0};                  // probe-only inputs; meaning given by the module
 };
 
@@ -127,6 +128,7 @@ enum SurfaceNeeds : unsigned {
     NeedsAo = 1u << 3,
     NeedsNormalMap = 1u << 4,
     NeedsEnvironment = 1u << 5,  // IBL: environment cube and the split-sum maps (precompute)
+    NeedsEmissive = 1u << 6,     // emitted radiance (modules whose view is the final picture)
     NeedsMaterial = NeedsAlbedo | NeedsMetallic | NeedsRoughness | NeedsAo,
 };
 

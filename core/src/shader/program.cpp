@@ -1,5 +1,7 @@
 #include "shader/program.h"
 
+#include <chrono>
+#include <cstdio>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "pbrlab/log.h"
@@ -110,7 +112,14 @@ std::string ProgramRecipe::key() const {
     return k;
 }
 
+std::string definesText(const Defines& defines) {
+    std::string d;
+    for (const auto& [name, value] : defines) d += (d.empty() ? "" : " ") + name + "=" + value;
+    return d;
+}
+
 std::shared_ptr<Program> ProgramCache::build(const ProgramRecipe& recipe) {
+    const auto start = std::chrono::steady_clock::now();
     ExpandedShader vs = pre_.expand(recipe.vertex, recipe.defines);
     ExpandedShader fs = pre_.expand(recipe.fragment, recipe.defines);
     gl::Handle vertex = compile(GL_VERTEX_SHADER, vs);
@@ -126,12 +135,14 @@ std::shared_ptr<Program> ProgramCache::build(const ProgramRecipe& recipe) {
     countEvent(Counter::ProgramCompiles);
     std::vector<fs::path> files = vs.files;
     files.insert(files.end(), fs.files.begin(), fs.files.end());
-    logLine(
-        "compile", "program #" + std::to_string(compiles_) + " defines{" + [&] {
-            std::string d;
-            for (const auto& [n, v] : recipe.defines) d += (d.empty() ? "" : " ") + n + "=" + v;
-            return d;
-        }() + "}");
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    compiled_.push_back(
+        {recipe.label.empty() ? "(unnamed)" : recipe.label, definesText(recipe.defines), ms});
+    char time[32];
+    std::snprintf(time, sizeof time, "%.1f ms", ms);
+    logLine("compile", "#" + std::to_string(compiles_) + " " + compiled_.back().label + " {" +
+                           compiled_.back().defines + "} " + time);
     return std::make_shared<Program>(std::move(program), std::move(files));
 }
 

@@ -54,10 +54,18 @@ private:
 };
 
 struct ProgramRecipe {
+    std::string label;  // what the program is, for listings ("G-buffer", "view ndotl")
     std::vector<ShaderPart> vertex;
     std::vector<ShaderPart> fragment;
     Defines defines;
     std::string key() const;  // parts and sorted defines, as one string
+};
+
+// One compile the cache did: which program, which permutation, how long it took.
+struct CompiledProgram {
+    std::string label;
+    std::string defines;  // sorted "NAME=value" pairs, space-separated ("" when none)
+    double milliseconds = 0;
 };
 
 class ProgramCache {
@@ -71,6 +79,8 @@ public:
     std::shared_ptr<Program> reloadIfChanged(const ProgramRecipe& recipe);
 
     int compileCount() const { return compiles_; }  // observable: tests count compiles
+    // Every compile so far, in order (a hot reload appears again).
+    const std::vector<CompiledProgram>& compiled() const { return compiled_; }
     const ShaderPreprocessor& preprocessor() const { return pre_; }
 
 private:
@@ -78,6 +88,10 @@ private:
     ShaderPreprocessor pre_;
     std::map<std::string, std::shared_ptr<Program>> programs_;
     int compiles_ = 0;
+    std::vector<CompiledProgram> compiled_;
 };
+
+// "NAME=value NAME2=value2", sorted (Defines is an ordered map).
+std::string definesText(const Defines& defines);
 
 }  // namespace pbrlab
