@@ -281,13 +281,13 @@ TEST_F(ImageTest, CorruptedFilesGiveErrorsNotCrashes) {
         state = state * 1664525u + 1013904223u;
         return state >> 8;
     };
-    for (const char* name : {"fuzz.png", "fuzz.exr"}) {
+    for (const char* name : {"fuzz.png", "fuzz.exr", "fuzz.hdr"}) {
         const fs::path original = dir_ / name;
         const bool png = fs::path(name).extension() == ".png";
         pbrlab::writeImage(original, noiseImage(32, 3),
                            png ? FileDepth::Uint16 : FileDepth::Float32);
         const auto bytes = readBytes(original);
-        const fs::path file = dir_ / (std::string("mutated") + (png ? ".png" : ".exr"));
+        const fs::path file = dir_ / ("mutated" + fs::path(name).extension().string());
         int errors = 0;
         for (int i = 0; i < 150; ++i) {
             auto mutated = bytes;

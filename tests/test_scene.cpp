@@ -1,10 +1,14 @@
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <random>
+
 #include "pbrlab/error.h"
 #include "pbrlab/scene.h"
 #include "test_support.h"
 
 using namespace pbrlab;
+namespace fs = std::filesystem;
 
 namespace {
 std::string loadError(const std::string& json) {
@@ -44,4 +48,98 @@ TEST(Scene, ErrorsNameTheFileAndTheField) {
     m = loadError("{ not json");
     EXPECT_NE(m.find("scene.json: not valid JSON"), std::string::npos) << m;
     EXPECT_NE(loadError("").find("not valid JSON"), std::string::npos);
+}
+
+TEST(Scene, PlacesGltfModelsWithTheirOwnOrAGivenMaterial) {
+    test::TempDir dir;
+    const std::string model = std::string(PBRLAB_SOURCE_DIR) + "/assets/models/textured-sphere.glb";
+    auto file = dir.write("scene.json", std::string("{") + kLight + R"(,
+        "materials": {"gold": {"albedo": [1, 0.8, 0.3], "metallic": 1, "roughness": 0.3}},
+        "objects": [{"model": ")" + model + R"(", "translate": [2, 0, 0]},
+                    {"model": ")" + model + R"(", "material": "gold", "scale": 0.5},
+                    {"material": "gold"}]})");
+    Scene s = loadScene(file);
+    ASSERT_EQ(s.models.size(), 2u);
+    ASSERT_EQ(s.objects.size(), 3u);
+    std::vector<DrawItem> items = drawItems(s);
+    ASSERT_EQ(items.size(), 3u);  // one primitive per model, one sphere
+    // The first keeps the model's material (maps from the file), the second wears gold.
+    const MaterialDesc& own = s.materials.at(size_t(items[0].material));
+    EXPECT_FALSE(own.albedoMap.empty());
+    EXPECT_FALSE(own.metallicRoughnessMap.empty());
+    EXPECT_EQ(own.aoMap.key, own.metallicRoughnessMap.key);  // one image, two maps
+    EXPECT_EQ(own.emissive, glm::dvec3(1.0, 0.45, 0.1));
+    EXPECT_EQ(s.materials.at(size_t(items[1].material)).name, "gold");
+    EXPECT_EQ(items[2].mesh, nullptr);  // the built-in sphere
+    EXPECT_EQ(glm::dvec3(items[0].transform[3]), glm::dvec3(2, 0, 0));
+    EXPECT_EQ(items[1].transform[0][0], 0.5);
+}
+
+TEST(Scene, MapsMultiplyTheirFactorsAndAloneMeanFactorOne) {
+    test::TempDir dir;
+    const std::string tex = std::string(PBRLAB_SOURCE_DIR) + "/assets/textures/metal-plates/";
+    auto file = dir.write("scene.json", std::string("{") + kLight + R"(, "objects": [
+        {"material": {"roughnessMap": ")" + tex +
+                                            R"(roughness.png"}},
+        {"material": {"roughnessMap": ")" + tex +
+                                            R"(roughness.png", "roughness": 0.5,
+                      "emissive": [2, 0, 0]}},
+        {"material": {"metallic": 0.25}}]})");
+    Scene s = loadScene(file);
+    EXPECT_EQ(s.materials[0].roughness, 1.0);  // the map alone decides
+    EXPECT_EQ(s.materials[1].roughness, 0.5);  // halves the map
+    EXPECT_EQ(s.materials[1].emissive, glm::dvec3(2, 0, 0));
+    EXPECT_EQ(s.materials[2].metallic, 0.25);
+    EXPECT_TRUE(s.materials[2].roughnessMap.empty());
+}
+
+TEST(Scene, BadModelsAreErrorsNamingSceneFieldAndModel) {
+    test::TempDir dir;
+    dir.write("broken.glb", "glTF but not really");
+    std::string m =
+        loadError(std::string("{") + kLight + R"(, "objects": [{"model": "nowhere.glb"}]})");
+    EXPECT_NE(m.find("scene.json: field 'objects[0].model'"), std::string::npos) << m;
+    EXPECT_NE(m.find("nowhere.glb"), std::string::npos) << m;
+    auto file = dir.write("scene.json",
+                          std::string("{") + kLight + R"(, "objects": [{"model": "broken.glb"}]})");
+    try {
+        loadScene(file);
+        FAIL() << "loaded a broken model";
+    } catch (const Error& e) {
+        m = e.what();
+    }
+    EXPECT_NE(m.find("'objects[0].model'"), std::string::npos) << m;
+    EXPECT_NE(m.find((dir.path / "broken.glb").string()), std::string::npos) << m;
+    m = loadError(std::string("{") + kLight +
+                  R"(, "objects": [{"primitive": "sphere", "model": "x.glb"}]})");
+    EXPECT_NE(m.find("either \"primitive\" or \"model\""), std::string::npos) << m;
+}
+
+TEST(Scene, CorruptedSceneFilesGiveErrorsNotCrashes) {
+    // Byte flips and cuts of a project scene: each load succeeds or throws pbrlab::Error
+    // naming the file, never anything else.
+    const fs::path original = fs::path(PBRLAB_SOURCE_DIR) / "assets/scenes/sphere.json";
+    std::ifstream in(original, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    test::TempDir dir;
+    // The texture paths are relative to the scene: keep them resolvable from the copy.
+    fs::create_directories(dir.path / "scenes");
+    fs::create_directory_symlink(fs::path(PBRLAB_SOURCE_DIR) / "assets/textures",
+                                 dir.path / "textures");
+    const fs::path file = dir.path / "scenes/mutated.json";
+    std::mt19937 rng(3);
+    int errors = 0;
+    for (int i = 0; i < 300; ++i) {
+        std::string b = bytes;
+        if (i % 4 == 0) b.resize(1 + rng() % (b.size() - 1));  // never empty: flips need a byte
+        for (int k = 0, n = 1 + int(rng() % 3); k < n; ++k) b[rng() % b.size()] = char(rng());
+        std::ofstream(file, std::ios::binary) << b;
+        try {
+            loadScene(file);
+        } catch (const Error& e) {
+            ++errors;
+            EXPECT_NE(std::string(e.what()).find(file.string()), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_GT(errors, 0);
 }

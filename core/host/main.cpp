@@ -136,7 +136,7 @@ void printStats(const Session& session) {
         std::cout << counterName(Counter(c)) << ": " << eventCount(Counter(c)) << "\n";
     if (session.renderer)
         for (const CompiledProgram& p : session.renderer->programs().compiled())
-            std::printf("  program %-26s {%s} %.1f ms\n", p.label.c_str(), p.defines.c_str(),
+            std::printf("  program %-30s {%s} %.1f ms\n", p.label.c_str(), p.defines.c_str(),
                         p.milliseconds);
     std::cout << journal();
 }
@@ -244,7 +244,7 @@ int runPermutations(const Options& o, std::vector<std::string> ids, const std::s
     const auto& compiled = session.renderer->programs().compiled();
     std::printf("\n%zu programs compiled:\n", compiled.size());
     for (const CompiledProgram& p : compiled)
-        std::printf("  %-26s {%s} %.1f ms\n", p.label.c_str(), p.defines.c_str(), p.milliseconds);
+        std::printf("  %-30s {%s} %.1f ms\n", p.label.c_str(), p.defines.c_str(), p.milliseconds);
     std::printf("textures loaded: %d, precompute passes: %d\n", eventCount(Counter::TextureLoads),
                 eventCount(Counter::PrecomputePasses));
     return 0;
