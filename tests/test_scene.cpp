@@ -25,11 +25,20 @@ const char* kLight = R"("lights": [{"position": [0, 0, 5], "color": [1, 1, 1]}])
 }  // namespace
 
 TEST(Scene, LoadsTheProjectScenes) {
-    for (const char* name : {"sphere"}) {
-        Scene s = loadScene(std::string(PBRLAB_SOURCE_DIR) + "/assets/scenes/" + name + ".json");
-        EXPECT_FALSE(s.objects.empty()) << name;
-        EXPECT_FALSE(s.lights.empty()) << name;
+    int count = 0;
+    for (const auto& entry :
+         fs::directory_iterator(fs::path(PBRLAB_SOURCE_DIR) / "assets/scenes")) {
+        Scene s = loadScene(entry.path());
+        EXPECT_FALSE(s.objects.empty()) << entry.path();
+        EXPECT_FALSE(s.lights.empty()) << entry.path();
+        EXPECT_FALSE(drawItems(s).empty()) << entry.path();
+        ++count;
     }
+    EXPECT_GE(count, 4);  // sphere, sphere-untextured, sphere-grid, models
+    // models.json: two glTF objects (one primitive each) and a built-in sphere.
+    Scene models = loadScene(fs::path(PBRLAB_SOURCE_DIR) / "assets/scenes/models.json");
+    EXPECT_EQ(models.models.size(), 2u);
+    EXPECT_EQ(drawItems(models).size(), 3u);
 }
 
 TEST(Scene, ErrorsNameTheFileAndTheField) {

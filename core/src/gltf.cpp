@@ -154,6 +154,12 @@ bool readWholeFileExceptImages(std::vector<unsigned char>* out, std::string* err
     return tinygltf::ReadWholeFile(out, err, path, nullptr);
 }
 
+// tinygltf's own check opens the file; a stat is enough (and leaves image files unopened).
+bool fileExists(const std::string& path, void*) {
+    std::error_code ec;
+    return fs::is_regular_file(path, ec);
+}
+
 // Keeps images encoded: embedded bytes are copied (decoded later, if ever), external files
 // are remembered by path. Nothing is decoded here.
 struct ImageCollector {
@@ -228,8 +234,8 @@ ModelData loadGltf(const fs::path& file) {
     std::set<fs::path> externalImages = externalImageFiles(file);
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(collectImage, &collector);
-    loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath,
-                           &readWholeFileExceptImages, &tinygltf::WriteWholeFile, &externalImages});
+    loader.SetFsCallbacks({&fileExists, &tinygltf::ExpandFilePath, &readWholeFileExceptImages,
+                           &tinygltf::WriteWholeFile, &externalImages});
     tinygltf::Model model;
     std::string err, warn;
     bool binary = file.extension() == ".glb";
