@@ -178,6 +178,25 @@ TEST(Models, ImagesAreNotDecodedUntilSampled) {
     }
 }
 
+TEST(Models, EmissiveStrengthAppliesAndUnsupportedExtensionsAreNamed) {
+    test::TempDir dir;
+    fs::path file = writeTriangleGltf(dir, R"({"emissiveFactor": [1, 0.5, 0],
+                 "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 4}}})",
+                                      "", "");
+    // The writer has no extensionsUsed; add them to the JSON.
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    in.close();
+    text.insert(1, R"("extensionsUsed": ["KHR_materials_emissive_strength",
+                                         "KHR_texture_transform"], )");
+    std::ofstream(file) << text;
+    ModelData model = loadGltf(file);
+    ASSERT_EQ(model.materials.size(), 1u);
+    EXPECT_EQ(model.materials[0].emissiveFactor, glm::dvec3(4, 2, 0));
+    ASSERT_EQ(model.warnings.size(), 1u);
+    EXPECT_NE(model.warnings[0].find("KHR_texture_transform"), std::string::npos);
+}
+
 TEST(Models, MissingImageFileIsAnErrorNamingIt) {
     test::TempDir dir;
     fs::path file = writeTriangleGltf(dir, R"({"normalTexture": {"index": 0}})",

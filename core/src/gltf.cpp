@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
@@ -254,6 +255,11 @@ ModelData loadGltf(const fs::path& file) {
                        "'): file not found or not readable");
     }
     data.images = std::move(images);
+    // Extensions change what a file means; say which ones are drawn without their effect.
+    for (const std::string& extension : model.extensionsUsed)
+        if (extension != "KHR_materials_emissive_strength")
+            data.warnings.push_back("extension " + extension +
+                                    " is not supported: drawn without it");
     data.meshCount = int(model.meshes.size());
     data.imageCount = int(model.images.size());
     auto image = [&](const tinygltf::TextureInfo& info, const std::string& what) {
@@ -289,6 +295,16 @@ ModelData loadGltf(const fs::path& file) {
         mm.normalTexture = image(normal, what + " normalTexture");
         mm.occlusionTexture = image(occlusion, what + " occlusionTexture");
         mm.emissiveTexture = image(mat.emissiveTexture, what + " emissiveTexture");
+        // Emission brighter than 1: the factor times this strength
+        // (KHR_materials_emissive_strength).
+        if (auto it = mat.extensions.find("KHR_materials_emissive_strength");
+            it != mat.extensions.end() && it->second.IsObject() &&
+            it->second.Has("emissiveStrength") && it->second.Get("emissiveStrength").IsNumber()) {
+            const double strength = it->second.Get("emissiveStrength").GetNumberAsDouble();
+            if (!(strength >= 0) || !std::isfinite(strength))
+                fail(file, what + ": emissiveStrength must be finite and >= 0");
+            mm.emissiveFactor *= strength;
+        }
         if (mat.alphaMode != "OPAQUE" && !mat.alphaMode.empty())
             data.warnings.push_back(what + ": alphaMode " + mat.alphaMode + " is drawn opaque");
         data.materials.push_back(mm);
