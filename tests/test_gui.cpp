@@ -2,30 +2,106 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <fstream>
+#include <sstream>
 
 #include "pbrlab/image.h"
 #include "test_support.h"
 
 using namespace pbrlab;
 
-TEST(Gui, ScriptedRunUnderXvfbWritesTheWindow) {
-    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-        GTEST_SKIP() << "xvfb-run is not installed";
-    test::TempDir dir;
-    dir.write("kit/ndotl.glsl", "float lambertCosine(vec3 N, vec3 L) { return dot(N, L); }\n");
-    auto shot = dir.path / "s.png";
+namespace {
+
+bool haveXvfb() {
+    return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
+}
+
+// Runs `pbrlab --verbose gui ARGS --size 1200x760 --frames 4 --screenshot SHOT` from dir/kit
+// with HOME=dir (so the remembered state is the test's own); stdout and stderr go to dir/log.txt.
+// Returns the exit status.
+int runGui(const test::TempDir& dir, const std::string& args, const std::filesystem::path& shot) {
+    std::filesystem::create_directories(dir.path / "kit");
     std::string cmd = "cd " + (dir.path / "kit").string() + " && HOME=" + dir.path.string() +
                       " xvfb-run -a -s '-screen 0 1280x800x24' " PBRLAB_EXECUTABLE
-                      " gui --module ndotl --size 1200x760 --frames 4 --screenshot " +
-                      shot.string() + " > " + (dir.path / "log.txt").string() + " 2>&1";
-    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+                      " --verbose gui " +
+                      args + " --size 1200x760 --frames 4 --screenshot " + shot.string() + " > " +
+                      (dir.path / "log.txt").string() + " 2>&1";
+    return std::system(cmd.c_str());
+}
+
+std::string readText(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// Not blank: a lit object, the dark panels and the text give many distinct values.
+void expectWindowShot(const std::filesystem::path& shot) {
     Image image = readImage(shot);
     EXPECT_EQ(image.width, 1200);
     EXPECT_EQ(image.height, 760);
-    // Not blank: the lit sphere, the dark panels and the text give many distinct values.
     double lo = 1, hi = 0;
     for (float v : image.pixels) lo = std::min<double>(lo, v), hi = std::max<double>(hi, v);
     EXPECT_GT(hi - lo, 0.5);
+}
+
+}  // namespace
+
+TEST(Gui, ScriptedRunUnderXvfbWritesTheWindow) {
+    if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+    test::TempDir dir;
+    dir.write("kit/ndotl.glsl", "float lambertCosine(vec3 N, vec3 L) { return dot(N, L); }\n");
+    auto shot = dir.path / "s.png";
+    ASSERT_EQ(runGui(dir, "--module ndotl", shot), 0) << readText(dir.path / "log.txt");
+    expectWindowShot(shot);
     // The parameters were remembered under the test's own HOME.
     EXPECT_TRUE(std::filesystem::exists(dir.path / ".config/pbrlab/gui.json"));
+}
+
+TEST(Gui, ShowsAGltfModelWithTheProgramsTabAndRemembersIt) {
+    if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+    test::TempDir dir;
+    const std::string model = PBRLAB_SOURCE_DIR "/assets/models/textured-sphere.glb";
+    auto shot = dir.path / "model.png";
+    ASSERT_EQ(runGui(dir, "--model " + model + " --module reflectance --tab programs", shot), 0)
+        << readText(dir.path / "log.txt");
+    expectWindowShot(shot);
+    // The model, not the step's sphere, was drawn: its embedded maps were read (the verbose
+    // journal) and the G-buffer compiled with them.
+    std::string log = readText(dir.path / "log.txt");
+    EXPECT_NE(log.find("textured-sphere.glb#image"), std::string::npos) << log;
+    EXPECT_NE(log.find("HAS_METALLIC_ROUGHNESS_MAP=1"), std::string::npos) << log;
+    // The choice is remembered, and the next start shows the model again without --model.
+    EXPECT_NE(readText(dir.path / ".config/pbrlab/gui.json").find("textured-sphere.glb"),
+              std::string::npos);
+    ASSERT_EQ(runGui(dir, "--module reflectance", shot), 0) << readText(dir.path / "log.txt");
+    log = readText(dir.path / "log.txt");
+    EXPECT_NE(log.find("textured-sphere.glb#image"), std::string::npos) << log;
+}
+
+TEST(Gui, ABrokenModelShowsItsErrorInsteadOfCrashing) {
+    if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+    test::TempDir dir;
+    auto broken = dir.write("broken.glb", "0123456789");
+    auto shot = dir.path / "broken.png";
+    ASSERT_EQ(runGui(dir, "--model " + broken.string() + " --module reflectance", shot), 0)
+        << readText(dir.path / "log.txt");
+    // The step's own scene stays on screen; the error names the file (in the window, and in
+    // the host log that --verbose prints).
+    expectWindowShot(shot);
+    std::string log = readText(dir.path / "log.txt");
+    size_t error = log.find("[scene] ");
+    ASSERT_NE(error, std::string::npos) << log;
+    EXPECT_NE(log.find("broken.glb: ", error), std::string::npos) << log;
+    // A file that did not load is not remembered.
+    EXPECT_EQ(readText(dir.path / ".config/pbrlab/gui.json").find("broken.glb"), std::string::npos);
+}
+
+TEST(Gui, RejectsAnUnknownTab) {
+    if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+    test::TempDir dir;
+    EXPECT_NE(runGui(dir, "--tab nonsense", dir.path / "none.png"), 0);
+    EXPECT_NE(readText(dir.path / "log.txt").find("--tab nonsense: unknown tab"),
+              std::string::npos);
 }

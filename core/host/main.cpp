@@ -122,12 +122,11 @@ void writeOutput(const ModuleDesc& m, const RenderResult& r, const fs::path& out
 Scene sceneFor(const Session& session, const ModuleDesc& m, const std::string& sceneName,
                const std::string& model) {
     Scene scene = loadScene(session.paths.scene(sceneName.empty() ? m.scene : sceneName));
-    if (model.empty()) return scene;
-    Scene framed = sceneForModel(scene, model);
-    for (const auto& model : framed.models)
+    if (!model.empty()) scene = sceneForModel(scene, model);
+    for (const auto& model : scene.models)
         for (const auto& w : model.data->warnings)
             std::cerr << "note: " << model.data->file.string() << ": " << w << "\n";
-    return framed;
+    return scene;
 }
 
 // What the run loaded, compiled and precomputed, with times (the journal keeps the lines).
@@ -323,6 +322,38 @@ int runGallery(const Options& o, const std::string& outDir, const std::string& s
             std::cerr << "error: " << m.desc->id << ": " << e.what() << "\n";
         }
     }
+    // glTF models: the same modules on the project's generated models and a scene placing them.
+    html << "<h2>glTF models</h2>\n";
+    struct ModelView {
+        const char* module;
+        const char* scene;  // a scene name, or a model under assets/models
+        const char* model;
+        const char* caption;
+    };
+    const ModelView views[] = {
+        {"brdf", nullptr, "sphere-grid.glb", "brdf on sphere-grid.glb"},
+        {"reflectance", nullptr, "textured-sphere.glb", "reflectance on textured-sphere.glb"},
+        {"reflectance", "models", nullptr, "reflectance, scene models.json"},
+        {"split_sum", "models", nullptr, "split_sum, scene models.json"}};
+    for (const ModelView& v : views) {
+        const std::string name = std::string("model-") + v.module + "-" +
+                                 fs::path(v.model ? v.model : v.scene).stem().string() + ".png";
+        try {
+            const LoadedModule& m = session.modules->find(v.module);
+            Scene scene =
+                sceneFor(session, *m.desc, v.scene ? v.scene : "",
+                         v.model ? (session.paths.assets() / "models" / v.model).string() : "");
+            auto r = session.renderer->renderScene(m, ParamValues(m.desc->params), scene, {},
+                                                   s.width, s.height, false);
+            writeOutput(*m.desc, r, fs::path(outDir) / name);
+            html << "<figure><img src=\"" << name << "\" width=256><figcaption>" << v.caption
+                 << "</figcaption></figure>\n";
+            std::cout << "wrote " << (fs::path(outDir) / name).string() << "\n";
+        } catch (const Error& e) {
+            ++failures;
+            std::cerr << "error: " << v.caption << ": " << e.what() << "\n";
+        }
+    }
     std::cout << "gallery: " << (fs::path(outDir) / "index.html").string() << "\n";
     return failures ? 1 : 0;
 }
@@ -377,6 +408,10 @@ int main(int argc, char** argv) {
                        "student|solution|reference|difference|split, or a term view (albedo, "
                        "roughness, metallic, ao, normal, N.L, D, G, F, kS, kD, diffuse, specular)");
     guiCmd->add_option("--scene", gui.scene, "Scene name in assets/scenes");
+    guiCmd->add_option("--model", gui.model,
+                       "A glTF model (.glb/.gltf) to view, framed and lit like the step's scene "
+                       "(or --scene)");
+    guiCmd->add_option("--tab", gui.tab, "Open this side tab: handout|plot|log|programs");
     guiCmd->add_option("--set", gui.sets, "Parameter name=value for the start module (repeatable)");
     guiCmd->add_option("--frames", gui.frames, "Render this many frames, then exit");
     guiCmd->add_option("--screenshot", gui.screenshot,

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "check.h"
@@ -68,6 +69,9 @@ const std::vector<std::string> kViews = {
     "F",        "kS",       "kD",        "diffuse",       "specular"};
 constexpr int kFirstTermView = 5;
 
+// The side tabs, as --tab names them.
+const std::vector<std::string> kTabs = {"handout", "plot", "log", "programs"};
+
 struct ModuleState {
     ParamValues params;
     Status status = Status::Unknown;
@@ -80,6 +84,16 @@ fs::path configFile() {
     const char* home = std::getenv("HOME");
     fs::path base = xdg && *xdg ? fs::path(xdg) : fs::path(home ? home : ".") / ".config";
     return base / "pbrlab" / "gui.json";
+}
+
+// Model files are compared (chooser entries, --model, the saved choice) as absolute,
+// canonical paths, so one file is one entry however it was named.
+fs::path canonicalFile(const fs::path& file) {
+    std::error_code ec;
+    fs::path absolute = fs::absolute(file, ec);
+    if (ec) return file;
+    fs::path canonical = fs::weakly_canonical(absolute, ec);
+    return ec ? absolute : canonical;
 }
 
 // A small 2D pad for directions: the disk is the hemisphere seen from +z (towards the
@@ -136,9 +150,17 @@ public:
         for (const auto& m : registry_->modules())
             states_[m.desc->id].params = ParamValues(m.desc->params);
         select(0);
-        loadState();
+        fs::path rememberedModel = loadState();
         if (!options.module.empty()) select(indexOf(options.module));
-        if (!options.scene.empty()) sceneName_ = options.scene;
+        // The command line wins over the remembered model: --scene alone shows that scene,
+        // --model the model (lit like --scene when both are given, as `pbrlab render` does).
+        if (!options.scene.empty() || !options.model.empty()) {
+            sceneName_ = options.scene;
+            model_ = options.model.empty() ? fs::path() : canonicalFile(options.model);
+        } else {
+            model_ = rememberedModel;
+        }
+        if (!sceneName_.empty() || !model_.empty()) loadScene();
         for (const auto& s : options.sets) applyAssignment(module().params, state().params, s);
         if (!options.view.empty()) {
             auto it = std::find(kViews.begin(), kViews.end(), options.view);
@@ -149,6 +171,11 @@ public:
             }
             view_ = int(it - kViews.begin());
         }
+        if (!options.tab.empty() &&
+            std::find(kTabs.begin(), kTabs.end(), options.tab) == kTabs.end())
+            throw Error("--tab " + options.tab +
+                        ": unknown tab; one of handout, plot, log, programs");
+        openTab_ = options.tab;
         if (options_.view.empty() && !studentFile().empty() && fs::exists(studentFile()))
             view_ = 0;
         else if (options_.view.empty())
@@ -238,20 +265,40 @@ private:
     }
     StudentSource studentSource() const { return {submission_, false}; }
 
+    // The chosen scene (default: the step's own), or a glTF model framed and lit like it.
     void loadScene() {
         if (registry_->modules().empty()) return;
         std::string name = sceneName_.empty() ? module().scene : sceneName_;
         try {
-            scene_ = pbrlab::loadScene(paths_.scene(name));
+            Scene scene = pbrlab::loadScene(paths_.scene(name));
+            if (!model_.empty()) scene = sceneForModel(scene, model_);
+            noteModelWarnings(scene);  // a JSON scene may hold models too
+            scene_ = std::move(scene);
+            shownSceneName_ = sceneName_;
+            shownModel_ = model_;
             sceneError_.clear();
         } catch (const Error& e) {
-            sceneError_ = e.what();  // keep the previous scene on screen
+            // Keep the previous scene on screen, and the chooser (and the saved state) on it,
+            // so a broken file is neither remembered nor half-shown.
+            sceneError_ = e.what();
+            sceneName_ = shownSceneName_;
+            model_ = shownModel_;
+            logLine("scene", sceneError_);
         }
         glm::dvec3 offset = scene_.camera.position - scene_.camera.target;
         distance_ = glm::length(offset);
         yaw_ = std::atan2(offset.x, offset.z);
         pitch_ = std::asin(std::clamp(offset.y / distance_, -1.0, 1.0));
         dirty_ = true;
+    }
+
+    // What the model loader read but does not render goes to the host log (the Log tab),
+    // once per file.
+    void noteModelWarnings(const Scene& scene) {
+        for (const SceneModel& m : scene.models)
+            if (warnedModels_.insert(m.data->file).second)
+                for (const std::string& w : m.data->warnings)
+                    logLine("model", m.data->file.string() + ": " + w);
     }
 
     Scene currentScene() const {
@@ -263,13 +310,17 @@ private:
         return s;
     }
 
-    void loadState() {
+    // Restores the module and parameters; returns the remembered model (empty: none), which
+    // the constructor loads unless the command line names a scene or model.
+    fs::path loadState() {
         std::ifstream in(configFile());
-        if (!in) return;
+        if (!in) return {};
+        fs::path model;
         try {
             nlohmann::json j = nlohmann::json::parse(in);
+            if (j.contains("model")) model = j["model"].get<std::string>();
             const nlohmann::json& all = j.contains("params") ? j["params"] : nlohmann::json();
-            if (!all.is_object()) return;
+            if (!all.is_object()) return model;
             for (auto& [id, params] : all.items()) {
                 auto it = states_.find(id);
                 if (it == states_.end()) continue;
@@ -288,11 +339,13 @@ private:
         } catch (const std::exception& e) {
             messages_ += configFile().string() + ": ignored (" + e.what() + ")\n";
         }
+        return model;
     }
 
     void saveState() const {
         nlohmann::json j;
         j["module"] = module().id;
+        if (!model_.empty()) j["model"] = model_.string();  // the model stays across steps
         for (const auto& m : registry_->modules())
             for (const auto& p : m.desc->params)
                 j["params"][m.desc->id][p.name] =
@@ -354,6 +407,7 @@ private:
         } catch (const Error& e) {
             renderError_ = e.what();
         }
+        updatePermutation(applyParamBindings(scene, module(), st.params));
         hasStudent_ = !studentFile().empty() && fs::exists(studentFile());
         bool rendered = false;
         if (hasStudent_) {
@@ -390,6 +444,21 @@ private:
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count();
         compose();
+    }
+
+    // The programs this step needs for the scene on screen, as `pbrlab permutations` lists
+    // them: one G-buffer define set per kind of material drawn (a map adds a HAS_*_MAP
+    // define), and the view's (the student's file compiles with the same defines).
+    void updatePermutation(const Scene& scene) {
+        permutation_.clear();
+        std::set<std::string> gbuffers;
+        for (const DrawItem& item : drawItems(scene))
+            gbuffers.insert(definesText(
+                renderer_->gbufferRecipe(scene.materials.at(size_t(item.material)), module().needs)
+                    .defines));
+        for (const std::string& d : gbuffers) permutation_.insert({"G-buffer", d});
+        ProgramRecipe view = renderer_->viewRecipe(loaded(), {}, false, int(scene.lights.size()));
+        permutation_.insert({view.label, definesText(view.defines)});
     }
 
     // One module's badge per frame, so the window stays responsive.
@@ -797,13 +866,17 @@ private:
         drawScenePanel();
         ImGui::EndChild();
         if (ImGui::BeginTabBar("tabs")) {
-            if (ImGui::BeginTabItem("Handout")) {
+            // --tab opens one tab on the first frame; after that the student's clicks decide.
+            auto opened = [&](const char* tab) {
+                return openTab_ == tab ? ImGuiTabItemFlags_SetSelected : 0;
+            };
+            if (ImGui::BeginTabItem("Handout", nullptr, opened("handout"))) {
                 ImGui::BeginChild("handout");
                 drawHandout(handout_);
                 ImGui::EndChild();
                 ImGui::EndTabItem();
             }
-            if (ImGui::BeginTabItem("Plot")) {
+            if (ImGui::BeginTabItem("Plot", nullptr, opened("plot"))) {
                 drawPlot();
                 ImGui::EndTabItem();
             }
@@ -813,11 +886,18 @@ private:
             else
                 logFlags = 0;
             if (ImGui::BeginTabItem(compileLog_.empty() ? "Log###log" : "Log (error)###log",
-                                    nullptr, logFlags)) {
+                                    nullptr, logFlags | opened("log"))) {
                 drawLog();
                 ImGui::EndTabItem();
             }
+            if (ImGui::BeginTabItem("Programs", nullptr, opened("programs"))) {
+                ImGui::BeginChild("programs");
+                drawPrograms();
+                ImGui::EndChild();
+                ImGui::EndTabItem();
+            }
             ImGui::EndTabBar();
+            openTab_.clear();
         }
     }
 
@@ -907,9 +987,26 @@ private:
         }
     }
 
+    // The glTF models the chooser offers: the project's own (assets/models), the --model file,
+    // and the one chosen (it may come from the saved state).
+    std::vector<fs::path> modelChoices() const {
+        std::vector<fs::path> files;
+        std::error_code ec;
+        for (const auto& e : fs::directory_iterator(paths_.assets() / "models", ec))
+            if (e.path().extension() == ".glb" || e.path().extension() == ".gltf")
+                files.push_back(canonicalFile(e.path()));
+        std::sort(files.begin(), files.end());
+        fs::path given = options_.model.empty() ? fs::path() : canonicalFile(options_.model);
+        for (const fs::path& f : {given, model_})
+            if (!f.empty() && std::find(files.begin(), files.end(), f) == files.end())
+                files.push_back(f);
+        return files;
+    }
+
     void drawScenePanel() {
         ImGui::TextDisabled("scene");
-        std::string current = sceneName_.empty() ? module().scene : sceneName_;
+        std::string sceneShown = sceneName_.empty() ? module().scene : sceneName_;
+        std::string current = model_.empty() ? sceneShown : model_.filename().string();
         ImGui::SetNextItemWidth(220);
         if (ImGui::BeginCombo("scene", current.c_str())) {
             std::vector<std::string> names;
@@ -917,14 +1014,33 @@ private:
                 if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
             std::sort(names.begin(), names.end());
             for (const auto& n : names)
-                if (ImGui::Selectable(n.c_str(), n == current)) {
+                if (ImGui::Selectable(n.c_str(), model_.empty() && n == sceneShown)) {
                     sceneName_ = n;
+                    model_.clear();
                     loadScene();
                 }
+            // A model is lit like the step's own scene, so any model works with any step.
+            ImGui::Separator();
+            ImGui::TextDisabled("glTF models");
+            std::vector<fs::path> models = modelChoices();
+            for (size_t i = 0; i < models.size(); ++i) {
+                ImGui::PushID(int(i));  // two folders may hold the same file name
+                if (ImGui::Selectable(models[i].filename().string().c_str(), models[i] == model_)) {
+                    model_ = models[i];
+                    sceneName_.clear();
+                    loadScene();
+                }
+                if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", models[i].string().c_str());
+                ImGui::PopID();
+            }
             ImGui::EndCombo();
         }
-        if (!sceneError_.empty())
-            ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "%s", sceneError_.c_str());
+        if (!model_.empty()) ImGui::TextDisabled("glTF model, lit like %s", sceneShown.c_str());
+        if (!sceneError_.empty()) {  // wrapped: a model's error names its full path
+            ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.3f, 0.3f, 1));
+            ImGui::TextWrapped("%s", sceneError_.c_str());
+            ImGui::PopStyleColor();
+        }
         if (!scene_.lights.empty()) {
             float pos[3] = {float(scene_.lights[0].position.x), float(scene_.lights[0].position.y),
                             float(scene_.lights[0].position.z)};
@@ -1017,6 +1133,57 @@ private:
         ImGui::TextDisabled("thick: solution%s", haveStudent ? ", thin white: your function" : "");
     }
 
+    // Every program compiled so far (the cache compiles each recipe once per define set, so a
+    // scene with texture maps or more lights adds programs), with the ones the step uses for
+    // the scene on screen listed on top and highlighted; then what else the GPU had to do.
+    void drawPrograms() {
+        const ImVec4 used(1, 0.8f, 0.45f, 1);
+        ImGui::TextDisabled("this step on this scene uses (highlighted below):");
+        for (const auto& [label, defines] : permutation_) {
+            ImGui::TextColored(used, "%s", label.c_str());
+            ImGui::SameLine();
+            ImGui::TextWrapped("%s", defines.empty() ? "(no defines)" : defines.c_str());
+        }
+        ImGui::Spacing();
+        const auto& compiled = renderer_->programs().compiled();
+        ImGui::TextDisabled("%zu programs compiled, in order (a hot reload compiles again):",
+                            compiled.size());
+        const ImGuiTableFlags flags =
+            ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH | ImGuiTableFlags_SizingFixedFit;
+        if (ImGui::BeginTable("compiled", 2, flags)) {
+            // Two columns, the compile time under the label: the side panel is narrow, and a
+            // third column would break the longest define (HAS_METALLIC_ROUGHNESS_MAP=1) or
+            // label word (equirect_to_cube) in the middle.
+            ImGui::TableSetupColumn("program, compile", ImGuiTableColumnFlags_WidthFixed, 132);
+            ImGui::TableSetupColumn("defines", ImGuiTableColumnFlags_WidthStretch);
+            ImGui::TableHeadersRow();
+            for (const CompiledProgram& p : compiled) {
+                ImGui::TableNextRow();
+                bool isUsed = permutation_.count({p.label, p.defines}) > 0;
+                if (isUsed)
+                    ImGui::TableSetBgColor(ImGuiTableBgTarget_RowBg0, IM_COL32(60, 52, 30, 255));
+                ImGui::TableNextColumn();
+                ImGui::PushStyleColor(ImGuiCol_Text,
+                                      isUsed ? used : ImGui::GetStyleColorVec4(ImGuiCol_Text));
+                ImGui::TextWrapped("%s", p.label.c_str());
+                ImGui::PopStyleColor();
+                ImGui::TextDisabled("%.1f ms", p.milliseconds);
+                ImGui::TableNextColumn();
+                ImGui::TextWrapped("%s", p.defines.empty() ? "-" : p.defines.c_str());
+            }
+            ImGui::EndTable();
+        }
+        ImGui::Spacing();
+        ImGui::Text("textures loaded: %d   precompute passes: %d",
+                    eventCount(Counter::TextureLoads), eventCount(Counter::PrecomputePasses));
+        // The journal's lines for that work, with sizes and times.
+        std::istringstream in(journal());
+        std::string line;
+        while (std::getline(in, line))
+            if (line.rfind("[texture]", 0) == 0 || line.rfind("[precompute]", 0) == 0)
+                ImGui::TextWrapped("%s", line.c_str());
+    }
+
     void drawLog() {
         if (compileLog_.empty()) {
             ImGui::TextDisabled("no errors");
@@ -1049,6 +1216,14 @@ private:
     int current_ = 0;
     int view_ = 0;
     std::string sceneName_, sceneError_, renderError_, compileLog_, shownLog_, messages_, handout_;
+    std::string openTab_;  // --tab, for the first frame
+    fs::path model_;       // the glTF model shown, lit like the scene (empty: the scene itself)
+    // What is on screen, for the chooser to return to when a file does not load.
+    std::string shownSceneName_;
+    fs::path shownModel_;
+    std::set<fs::path> warnedModels_;
+    // The step's programs for the scene on screen: (label, defines) as compiled() lists them.
+    std::set<std::pair<std::string, std::string>> permutation_;
     Scene scene_;
     double yaw_ = 0, pitch_ = 0, distance_ = 3;
     bool dirty_ = true, hasStudent_ = false, screenshotRequested_ = false;

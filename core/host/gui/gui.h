@@ -13,6 +13,8 @@ struct GuiOptions {
     std::string module;                // start on this module id
     std::string view;                  // student|solution|reference|difference|split or a term
     std::string scene;
+    std::filesystem::path model;       // a glTF model (.glb/.gltf), lit like the step's scene
+    std::string tab;                   // open this side tab: handout|plot|log|programs
     std::vector<std::string> sets;     // name=value for the start module
     int frames = 0;                    // > 0: render this many frames, then exit (scripted runs)
     std::filesystem::path screenshot;  // with frames: save the window here before exiting
