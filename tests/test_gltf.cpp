@@ -97,5 +97,5 @@ TEST(Gltf, LoadsTheSharedTangentTestModelWhenPresent) {
     ModelData m = loadGltf(file);
     EXPECT_FALSE(m.primitives.empty());
     EXPECT_FALSE(m.materials.empty());
-    EXPECT_GE(m.materials[0].normalTexture, 0);
+    EXPECT_GE(m.materials[0].normalTexture.image, 0);
 }

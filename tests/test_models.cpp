@@ -3,6 +3,7 @@
 // against the CPU reference.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <set>
@@ -97,8 +98,8 @@ TEST(Models, ShippedAssetsHaveTheExpectedCounts) {
     const ModelMaterial& m = sphere.materials[0];
     // Occlusion shares the packed metallic-roughness image; the other maps are their own.
     EXPECT_EQ(m.occlusionTexture, m.metallicRoughnessTexture);
-    std::set<int> distinct{m.baseColorTexture, m.metallicRoughnessTexture, m.normalTexture,
-                           m.emissiveTexture};
+    std::set<int> distinct{m.baseColorTexture.image, m.metallicRoughnessTexture.image,
+                           m.normalTexture.image, m.emissiveTexture.image};
     EXPECT_EQ(distinct.size(), 4u);
     EXPECT_EQ(distinct.count(-1), 0u);
     EXPECT_EQ(m.emissiveFactor, glm::dvec3(1.0, 0.45, 0.1));
@@ -195,6 +196,102 @@ TEST(Models, EmissiveStrengthAppliesAndUnsupportedExtensionsAreNamed) {
     EXPECT_EQ(model.materials[0].emissiveFactor, glm::dvec3(4, 2, 0));
     ASSERT_EQ(model.warnings.size(), 1u);
     EXPECT_NE(model.warnings[0].find("KHR_texture_transform"), std::string::npos);
+}
+
+namespace {
+
+// A .gltf of three primitives sharing one buffer: a unit quad as a triangle strip with uvs as
+// normalized unsigned shorts, a four-triangle fan, and the quad's outline as lines; none
+// has normals. `meshes` and `accessor0Extra` let a test break it.
+fs::path writeShapesGltf(const test::TempDir& dir, const std::string& meshes,
+                         const std::string& accessor0Extra = "") {
+    std::vector<unsigned char> bin(124);
+    const float quad[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+    const std::uint16_t uv[] = {0, 65535, 65535, 65535, 0, 0, 65535, 0};
+    const float fan[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, -1, 0, 0, 0, -1, 0};
+    std::memcpy(bin.data(), quad, 48);
+    std::memcpy(bin.data() + 48, uv, 16);
+    std::memcpy(bin.data() + 64, fan, 60);
+    std::ofstream(dir.path / "shapes.bin", std::ios::binary)
+        .write(reinterpret_cast<const char*>(bin.data()), std::streamsize(bin.size()));
+    Image white;
+    white.width = white.height = 2;
+    white.channels = 3;
+    white.pixels.assign(12, 1.0f);
+    writeImage(dir.path / "base.png", white, FileDepth::Uint8, true);
+    return dir.write("shapes.gltf", R"({"asset": {"version": "2.0"},
+  "buffers": [{"uri": "shapes.bin", "byteLength": 124}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                  {"buffer": 0, "byteOffset": 48, "byteLength": 16},
+                  {"buffer": 0, "byteOffset": 64, "byteLength": 60}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                 "min": [0, 0, 0], "max": [1, 1, 0])" +
+                                        accessor0Extra + R"(},
+                {"bufferView": 1, "componentType": 5123, "normalized": true, "count": 4,
+                 "type": "VEC2"},
+                {"bufferView": 2, "componentType": 5126, "count": 5, "type": "VEC3",
+                 "min": [-1, -1, 0], "max": [1, 1, 0]}],
+  "meshes": [{"primitives": [)" + meshes +
+                                        R"(]}],
+  "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0,
+  "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
+  "samplers": [{"wrapS": 33071, "wrapT": 33648}],
+  "images": [{"uri": "base.png"}], "textures": [{"source": 0, "sampler": 0}]})");
+}
+
+const char* kStrip =
+    R"({"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "mode": 5, "material": 0})";
+const char* kFan = R"({"attributes": {"POSITION": 2}, "mode": 6})";
+const char* kLines = R"({"attributes": {"POSITION": 0}, "mode": 1})";
+
+}  // namespace
+
+TEST(Models, StripsFansFlatNormalsIntegerUvsAndSamplersAreRead) {
+    test::TempDir dir;
+    ModelData model =
+        loadGltf(writeShapesGltf(dir, std::string(kStrip) + ", " + kFan + ", " + kLines));
+    ASSERT_EQ(model.primitives.size(), 2u);  // the lines are left out...
+    ASSERT_EQ(model.warnings.size(), 1u);    // ...and said so
+    EXPECT_NE(model.warnings[0].find("1 point or line primitives"), std::string::npos);
+    // Strip of 4: two triangles, flat: one vertex per corner, all facing +z (the strip's
+    // odd triangles are flipped back to counter-clockwise).
+    const ModelPrimitive& strip = model.primitives[0];
+    EXPECT_TRUE(strip.generatedNormals);
+    EXPECT_EQ(strip.mesh.indices.size(), 6u);
+    EXPECT_EQ(strip.mesh.vertices.size(), 6u);
+    for (const Vertex& v : strip.mesh.vertices) {
+        EXPECT_EQ(v.normal, glm::vec3(0, 0, 1));
+        // uv from normalized shorts: 0 or 65535 / 65535 = exactly 0 or 1, v = 1 - y here.
+        EXPECT_EQ(v.uv, glm::vec2(v.position.x, 1 - v.position.y));
+    }
+    // Fan of 5: three triangles around vertex 0, also facing +z.
+    const ModelPrimitive& fan = model.primitives[1];
+    EXPECT_EQ(fan.mesh.indices.size(), 9u);
+    for (const Vertex& v : fan.mesh.vertices) EXPECT_EQ(v.normal, glm::vec3(0, 0, 1));
+    EXPECT_EQ(fan.material, -1);  // glTF's default material
+    // The sampler's wrap modes reach the map.
+    const ModelMaterial::Map& base = model.materials.at(0).baseColorTexture;
+    EXPECT_EQ(base.wrapU, TextureSource::Wrap::Clamp);
+    EXPECT_EQ(base.wrapV, TextureSource::Wrap::Mirror);
+}
+
+TEST(Models, UnreadableShapesAreErrors) {
+    test::TempDir dir;
+    auto error = [&](const std::string& meshes, const std::string& extra = "") {
+        try {
+            loadGltf(writeShapesGltf(dir, meshes, extra));
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_NE(error(kLines).find("no triangles to draw"), std::string::npos);
+    const std::string sparse =
+        R"(, "sparse": {"count": 1, "indices": {"bufferView": 1, "componentType": 5123},
+                        "values": {"bufferView": 0}})";
+    EXPECT_NE(error(kStrip, sparse).find("POSITION: sparse accessors are not supported"),
+              std::string::npos)
+        << error(kStrip, sparse);
 }
 
 TEST(Models, MissingImageFileIsAnErrorNamingIt) {

@@ -27,61 +27,140 @@ namespace {
     throw Error(file.string() + ": " + why);
 }
 
-// Reads accessor `index` as `components` floats per element (float data only, as glTF
-// requires for these attributes), honouring byte strides; checks every range.
-std::vector<float> readFloats(const tinygltf::Model& m, int index, int components,
-                              const fs::path& file, const std::string& what) {
+// The accessor `index`, checked: it exists, is not sparse, and its buffer view lies inside its
+// buffer. Returns the accessor with its first byte and stride.
+struct AccessorData {
+    const tinygltf::Accessor* accessor;
+    const unsigned char* first;
+    size_t stride;
+};
+
+AccessorData accessorData(const tinygltf::Model& m, int index, size_t elementBytes,
+                          const fs::path& file, const std::string& what) {
     if (index < 0 || index >= int(m.accessors.size())) fail(file, what + ": no such accessor");
     const auto& a = m.accessors[size_t(index)];
-    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
-        fail(file, what + ": expected float components");
-    if (tinygltf::GetNumComponentsInType(uint32_t(a.type)) != components)
-        fail(file, what + ": expected " + std::to_string(components) + " components");
+    if (a.sparse.isSparse) fail(file, what + ": sparse accessors are not supported");
     if (a.bufferView < 0 || a.bufferView >= int(m.bufferViews.size()))
         fail(file, what + ": no buffer view");
     const auto& view = m.bufferViews[size_t(a.bufferView)];
     if (view.buffer < 0 || view.buffer >= int(m.buffers.size())) fail(file, what + ": no buffer");
     const auto& buffer = m.buffers[size_t(view.buffer)].data;
-    const size_t stride = view.byteStride ? view.byteStride : size_t(components) * 4;
+    const size_t stride = view.byteStride ? view.byteStride : elementBytes;
     const size_t begin = view.byteOffset + a.byteOffset;
-    if (a.count > 0 && begin + stride * (a.count - 1) + size_t(components) * 4 > buffer.size())
+    if (a.count > 0 && (begin > buffer.size() || (a.count - 1) > buffer.size() / stride ||
+                        begin + stride * (a.count - 1) + elementBytes > buffer.size()))
         fail(file, what + ": data runs past the end of its buffer");
-    std::vector<float> out(a.count * size_t(components));
-    for (size_t i = 0; i < a.count; ++i)
-        std::memcpy(out.data() + i * size_t(components), buffer.data() + begin + i * stride,
-                    size_t(components) * 4);
+    return {&a, buffer.data() + begin, stride};
+}
+
+// Reads accessor `index` as `components` floats per element, honouring byte strides. Float
+// data, or (texture coordinates) normalized unsigned bytes or shorts, as glTF allows.
+std::vector<float> readFloats(const tinygltf::Model& m, int index, int components,
+                              const fs::path& file, const std::string& what,
+                              bool normalizedIntegers = false) {
+    if (index < 0 || index >= int(m.accessors.size())) fail(file, what + ": no such accessor");
+    const int type = m.accessors[size_t(index)].componentType;
+    const size_t size = type == TINYGLTF_COMPONENT_TYPE_FLOAT            ? 4
+                        : !normalizedIntegers                            ? 0
+                        : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE  ? 1
+                        : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                                                                         : 0;
+    if (!size)
+        fail(file, what + (normalizedIntegers
+                               ? ": expected float or normalized unsigned byte/short components"
+                               : ": expected float components"));
+    if (tinygltf::GetNumComponentsInType(uint32_t(m.accessors[size_t(index)].type)) != components)
+        fail(file, what + ": expected " + std::to_string(components) + " components");
+    const AccessorData d = accessorData(m, index, size * size_t(components), file, what);
+    std::vector<float> out(d.accessor->count * size_t(components));
+    for (size_t i = 0; i < d.accessor->count; ++i)
+        for (int c = 0; c < components; ++c) {
+            const unsigned char* at = d.first + i * d.stride + size_t(c) * size;
+            float& v = out[i * size_t(components) + size_t(c)];
+            if (size == 4) {
+                std::memcpy(&v, at, 4);
+            } else if (size == 1) {
+                v = float(at[0]) / 255.0f;
+            } else {
+                std::uint16_t u;
+                std::memcpy(&u, at, 2);  // little-endian, as glTF stores it
+                v = float(u) / 65535.0f;
+            }
+        }
     return out;
 }
 
+// The primitive's vertex indices as stored (or 0..n-1 when it has none).
 std::vector<std::uint32_t> readIndices(const tinygltf::Model& m, int index, size_t vertexCount,
                                        const fs::path& file) {
     std::vector<std::uint32_t> out;
-    if (index < 0) {  // non-indexed: consecutive triangles
+    if (index < 0) {
         for (size_t i = 0; i < vertexCount; ++i) out.push_back(std::uint32_t(i));
         return out;
     }
     if (index >= int(m.accessors.size())) fail(file, "indices: no such accessor");
-    const auto& a = m.accessors[size_t(index)];
-    if (a.bufferView < 0 || a.bufferView >= int(m.bufferViews.size()))
-        fail(file, "indices: no buffer view");
-    const auto& view = m.bufferViews[size_t(a.bufferView)];
-    if (view.buffer < 0 || view.buffer >= int(m.buffers.size())) fail(file, "indices: no buffer");
-    const auto& buffer = m.buffers[size_t(view.buffer)].data;
-    const size_t size = a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
-                        : a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
-                        : a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT   ? 4
-                                                                                    : 0;
+    const int type = m.accessors[size_t(index)].componentType;
+    const size_t size = type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
+                        : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                        : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT   ? 4
+                                                                         : 0;
     if (!size) fail(file, "indices: expected unsigned integers");
-    const size_t begin = view.byteOffset + a.byteOffset;
-    if (begin + size * a.count > buffer.size()) fail(file, "indices run past their buffer");
-    for (size_t i = 0; i < a.count; ++i) {
+    const AccessorData d = accessorData(m, index, size, file, "indices");
+    for (size_t i = 0; i < d.accessor->count; ++i) {
         std::uint32_t v = 0;
-        std::memcpy(&v, buffer.data() + begin + i * size, size);  // little-endian
+        std::memcpy(&v, d.first + i * d.stride, size);  // little-endian
         if (v >= vertexCount) fail(file, "index " + std::to_string(v) + " past the vertices");
         out.push_back(v);
     }
-    if (out.size() % 3) fail(file, "index count is not a multiple of 3");
     return out;
+}
+
+// Strips and fans as triangle lists, counter-clockwise kept (the glTF specification's rules).
+std::vector<std::uint32_t> triangleList(const std::vector<std::uint32_t>& in, int mode) {
+    std::vector<std::uint32_t> out;
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        for (size_t i = 0; i + 2 < in.size(); ++i) {
+            const size_t odd = i % 2;
+            out.insert(out.end(), {in[i], in[i + 1 + odd], in[i + 2 - odd]});
+        }
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+        for (size_t i = 0; i + 2 < in.size(); ++i)
+            out.insert(out.end(), {in[i + 1], in[i + 2], in[0]});
+    } else {
+        out.assign(in.begin(), in.end() - std::ptrdiff_t(in.size() % 3));
+    }
+    return out;
+}
+
+// Each triangle gets its own three vertices with the face normal: the glTF specification's
+// "flat normals" for primitives without NORMAL.
+void flatNormals(MeshData& mesh) {
+    MeshData flat;
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+        Vertex v[3] = {mesh.vertices[mesh.indices[i]], mesh.vertices[mesh.indices[i + 1]],
+                       mesh.vertices[mesh.indices[i + 2]]};
+        glm::dvec3 n = glm::cross(glm::dvec3(v[1].position - v[0].position),
+                                  glm::dvec3(v[2].position - v[0].position));
+        const double length = glm::length(n);
+        const glm::vec3 normal = length > 0 ? glm::vec3(n / length) : glm::vec3(0, 0, 1);
+        for (Vertex& corner : v) {
+            corner.normal = normal;
+            flat.indices.push_back(std::uint32_t(flat.vertices.size()));
+            flat.vertices.push_back(corner);
+        }
+    }
+    mesh = std::move(flat);
+}
+
+TextureSource::Wrap wrapMode(int glWrap) {
+    switch (glWrap) {
+        case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+            return TextureSource::Wrap::Clamp;
+        case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+            return TextureSource::Wrap::Mirror;
+        default:
+            return TextureSource::Wrap::Repeat;
+    }
 }
 
 glm::dmat4 nodeMatrix(const tinygltf::Node& n) {
@@ -92,11 +171,6 @@ glm::dmat4 nodeMatrix(const tinygltf::Node& n) {
         m *= glm::mat4_cast(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]));
     if (n.scale.size() == 3) m = glm::scale(m, glm::make_vec3(n.scale.data()));
     return m;
-}
-
-int textureImage(const tinygltf::Model& m, int texture) {
-    if (texture < 0 || texture >= int(m.textures.size())) return -1;
-    return m.textures[size_t(texture)].source;
 }
 
 // "%20" -> " ": glTF URIs are percent-encoded.
@@ -176,7 +250,6 @@ bool collectImage(tinygltf::Image* image, const int index, std::string* err, std
         return false;
     }
     TextureSource& t = (*c->images)[size_t(index)];
-    t.repeatV = true;
     if (!image->uri.empty() && image->uri.rfind("data:", 0) != 0) {
         t.file = c->file.parent_path() / percentDecode(image->uri);
         t.key = t.file.string();
@@ -263,13 +336,22 @@ ModelData loadGltf(const fs::path& file) {
     data.meshCount = int(model.meshes.size());
     data.imageCount = int(model.images.size());
     auto image = [&](const tinygltf::TextureInfo& info, const std::string& what) {
+        ModelMaterial::Map map;
+        if (info.index < 0) return map;
         if (info.texCoord != 0)
             data.warnings.push_back(what + " uses TEXCOORD_" + std::to_string(info.texCoord) +
                                     "; pbrlab reads TEXCOORD_0");
-        int index = textureImage(model, info.index);
-        if (info.index >= 0 && (index < 0 || index >= int(data.images.size())))
+        if (info.index >= int(model.textures.size()))
+            fail(file, what + ": texture " + std::to_string(info.index) + " does not exist");
+        const tinygltf::Texture& texture = model.textures[size_t(info.index)];
+        if (texture.source < 0 || texture.source >= int(data.images.size()))
             fail(file, what + ": texture " + std::to_string(info.index) + " has no image");
-        return index;
+        map.image = texture.source;
+        if (texture.sampler >= 0 && texture.sampler < int(model.samplers.size())) {
+            map.wrapU = wrapMode(model.samplers[size_t(texture.sampler)].wrapS);
+            map.wrapV = wrapMode(model.samplers[size_t(texture.sampler)].wrapT);
+        }
+        return map;
     };
     for (const auto& mat : model.materials) {
         ModelMaterial mm;
@@ -314,7 +396,8 @@ ModelData loadGltf(const fs::path& file) {
     int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
     if (sceneIndex < int(model.scenes.size()))
         for (int n : model.scenes[size_t(sceneIndex)].nodes) stack.push_back({n, glm::dmat4(1)});
-    int visited = 0;
+    int visited = 0, skippedPrimitives = 0;
+    bool usesVertexColours = false;
     while (!stack.empty()) {
         auto [index, parent] = stack.back();
         stack.pop_back();
@@ -326,29 +409,36 @@ ModelData loadGltf(const fs::path& file) {
         if (node.mesh < 0) continue;
         if (node.mesh >= int(model.meshes.size())) fail(file, "node mesh index out of range");
         for (const auto& prim : model.meshes[size_t(node.mesh)].primitives) {
-            if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES)
-                fail(file, "only triangle primitives are supported");
+            const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+            if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+                mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+                skippedPrimitives++;
+                continue;
+            }
             auto attribute = [&](const char* name) {
                 auto it = prim.attributes.find(name);
                 return it == prim.attributes.end() ? -1 : it->second;
             };
-            if (attribute("POSITION") < 0 || attribute("NORMAL") < 0)
-                fail(file, "a primitive has no POSITION or NORMAL");
+            if (attribute("POSITION") < 0) fail(file, "a primitive has no POSITION");
+            if (attribute("COLOR_0") >= 0) usesVertexColours = true;
             auto positions = readFloats(model, attribute("POSITION"), 3, file, "POSITION");
-            auto normals = readFloats(model, attribute("NORMAL"), 3, file, "NORMAL");
-            size_t count = positions.size() / 3;
-            if (normals.size() != positions.size())
-                fail(file, "NORMAL count differs from POSITION");
+            const size_t count = positions.size() / 3;
+            const bool hasNormals = attribute("NORMAL") >= 0;
+            std::vector<float> normals =
+                hasNormals ? readFloats(model, attribute("NORMAL"), 3, file, "NORMAL")
+                           : std::vector<float>(count * 3, 0.0f);
             std::vector<float> uvs =
                 attribute("TEXCOORD_0") >= 0
-                    ? readFloats(model, attribute("TEXCOORD_0"), 2, file, "TEXCOORD_0")
+                    ? readFloats(model, attribute("TEXCOORD_0"), 2, file, "TEXCOORD_0", true)
                     : std::vector<float>(count * 2, 0.0f);
-            bool hasTangents = attribute("TANGENT") >= 0;
+            // Tangents only mean something next to the normals they were made for.
+            const bool hasTangents = hasNormals && attribute("TANGENT") >= 0;
             std::vector<float> tangents =
                 hasTangents ? readFloats(model, attribute("TANGENT"), 4, file, "TANGENT")
                             : std::vector<float>();
-            if (uvs.size() != count * 2 || (hasTangents && tangents.size() != count * 4))
-                fail(file, "attribute counts differ");
+            if (normals.size() != count * 3 || uvs.size() != count * 2 ||
+                (hasTangents && tangents.size() != count * 4))
+                fail(file, "attribute counts differ from POSITION's");
             ModelPrimitive p;
             p.transform = world;
             if (prim.material >= int(data.materials.size()))
@@ -363,7 +453,12 @@ ModelData loadGltf(const fs::path& file) {
                 v.tangent = hasTangents ? glm::make_vec4(&tangents[i * 4]) : glm::vec4(1, 0, 0, 1);
                 p.mesh.vertices.push_back(v);
             }
-            p.mesh.indices = readIndices(model, prim.indices, count, file);
+            p.mesh.indices = triangleList(readIndices(model, prim.indices, count, file), mode);
+            if (p.mesh.indices.empty()) continue;  // fewer than three vertices: nothing to draw
+            if (!hasNormals) {
+                flatNormals(p.mesh);
+                p.generatedNormals = true;
+            }
             if (!hasTangents) {
                 generateTangents(p.mesh);
                 p.generatedTangents = true;
@@ -371,6 +466,11 @@ ModelData loadGltf(const fs::path& file) {
             data.primitives.push_back(std::move(p));
         }
     }
+    if (skippedPrimitives)
+        data.warnings.push_back(std::to_string(skippedPrimitives) +
+                                " point or line primitives are not drawn");
+    if (usesVertexColours) data.warnings.push_back("vertex colours (COLOR_0) are not drawn");
+    if (data.primitives.empty()) fail(file, "no triangles to draw");
     return data;
 }
 

@@ -32,6 +32,18 @@ glm::dvec3 srgbEncode(const glm::dvec3& linear) {
     return e;
 }
 
+GLint glWrap(TextureSource::Wrap wrap) {
+    switch (wrap) {
+        case TextureSource::Wrap::Clamp:
+            return GL_CLAMP_TO_EDGE;
+        case TextureSource::Wrap::Mirror:
+            return GL_MIRRORED_REPEAT;
+        case TextureSource::Wrap::Repeat:
+            break;
+    }
+    return GL_REPEAT;
+}
+
 }  // namespace
 
 fs::path DataPaths::scene(const std::string& name) const {
@@ -100,7 +112,6 @@ GLuint LabRenderer::texture(const TextureSource& source) {
     auto start = std::chrono::steady_clock::now();
     Image image = readTexture(source);
     GLuint id = textures_.emplace(source.key, gl::uploadTexture(image, true)).first->second.id();
-    if (source.repeatV) gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
     countEvent(Counter::TextureLoads);
     double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -181,6 +192,9 @@ void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int
             if (!program->uses(map.sampler)) continue;  // not compiled in: never loaded
             gl::ActiveTexture(GL_TEXTURE0 + unit);
             gl::BindTexture(GL_TEXTURE_2D, texture(*map.source));
+            // Wrapping is the map's, not the image's (two maps may share one image).
+            gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, glWrap(map.source->wrapU));
+            gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, glWrap(map.source->wrapV));
             program->set(map.sampler, unit++);
         }
         mesh(item.mesh).draw();

@@ -114,8 +114,12 @@ MaterialDesc fromModel(const ModelMaterial& mm, const ModelData& model) {
     m.occlusionStrength = mm.occlusionStrength;
     m.normalScale = mm.normalScale;
     m.emissive = mm.emissiveFactor;
-    auto image = [&](int index) {
-        return index >= 0 ? model.images.at(size_t(index)) : TextureSource{};
+    auto image = [&](const ModelMaterial::Map& map) {
+        if (map.image < 0) return TextureSource{};
+        TextureSource t = model.images.at(size_t(map.image));
+        t.wrapU = map.wrapU;
+        t.wrapV = map.wrapV;
+        return t;
     };
     m.albedoMap = image(mm.baseColorTexture);
     m.metallicRoughnessMap = image(mm.metallicRoughnessTexture);

@@ -23,16 +23,23 @@ struct ModelMaterial {
     double normalScale = 1;                          // scales the normal map's x and y
     double occlusionStrength = 1;                    // ao = 1 + strength * (map.r - 1)
     glm::dvec3 emissiveFactor{0};                    // linear; the map is sRGB and multiplies it
-    // Which maps the material samples (image indices into ModelData::images, -1: none).
-    int baseColorTexture = -1, metallicRoughnessTexture = -1, normalTexture = -1,
-        occlusionTexture = -1, emissiveTexture = -1;
+    // Which maps the material samples and how (image: index into ModelData::images, -1: none).
+    struct Map {
+        int image = -1;
+        TextureSource::Wrap wrapU = TextureSource::Wrap::Repeat,
+                            wrapV = TextureSource::Wrap::Repeat;  // the texture's sampler
+        bool operator==(const Map&) const = default;
+    };
+    Map baseColorTexture, metallicRoughnessTexture, normalTexture, occlusionTexture,
+        emissiveTexture;
 };
 
 struct ModelPrimitive {
-    MeshData mesh;            // in the mesh's own space
-    glm::dmat4 transform{1};  // node transform (parents applied)
-    int material = -1;        // index into ModelData::materials, -1: the default material
-    bool generatedTangents = false;
+    MeshData mesh;                   // in the mesh's own space
+    glm::dmat4 transform{1};         // node transform (parents applied)
+    int material = -1;               // index into ModelData::materials, -1: the default material
+    bool generatedNormals = false;   // flat, the file had none
+    bool generatedTangents = false;  // the file had none
 };
 
 struct ModelData {
@@ -49,8 +56,10 @@ struct ModelData {
     glm::dvec3 boundsMax() const;
 };
 
-// Throws pbrlab::Error "FILE: ..." for a missing, truncated or invalid file, or a primitive
-// this loader cannot use (not triangles, no positions or normals).
+// Triangle strips and fans become triangle lists; a primitive without normals gets flat ones
+// (as the glTF specification asks); points and lines are left out with a warning. Throws
+// pbrlab::Error "FILE: ..." for a missing, truncated or invalid file, data it cannot read
+// (e.g. sparse or out-of-range accessors), or a file with no triangles at all.
 ModelData loadGltf(const std::filesystem::path& file);
 
 // Per-vertex tangents from uv derivatives (Gram-Schmidt against the normal). w = +1 when

@@ -41,9 +41,10 @@ struct TextureSource {
     std::filesystem::path file;  // the image file; empty when `encoded` holds the image
     std::shared_ptr<const std::vector<unsigned char>> encoded;
     std::string extension = ".png";  // of the encoded image (picks the decoder)
-    // Texture wrap along v: glTF's default is repeat; the scene's sphere maps clamp, so the
-    // poles do not bleed into each other.
-    bool repeatV = false;
+    // How uv outside [0, 1] wraps. glTF's default is repeat (a file's sampler may say
+    // otherwise); the scene's sphere maps clamp along v, so the poles do not bleed together.
+    enum class Wrap { Repeat, Clamp, Mirror };
+    Wrap wrapU = Wrap::Repeat, wrapV = Wrap::Clamp;
     bool empty() const { return key.empty(); }
 };
 
