@@ -6,6 +6,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -1048,11 +1049,18 @@ private:
                 scene_.lights[0].position = glm::dvec3(pos[0], pos[1], pos[2]);
                 dirty_ = true;
             }
-            float col[3] = {float(scene_.lights[0].color.x), float(scene_.lights[0].color.y),
-                            float(scene_.lights[0].color.z)};
-            if (ImGui::ColorEdit3("light 0 colour", col,
-                                  ImGuiColorEditFlags_HDR | ImGuiColorEditFlags_Float)) {
-                scene_.lights[0].color = glm::max(glm::dvec3(col[0], col[1], col[2]), 0.0);
+            // Colour and intensity apart: light colours are in the hundreds (thousands for a
+            // large model), which neither fits nor edits well in a colour widget.
+            const glm::dvec3 color = scene_.lights[0].color;
+            float intensity = float(std::max({color.x, color.y, color.z}));
+            const glm::dvec3 hue = intensity > 0 ? color / double(intensity) : glm::dvec3(1);
+            float col[3] = {float(hue.x), float(hue.y), float(hue.z)};
+            bool edited = ImGui::ColorEdit3("light 0 colour", col, ImGuiColorEditFlags_Float);
+            edited |= ImGui::DragFloat("light 0 intensity", &intensity, intensity * 0.01f + 0.01f,
+                                       0.0f, 1e7f, "%.1f", ImGuiSliderFlags_AlwaysClamp);
+            if (edited) {
+                scene_.lights[0].color =
+                    glm::max(glm::dvec3(col[0], col[1], col[2]), 0.0) * double(intensity);
                 dirty_ = true;
             }
         }

@@ -60,9 +60,14 @@ void drawHandout(const std::string& markdown) {
     std::vector<std::vector<std::string>> table;
     int tableId = 0;
     const ImVec4 heading(1.0f, 0.8f, 0.45f, 1.0f), codeColor(0.6f, 0.85f, 1.0f, 1.0f);
+    bool bullet = false;  // the paragraph is a list item (its lines continue it)
     auto flushParagraph = [&] {
-        if (!paragraph.empty()) ImGui::TextWrapped("%s", stripInline(paragraph).c_str());
+        if (!paragraph.empty()) {
+            if (bullet) ImGui::Bullet();
+            ImGui::TextWrapped("%s", stripInline(paragraph).c_str());
+        }
         paragraph.clear();
+        bullet = false;
     };
     while (std::getline(in, line)) {
         if (line.rfind("```", 0) == 0) {
@@ -92,10 +97,15 @@ void drawHandout(const std::string& markdown) {
             if (level == 1) ImGui::Separator();
         } else if (line.rfind("- ", 0) == 0 || line.rfind("* ", 0) == 0) {
             flushParagraph();
-            ImGui::Bullet();
-            ImGui::TextWrapped("%s", stripInline(line.substr(2)).c_str());
+            bullet = true;
+            paragraph = line.substr(2);
         } else {
-            paragraph += (paragraph.empty() ? "" : " ") + line;
+            const size_t text = line.find_first_not_of(' ');  // continuation lines are indented
+            if (text == std::string::npos) {                  // only spaces: a blank line
+                flushParagraph();
+                continue;
+            }
+            paragraph += (paragraph.empty() ? "" : " ") + line.substr(text);
         }
     }
     flushTable(table, tableId);
