@@ -11,6 +11,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -239,17 +240,13 @@ bool fileExists(const std::string& path, void*) {
 // are remembered by path. Nothing is decoded here.
 struct ImageCollector {
     fs::path file;
-    std::vector<TextureSource>* images;
+    std::map<int, TextureSource> images;  // by image index
 };
 
-bool collectImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+bool collectImage(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
                   const unsigned char* bytes, int size, void* userData) {
     auto* c = static_cast<ImageCollector*>(userData);
-    if (index < 0 || size_t(index) >= c->images->size()) {
-        if (err) *err += "image index " + std::to_string(index) + " out of range\n";
-        return false;
-    }
-    TextureSource& t = (*c->images)[size_t(index)];
+    TextureSource& t = c->images[index];
     if (!image->uri.empty() && image->uri.rfind("data:", 0) != 0) {
         t.file = c->file.parent_path() / percentDecode(image->uri);
         t.key = t.file.string();
@@ -301,10 +298,7 @@ ModelData loadGltf(const fs::path& file) {
     if (fs::is_directory(file)) fail(file, "is a directory, not a glTF file");
     ModelData data;
     data.file = file;
-    // Sized generously first: tinygltf calls back with each image's index before we know
-    // the count; trimmed to the real count below.
-    std::vector<TextureSource> images(4096);
-    ImageCollector collector{file, &images};
+    ImageCollector collector{file, {}};
     std::set<fs::path> externalImages = externalImageFiles(file);
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(collectImage, &collector);
@@ -318,16 +312,14 @@ ModelData loadGltf(const fs::path& file) {
     if (!ok)
         fail(file, "not a valid glTF " + std::string(binary ? "binary" : "file") +
                        (err.empty() ? "" : ": " + err));
-    if (model.images.size() > images.size())
-        fail(file, "more than " + std::to_string(images.size()) + " images");
-    images.resize(model.images.size());
-    for (size_t i = 0; i < images.size(); ++i) {
-        if (!images[i].empty()) continue;
+    for (size_t i = 0; i < model.images.size(); ++i) {
+        auto it = collector.images.find(int(i));
         // tinygltf skips the callback for an external file it could not find.
-        fail(file, "image " + std::to_string(i) + " ('" + model.images[i].uri +
-                       "'): file not found or not readable");
+        if (it == collector.images.end())
+            fail(file, "image " + std::to_string(i) + " ('" + model.images[i].uri +
+                           "'): file not found or not readable");
+        data.images.push_back(std::move(it->second));
     }
-    data.images = std::move(images);
     // Extensions change what a file means; say which ones are drawn without their effect.
     for (const std::string& extension : model.extensionsUsed)
         if (extension != "KHR_materials_emissive_strength")
