@@ -1,5 +1,6 @@
 #include "stability.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -102,10 +103,48 @@ ExtremeSet extremeSurfaces() {
     return set;
 }
 
-StabilityResult stabilitySweep(LabRenderer& renderer, const LoadedModule& module,
-                               const Scene& scene, const StudentSource& source) {
+namespace {
+
+// The scene's point lights reach some views only through the light uniforms (reflectance sums
+// them), not through the per-surface light of the extreme set. For those, a second pass puts
+// the scene's lights at the extremes themselves: on the point most extreme surfaces sit at
+// (distance 0), on the light set's point with intensity 1e6, 1e-6 away with intensity 1e6,
+// below the surface, and far away at grazing incidence.
+Scene extremeLights(Scene scene) {
+    scene.lights = {{{0, 0, 0}, {1, 1, 1}},
+                    {{0.25, -0.5, 1}, glm::dvec3(1e6)},
+                    {{0, 1e-6, 0}, glm::dvec3(1e6)},
+                    {{0, 0, -2}, {1, 1, 1}},
+                    {{1e3, 0, 1e-3}, glm::dvec3(1e6)}};
+    return scene;
+}
+
+void merge(ErrorStats& into, const ErrorStats& more) {
+    const int total = into.compared + more.compared;
+    if (more.maxError > into.maxError) {
+        into.maxError = more.maxError;
+        into.worstX = more.worstX;
+        into.worstY = more.worstY;
+        into.worstGpu = more.worstGpu;
+        into.worstRef = more.worstRef;
+    }
+    into.maxAbs = std::max(into.maxAbs, more.maxAbs);
+    into.quantileError = std::max(into.quantileError, more.quantileError);
+    if (total > 0) {
+        into.meanAbs = (into.meanAbs * into.compared + more.meanAbs * more.compared) / total;
+        into.meanError = (into.meanError * into.compared + more.meanError * more.compared) / total;
+    }
+    into.compared = total;
+    into.nanCount += more.nanCount;
+    into.infCount += more.infCount;
+    into.negativeCount += more.negativeCount;
+    into.overCount += more.overCount;
+}
+
+StabilityResult sweepOnce(LabRenderer& renderer, const LoadedModule& module, const Scene& scene,
+                          const StudentSource& source, const ExtremeSet& set,
+                          const std::string& labelSuffix) {
     const ModuleDesc& d = *module.desc;
-    ExtremeSet set = extremeSurfaces();
     ParamValues params(d.params);
     ReferenceContext context = referenceContext(scene, params);
     if (d.needs & NeedsEnvironment) context.ibl = &renderer.environmentInputs(scene);
@@ -125,8 +164,33 @@ StabilityResult stabilitySweep(LabRenderer& renderer, const LoadedModule& module
             if (d.nonNegative && ref < 0) ++result.referenceNegative, broken = true;
             if (!std::isfinite(gpu) || (d.nonNegative && gpu < 0)) broken = true;
         }
-        if (broken && result.firstProblem.empty()) result.firstProblem = set.labels[i];
+        if (broken && result.firstProblem.empty())
+            result.firstProblem = set.labels[i] + labelSuffix;
     }
+    return result;
+}
+
+}  // namespace
+
+bool readsSceneLights(LabRenderer& renderer, const LoadedModule& module,
+                      const StudentSource& source, int lightCount) {
+    return renderer.programs()
+        .get(renderer.viewRecipe(module, source, true, lightCount))
+        ->uses("uLightPositions");
+}
+
+StabilityResult stabilitySweep(LabRenderer& renderer, const LoadedModule& module,
+                               const Scene& scene, const StudentSource& source) {
+    const ExtremeSet set = extremeSurfaces();
+    StabilityResult result = sweepOnce(renderer, module, scene, source, set, "");
+    const Scene lit = extremeLights(scene);
+    if (!readsSceneLights(renderer, module, source, int(lit.lights.size()))) return result;
+    StabilityResult more =
+        sweepOnce(renderer, module, lit, source, set, " (scene lights at the extremes)");
+    merge(result.gpu, more.gpu);
+    result.referenceNonFinite += more.referenceNonFinite;
+    result.referenceNegative += more.referenceNegative;
+    if (result.firstProblem.empty()) result.firstProblem = more.firstProblem;
     return result;
 }
 

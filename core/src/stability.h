@@ -22,7 +22,13 @@ struct StabilityResult {
     std::string firstProblem;    // label of the first cell where anything broke
 };
 
+// Views that read the scene's point lights (uniforms) are swept a second time with the
+// scene's lights placed at the extremes (distance 0 and 1e-6, intensity 1e6, below, grazing).
 StabilityResult stabilitySweep(LabRenderer& renderer, const LoadedModule& module,
                                const Scene& scene, const StudentSource& source = {});
+
+// Whether the module's view (probe permutation) reads the scene's light uniforms.
+bool readsSceneLights(LabRenderer& renderer, const LoadedModule& module,
+                      const StudentSource& source, int lightCount);
 
 }  // namespace pbrlab
