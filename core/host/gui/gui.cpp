@@ -1098,6 +1098,16 @@ private:
         ImGui::SliderInt("row", &plotRow_, 0, probe.height - 1);
         plotRow_ = std::clamp(plotRow_, 0, probe.height - 1);
         ImGui::TextDisabled("y = %.3f (of 0..1)", 1.0 - double(plotRow_) / (probe.height - 1));
+        if (probe.xIsLightAngle) {
+            ImGui::SameLine();
+            ImGui::Checkbox("polar", &polarPlot_);
+            if (polarPlot_) {
+                ImGui::SameLine();
+                // The BRDF alone grows towards grazing; times the cosine it is the light
+                // actually reflected, the lobe textbooks draw.
+                ImGui::Checkbox("× N·L", &polarTimesCosine_);
+            }
+        }
         ImVec2 p = ImGui::GetCursorScreenPos();
         ImVec2 size(ImGui::GetContentRegionAvail().x, 260);
         ImGui::InvisibleButton("plot", size);
@@ -1105,6 +1115,10 @@ private:
         dl->AddRectFilled(p, ImVec2(p.x + size.x, p.y + size.y), IM_COL32(25, 27, 32, 255));
         bool haveStudent =
             !studentValue_.pixels.empty() && probeStudent_.width == probeSolution_.width;
+        if (probe.xIsLightAngle && polarPlot_) {
+            drawPolarLobe(dl, p, size, haveStudent);
+            return;
+        }
         double lo = 1e300, hi = -1e300;
         auto valueAt = [&](const Image& im, int x, int c) { return double(im.at(x, plotRow_, c)); };
         for (int x = 0; x < probe.width; ++x)
@@ -1139,6 +1153,76 @@ private:
         std::snprintf(buf, sizeof buf, "%.3g", lo);
         dl->AddText(ImVec2(p.x + 4, p.y + size.y - 16), IM_COL32(200, 200, 200, 255), buf);
         ImGui::TextDisabled("thick: solution%s", haveStudent ? ", thin white: your function" : "");
+    }
+
+    // The probe row as a lobe in the plane of incidence: the light's direction at each angle
+    // from N, its length the value (scaled to the row's largest). N points up, V and the
+    // mirror direction R are drawn, so students see the lobe lean towards R and widen with
+    // roughness.
+    void drawPolarLobe(ImDrawList* dl, ImVec2 p, ImVec2 size, bool haveStudent) {
+        const ModuleDesc& d = module();
+        const Probe& probe = d.probe;
+        const ImVec2 centre(p.x + size.x * 0.5f, p.y + size.y - 18);
+        const float radius = std::min(size.x * 0.5f, size.y - 26) - 6;
+        auto at = [&](double degrees, double length) {
+            const double a = glm::radians(degrees);
+            return ImVec2(centre.x + float(std::sin(a) * length) * radius,
+                          centre.y - float(std::cos(a) * length) * radius);
+        };
+        const ImU32 grid = IM_COL32(70, 74, 84, 255), label = IM_COL32(200, 200, 200, 255);
+        for (double ring : {0.5, 1.0}) {
+            std::vector<ImVec2> arc;
+            for (int i = 0; i <= 64; ++i) arc.push_back(at(-90 + 180.0 * i / 64, ring));
+            dl->AddPolyline(arc.data(), int(arc.size()), grid, 0, 1.0f);
+        }
+        dl->AddLine(at(-90, 1), at(90, 1), grid);  // the surface
+        const struct {
+            double degrees;
+            const char* name;
+        } rays[] = {{0, "N"}, {probe.viewAngle, "V"}, {-probe.viewAngle, "R"}};
+        for (const auto& r : rays) {
+            dl->AddLine(centre, at(r.degrees, 1.0), grid, 1.5f);
+            dl->AddText(at(r.degrees, 1.06), label, r.name);
+        }
+        auto degreesAt = [&](int x) { return -90 + 180.0 * x / (probe.width - 1); };
+        auto valueAt = [&](const Image& im, int x, int c) {
+            double v = im.at(x, plotRow_, c);
+            return polarTimesCosine_ ? v * std::cos(glm::radians(degreesAt(x))) : v;
+        };
+        double hi = 0;
+        for (int x = 0; x < probe.width; ++x)
+            for (int c = 0; c < d.components; ++c)
+                for (const Image* im :
+                     {&probeSolution_, haveStudent ? &probeStudent_ : &probeSolution_}) {
+                    double v = valueAt(*im, x, c);
+                    if (std::isfinite(v)) hi = std::max(hi, v);
+                }
+        if (!(hi > 0)) hi = 1;
+        const ImU32 colors[3] = {IM_COL32(255, 110, 90, 255), IM_COL32(110, 230, 120, 255),
+                                 IM_COL32(110, 160, 255, 255)};
+        auto lobe = [&](const Image& im, int c) {
+            std::vector<ImVec2> points;
+            for (int x = 0; x < probe.width; ++x) {
+                double v = valueAt(im, x, c);
+                points.push_back(at(degreesAt(x), std::isfinite(v) ? std::max(v, 0.0) / hi : 0));
+            }
+            return points;
+        };
+        for (int c = 0; c < d.components; ++c) {
+            auto solution = lobe(probeSolution_, c);
+            ImU32 col = d.components == 1 ? IM_COL32(255, 210, 90, 255) : colors[c];
+            dl->AddPolyline(solution.data(), int(solution.size()), col, 0, 3.0f);
+            if (haveStudent) {
+                auto student = lobe(probeStudent_, c);
+                dl->AddPolyline(student.data(), int(student.size()), IM_COL32(255, 255, 255, 200),
+                                0, 1.2f);
+            }
+        }
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "outer ring: %.3g", hi);
+        dl->AddText(ImVec2(p.x + 4, p.y + 2), label, buf);
+        ImGui::TextDisabled("thick: solution%s; length: value at that light direction",
+                            haveStudent ? ", thin white: your function" : "");
     }
 
     // Every program compiled so far (the cache compiles each recipe once per define set, so a
@@ -1224,8 +1308,10 @@ private:
     int current_ = 0;
     int view_ = 0;
     std::string sceneName_, sceneError_, renderError_, compileLog_, shownLog_, messages_, handout_;
-    std::string openTab_;  // --tab, for the first frame
-    fs::path model_;       // the glTF model shown, lit like the scene (empty: the scene itself)
+    std::string openTab_;    // --tab, for the first frame
+    bool polarPlot_ = true;  // probes over the light's angle: the row as a lobe
+    bool polarTimesCosine_ = true;
+    fs::path model_;  // the glTF model shown, lit like the scene (empty: the scene itself)
     // What is on screen, for the chooser to return to when a file does not load.
     std::string shownSceneName_;
     fs::path shownModel_;

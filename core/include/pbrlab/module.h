@@ -93,6 +93,10 @@ struct Probe {
     std::string xAxis, yAxis;  // what x and y mean, for plots and reports
     int width = 65, height = 65;
     std::function<Surface(double x, double y)> at;
+    // When x sweeps the light's angle from N in the plane of incidence (x = 0: -90 degrees,
+    // x = 1: +90), plots may draw a row as a polar lobe. viewAngle: where V is, in degrees.
+    bool xIsLightAngle = false;
+    double viewAngle = 0;
 };
 
 // The plane-of-incidence probe the specular steps share: N = +z, V 60 degrees from N, L swept
@@ -105,6 +109,8 @@ inline Probe planeOfIncidenceProbe(void (*material)(Surface&)) {
     p.yAxis = "roughness 0.05..1";
     p.width = 61;
     p.height = 39;
+    p.xIsLightAngle = true;
+    p.viewAngle = 60;
     p.at = [material](double x, double y) {
         const double theta = (x - 0.5) * std::numbers::pi, v = std::numbers::pi / 3;
         Surface s;
