@@ -374,6 +374,69 @@ TEST(Models, GltfWithSomeMapsCompilesExactlyThoseDefines) {
     EXPECT_EQ(all, (std::set<std::string>{"", "HAS_ALBEDO_MAP=1", "HAS_NORMAL_MAP=1"}));
 }
 
+TEST(Models, GltfMaterialsMeanWhatTheSpecificationSays) {
+    // One triangle, every map a constant 8-bit colour (filtering cannot change a constant),
+    // each with a factor: what reaches the G-buffer must be glTF's factor x map, from the
+    // right channels, with the right colour space.
+    test::TempDir dir;
+    auto constant = [&](const char* name, glm::dvec3 codes, bool srgb) {
+        Image im;
+        im.width = im.height = 2;
+        im.channels = 3;
+        for (int i = 0; i < 4; ++i)
+            for (int c = 0; c < 3; ++c) im.pixels.push_back(float(codes[c] / 255));
+        writeImage(dir.path / name, im, FileDepth::Uint8, srgb);
+    };
+    constant("base.png", {128, 64, 255}, true);
+    constant("orm.png", {51, 64, 191}, false);  // R = occlusion, G = roughness, B = metallic
+    constant("normal.png", {255, 128, 200}, false);
+    constant("emissive.png", {255, 255, 255}, true);
+    fs::path file =
+        writeTriangleGltf(dir, R"({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 1, 0.25, 1],
+                   "baseColorTexture": {"index": 0}, "metallicFactor": 0.5,
+                   "roughnessFactor": 0.8, "metallicRoughnessTexture": {"index": 1}},
+                 "occlusionTexture": {"index": 1, "strength": 0.5},
+                 "normalTexture": {"index": 2, "scale": 0.5},
+                 "emissiveFactor": [0.2, 0.4, 0.6], "emissiveTexture": {"index": 3}})",
+                          R"({"uri": "base.png"}, {"uri": "orm.png"}, {"uri": "normal.png"},
+           {"uri": "emissive.png"})",
+                          R"({"source": 0}, {"source": 1}, {"source": 2}, {"source": 3})");
+    Headless h;
+    Scene scene = modelScene(h, file);
+    auto covered = [&](const std::string& id) {
+        const LoadedModule& m = h.modules.find(id);
+        RenderResult r =
+            h.renderer.renderScene(m, ParamValues(m.desc->params), scene, {}, 48, 48, true);
+        std::vector<Surface> out;
+        for (const Surface& s : r.surfaces)
+            if (s.covered) out.push_back(s);
+        return out;
+    };
+    auto srgb = [](double code) {
+        double c = code / 255;
+        return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+    };
+    const std::vector<Surface> shaded = covered("reflectance");
+    ASSERT_GT(shaded.size(), 50u);
+    for (const Surface& s : shaded) {
+        EXPECT_NEAR(s.albedo.r, 0.5 * srgb(128), 1e-5);
+        EXPECT_NEAR(s.albedo.g, 1.0 * srgb(64), 1e-5);
+        EXPECT_NEAR(s.albedo.b, 0.25 * srgb(255), 1e-5);
+        EXPECT_NEAR(s.roughness, 0.8 * 64 / 255, 1e-5);       // G
+        EXPECT_NEAR(s.metallic, 0.5 * 191 / 255, 1e-5);       // B
+        EXPECT_NEAR(s.ao, 1 + 0.5 * (51.0 / 255 - 1), 1e-5);  // R, with strength
+        EXPECT_NEAR(s.emissive.r, 0.2, 1e-5);                 // sRGB white decodes to 1
+        EXPECT_NEAR(s.emissive.g, 0.4, 1e-5);
+        EXPECT_NEAR(s.emissive.b, 0.6, 1e-5);
+    }
+    for (const Surface& s : covered("normalmap")) {
+        // x and y scaled about the middle of the texel range, z as stored.
+        EXPECT_NEAR(s.normalTexel.x, (2 * 255.0 / 255 - 1) * 0.5 * 0.5 + 0.5, 1e-5);
+        EXPECT_NEAR(s.normalTexel.y, (2 * 128.0 / 255 - 1) * 0.5 * 0.5 + 0.5, 1e-5);
+        EXPECT_NEAR(s.normalTexel.z, 200.0 / 255, 1e-5);
+    }
+}
+
 TEST(Models, ModelIsFramedAndLitLikeTheBaseScene) {
     Scene base = loadScene(fs::path(PBRLAB_SOURCE_DIR) / "assets/scenes/sphere.json");
     ModelData grid = loadGltf(kModels / "sphere-grid.glb");
