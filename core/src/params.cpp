@@ -76,6 +76,10 @@ ParamDecl directionParam(std::string name, glm::dvec3 def, std::string desc, Par
     return d;
 }
 
+ParamDecl lightDirectionParam(std::string desc) {
+    return directionParam("light_dir", {5, 5, 8}, std::move(desc), ParamBinding::LightDirection);
+}
+
 std::string ParamDecl::typeName() const {
     switch (type) {
         case ParamType::Float:

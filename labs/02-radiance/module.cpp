@@ -12,9 +12,7 @@ ModuleDesc describeModule() {
     d.lab = "direct";
     d.title = "Point-light radiance (inverse square)";
     d.function = "vec3 pointLightRadiance(vec3 lightColor, vec3 lightPos, vec3 worldPos)";
-    d.params = {directionParam("light_dir", {5, 5, 8},
-                               "Direction from the scene centre to the light (moves light 0)",
-                               ParamBinding::LightDirection)};
+    d.params = {lightDirectionParam()};
     d.components = 3;
     d.display = {DisplayMode::HdrColor, 0, 1};
     // Float rounding of a difference, a dot and a division: measured <= 3.2e-7 relative;

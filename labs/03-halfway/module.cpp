@@ -16,9 +16,7 @@ ModuleDesc describeModule() {
     d.lab = "direct";
     d.title = "Half vector H";
     d.function = "vec3 halfwayVector(vec3 L, vec3 V)";
-    d.params = {directionParam("light_dir", {5, 5, 8},
-                               "Direction from the scene centre to the light (moves light 0)",
-                               ParamBinding::LightDirection)};
+    d.params = {lightDirectionParam()};
     d.components = 3;
     d.nonNegative = false;  // a direction: components are signed
     d.display = {DisplayMode::SignedVector, -1, 1};

@@ -14,9 +14,7 @@ ModuleDesc describeModule() {
     d.lab = "direct";
     d.title = "Lambert cosine N·L";
     d.function = "float lambertCosine(vec3 N, vec3 L)";
-    d.params = {directionParam("light_dir", {5, 5, 8},
-                               "Direction from the scene centre to the light (moves light 0)",
-                               ParamBinding::LightDirection)};
+    d.params = {lightDirectionParam()};
     d.components = 1;
     d.display = {DisplayMode::Grey, 0, 1};
     // Float dot products of unit vectors are off by a few 1e-8 from double (measured max

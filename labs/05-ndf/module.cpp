@@ -16,9 +16,7 @@ ModuleDesc describeModule() {
     d.lab = "direct";
     d.title = "GGX normal distribution D";
     d.function = "float distributionGGX(vec3 N, vec3 H, float roughness)";
-    d.params = {directionParam("light_dir", {5, 5, 8},
-                               "Direction from the scene centre to the light (moves light 0)",
-                               ParamBinding::LightDirection)};
+    d.params = {lightDirectionParam()};
     d.components = 1;
     d.display = {DisplayMode::FalseColor, 0.01, 100, true};  // D spans decades: log scale
     d.needs = NeedsRoughness;

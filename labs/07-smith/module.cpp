@@ -14,9 +14,7 @@ ModuleDesc describeModule() {
     d.lab = "direct";
     d.title = "Smith shadowing-masking G";
     d.function = "float geometrySmith(vec3 N, vec3 V, vec3 L, float roughness)";
-    d.params = {directionParam("light_dir", {5, 5, 8},
-                               "Direction from the scene centre to the light (moves light 0)",
-                               ParamBinding::LightDirection)};
+    d.params = {lightDirectionParam()};
     d.components = 1;
     d.display = {DisplayMode::Grey, 0, 1};
     d.needs = NeedsRoughness;

@@ -27,9 +27,7 @@ ModuleDesc describeModule() {
     d.function = "vec3 fresnelSchlick(float cosTheta, vec3 F0)";
     d.params = {enumParam("cosine", kNdotV, {"NdotV", "HdotV"},
                           "Angle fed to fresnelSchlick: N·V (the rim) or H·V (as in the BRDF)"),
-                directionParam("light_dir", {5, 5, 8},
-                               "Direction from the scene centre to the light (H·V only)",
-                               ParamBinding::LightDirection)};
+                lightDirectionParam("Direction from the scene centre to the light (H·V only)")};
     d.components = 3;
     d.display = {DisplayMode::LinearColor, 0, 1};
     d.needs = NeedsAlbedo | NeedsMetallic;

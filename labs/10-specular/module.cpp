@@ -17,9 +17,7 @@ ModuleDesc describeModule() {
     d.lab = "direct";
     d.title = "Cook-Torrance specular D G F / (4 N·V N·L)";
     d.function = "vec3 cookTorranceSpecular(vec3 N, vec3 V, vec3 L, vec3 F0, float roughness)";
-    d.params = {directionParam("light_dir", {5, 5, 8},
-                               "Direction from the scene centre to the light (moves light 0)",
-                               ParamBinding::LightDirection)};
+    d.params = {lightDirectionParam()};
     d.components = 3;
     d.display = {DisplayMode::FalseColor, 1e-4, 10, true};
     d.needs = NeedsAlbedo | NeedsMetallic | NeedsRoughness;

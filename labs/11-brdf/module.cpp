@@ -18,9 +18,7 @@ ModuleDesc describeModule() {
     d.function =
         "vec3 cookTorranceBRDF(vec3 N, vec3 V, vec3 L, vec3 albedo, float metallic, float "
         "roughness)";
-    d.params = {directionParam("light_dir", {5, 5, 8},
-                               "Direction from the scene centre to the light (moves light 0)",
-                               ParamBinding::LightDirection)};
+    d.params = {lightDirectionParam()};
     d.components = 3;
     d.display = {DisplayMode::HdrColor, 0, 1};
     d.needs = NeedsAlbedo | NeedsMetallic | NeedsRoughness;

@@ -40,6 +40,10 @@ ParamDecl colorParam(std::string name, glm::dvec3 def, std::string desc, double 
 ParamDecl enumParam(std::string name, int def, std::vector<std::string> choices, std::string desc);
 ParamDecl directionParam(std::string name, glm::dvec3 def, std::string desc,
                          ParamBinding binding = ParamBinding::Uniform);
+// "light_dir", the direct-lab steps' light: bound to the scene's light 0, default (5, 5, 8),
+// where the default scene puts it (so the default view shows the scene as authored).
+ParamDecl lightDirectionParam(
+    std::string desc = "Direction from the scene centre to the light (moves light 0)");
 
 // Current values of a module's parameters (all present; defaults until set).
 class ParamValues {
