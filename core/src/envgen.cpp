@@ -9,6 +9,7 @@
 #include <string>
 
 #include "pbrlab/error.h"
+#include "procedural.h"
 
 namespace pbrlab {
 
@@ -21,33 +22,11 @@ using u32 = std::uint32_t;
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 
-// ---- integer hash noise (pure functions of their arguments) ---------------------------------
-
-// A 32-bit avalanche mix (xor-shift / multiply rounds).
-u32 mix(u32 x) {
-    x ^= x >> 16;
-    x *= 0x7feb352dU;
-    x ^= x >> 15;
-    x *= 0x846ca68bU;
-    x ^= x >> 16;
-    return x;
-}
+// ---- integer hash noise (pure functions of their arguments) ----
+using namespace procedural;
 
 u32 hash(u32 seed, int a, int b, int c = 0) {
     return mix(seed ^ mix(u32(a) ^ mix(u32(b) ^ mix(u32(c) + 0x9e3779b9U))));
-}
-
-// [0, 1) from the top 24 bits (exact in a double).
-double unit(u32 h) {
-    return double(h >> 8) * (1.0 / 16777216.0);
-}
-
-double smoothstep(double e0, double e1, double x) {
-    const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);
-}
-double fade(double t) {
-    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
 }
 
 // Value noise on the integer lattice of 3D space, trilinear with a quintic fade, in [0, 1).
@@ -56,7 +35,6 @@ double valueNoise3(const dvec3& p, u32 seed) {
     const int x = int(f.x), y = int(f.y), z = int(f.z);
     const double tx = fade(p.x - f.x), ty = fade(p.y - f.y), tz = fade(p.z - f.z);
     auto corner = [&](int dx, int dy, int dz) { return unit(hash(seed, x + dx, y + dy, z + dz)); };
-    auto lerp = [](double a, double b, double t) { return a + (b - a) * t; };
     const double c00 = lerp(corner(0, 0, 0), corner(1, 0, 0), tx);
     const double c10 = lerp(corner(0, 1, 0), corner(1, 1, 0), tx);
     const double c01 = lerp(corner(0, 0, 1), corner(1, 0, 1), tx);

@@ -10,6 +10,7 @@
 
 #include "pbrlab/error.h"
 #include "pbrlab/image.h"
+#include "procedural.h"
 
 namespace pbrlab {
 
@@ -19,37 +20,14 @@ using u32 = std::uint32_t;
 
 // ---- integer hash noise (pure functions of their arguments: same bytes on every run) ----
 
-// A 32-bit avalanche mix (xor-shift / multiply rounds).
-u32 mix(u32 x) {
-    x ^= x >> 16;
-    x *= 0x7feb352dU;
-    x ^= x >> 15;
-    x *= 0x846ca68bU;
-    x ^= x >> 16;
-    return x;
-}
+using namespace procedural;
 
 u32 hash(u32 a, u32 b = 0, u32 c = 0) {
     return mix(a ^ mix(b ^ mix(c + 0x9e3779b9U)));
 }
 
-// [0, 1) from the top 24 bits (exact in a double).
-double unit(u32 h) {
-    return double(h >> 8) * (1.0 / 16777216.0);
-}
-
 double clamp01(double x) {
     return std::clamp(x, 0.0, 1.0);
-}
-double lerp(double a, double b, double t) {
-    return a + (b - a) * t;
-}
-double smoothstep(double e0, double e1, double x) {
-    const double t = clamp01((x - e0) / (e1 - e0));
-    return t * t * (3.0 - 2.0 * t);
-}
-double fade(double t) {
-    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
 }
 
 // Value noise with fu x fv lattice cells over the unit square, periodic (the texture tiles).
