@@ -340,23 +340,33 @@ std::unique_ptr<IblMaps> IblPrecompute::build(const Image& equirect, const IblSe
     return maps;
 }
 
-Image IblPrecompute::readCubeFace(GLuint cube, int face, int mip, int size) {
-    const int faceSize = std::max(size >> mip, 1);
+namespace {
+
+// Reads level `level` of a 2D texture or cube face (`target`) back as RGBA floats, memory row 0
+// first: for a cube face its t = 0 row, the top of the face image.
+Image readAttachment(GLenum target, GLuint texture, int level, int width, int height) {
     gl::Handle fbo = gl::makeFramebuffer();
     gl::BindFramebuffer(GL_FRAMEBUFFER, fbo.id());
-    gl::FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
-                             GL_TEXTURE_CUBE_MAP_POSITIVE_X + face, cube, mip);
+    gl::FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target, texture, level);
     Image image;
-    image.width = image.height = faceSize;
+    image.width = width;
+    image.height = height;
     image.channels = 4;
-    image.pixels.resize(size_t(faceSize) * faceSize * 4);
+    image.pixels.resize(size_t(width) * height * 4);
     gl::ReadBuffer(GL_COLOR_ATTACHMENT0);
     gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
-    // Memory row 0 of a cube face is its t = 0 row, which is the top of the face image.
-    gl::ReadPixels(0, 0, faceSize, faceSize, GL_RGBA, GL_FLOAT, image.pixels.data());
+    gl::ReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, image.pixels.data());
     gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
-    gl::checkError("reading a cube face");
+    gl::checkError("reading a texture back");
     return image;
+}
+
+}  // namespace
+
+Image IblPrecompute::readCubeFace(GLuint cube, int face, int mip, int size) {
+    const int faceSize = std::max(size >> mip, 1);
+    return readAttachment(GLenum(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face), cube, mip, faceSize,
+                          faceSize);
 }
 
 std::vector<std::vector<Image>> IblPrecompute::readCube(GLuint cube, int size, int levels) {
@@ -370,20 +380,7 @@ std::vector<std::vector<Image>> IblPrecompute::readCube(GLuint cube, int size, i
 }
 
 Image IblPrecompute::readTexture(GLuint texture, int width, int height) {
-    gl::Handle fbo = gl::makeFramebuffer();
-    gl::BindFramebuffer(GL_FRAMEBUFFER, fbo.id());
-    gl::FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
-    Image image;
-    image.width = width;
-    image.height = height;
-    image.channels = 4;
-    image.pixels.resize(size_t(width) * height * 4);
-    gl::ReadBuffer(GL_COLOR_ATTACHMENT0);
-    gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
-    gl::ReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, image.pixels.data());
-    gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
-    gl::checkError("reading a texture");
-    return image;
+    return readAttachment(GL_TEXTURE_2D, texture, 0, width, height);
 }
 
 }  // namespace pbrlab
