@@ -52,6 +52,16 @@ Scene modelScene(const Headless& h, const fs::path& model) {
     return sceneForModel(loadScene(h.paths.scene("sphere")), model);
 }
 
+// A 2x2 8-bit RGB PNG of one colour (code values 0..255): filtering cannot change it.
+void writeConstantPng(const fs::path& file, glm::dvec3 codes, bool srgb) {
+    Image im;
+    im.width = im.height = 2;
+    im.channels = 3;
+    for (int i = 0; i < 4; ++i)
+        for (int c = 0; c < 3; ++c) im.pixels.push_back(float(codes[c] / 255));
+    writeImage(file, im, FileDepth::Uint8, srgb);
+}
+
 // A one-triangle .gltf with an external buffer and the given material JSON and images.
 fs::path writeTriangleGltf(const test::TempDir& dir, const std::string& material,
                            const std::string& images, const std::string& textures) {
@@ -214,11 +224,7 @@ fs::path writeShapesGltf(const test::TempDir& dir, const std::string& meshes,
     std::memcpy(bin.data() + 64, fan, 60);
     std::ofstream(dir.path / "shapes.bin", std::ios::binary)
         .write(reinterpret_cast<const char*>(bin.data()), std::streamsize(bin.size()));
-    Image white;
-    white.width = white.height = 2;
-    white.channels = 3;
-    white.pixels.assign(12, 1.0f);
-    writeImage(dir.path / "base.png", white, FileDepth::Uint8, true);
+    writeConstantPng(dir.path / "base.png", {255, 255, 255}, true);
     return dir.write("shapes.gltf", R"({"asset": {"version": "2.0"},
   "buffers": [{"uri": "shapes.bin", "byteLength": 124}],
   "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
@@ -354,12 +360,8 @@ TEST(Models, TexturedModelCompilesExactlyTheMapsEachModuleReads) {
 
 TEST(Models, GltfWithSomeMapsCompilesExactlyThoseDefines) {
     test::TempDir dir;
-    Image grey;
-    grey.width = grey.height = 4;
-    grey.channels = 3;
-    grey.pixels.assign(48, 0.5f);
-    writeImage(dir.path / "base.png", grey, FileDepth::Uint8, true);
-    writeImage(dir.path / "normal.png", grey, FileDepth::Uint8);
+    writeConstantPng(dir.path / "base.png", {128, 128, 128}, true);
+    writeConstantPng(dir.path / "normal.png", {128, 128, 255}, false);
     fs::path file = writeTriangleGltf(
         dir, R"({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}},
                  "normalTexture": {"index": 1}})",
@@ -379,18 +381,11 @@ TEST(Models, GltfMaterialsMeanWhatTheSpecificationSays) {
     // each with a factor: what reaches the G-buffer must be glTF's factor x map, from the
     // right channels, with the right colour space.
     test::TempDir dir;
-    auto constant = [&](const char* name, glm::dvec3 codes, bool srgb) {
-        Image im;
-        im.width = im.height = 2;
-        im.channels = 3;
-        for (int i = 0; i < 4; ++i)
-            for (int c = 0; c < 3; ++c) im.pixels.push_back(float(codes[c] / 255));
-        writeImage(dir.path / name, im, FileDepth::Uint8, srgb);
-    };
-    constant("base.png", {128, 64, 255}, true);
-    constant("orm.png", {51, 64, 191}, false);  // R = occlusion, G = roughness, B = metallic
-    constant("normal.png", {255, 128, 200}, false);
-    constant("emissive.png", {255, 255, 255}, true);
+    writeConstantPng(dir.path / "base.png", {128, 64, 255}, true);
+    writeConstantPng(dir.path / "orm.png", {51, 64, 191},
+                     false);  // R = occlusion, G = roughness, B = metallic
+    writeConstantPng(dir.path / "normal.png", {255, 128, 200}, false);
+    writeConstantPng(dir.path / "emissive.png", {255, 255, 255}, true);
     fs::path file =
         writeTriangleGltf(dir, R"({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 1, 0.25, 1],
                    "baseColorTexture": {"index": 0}, "metallicFactor": 0.5,
