@@ -26,18 +26,7 @@ ModuleDesc describeModule() {
             ref::geometrySchlickGGX(std::max(glm::dot(s.normal, s.view), 0.0), s.roughness));
     };
     // x: N·X (here N·V) from 0 (grazing) to 1 (along the normal); y: roughness 0.05 to 1.
-    d.probe.xAxis = "N·V 0..1";
-    d.probe.yAxis = "roughness 0.05..1";
-    d.probe.width = 65;
-    d.probe.height = 65;
-    d.probe.at = [](double x, double y) {
-        Surface s;
-        s.covered = true;
-        s.normal = {0, 0, 1};
-        s.view = {std::sqrt(1 - x * x), 0, x};
-        s.roughness = 0.05 + 0.95 * y;
-        return s;
-    };
+    d.probe = viewCosineRoughnessProbe();
     return d;
 }
 

@@ -46,18 +46,7 @@ ModuleDesc describeModule() {
     // roughness from 0.05 to 1 (roughness 0 is scored by the robustness sweep). Bottom row =
     // smoothest, as uBrdfLut's t = roughness; the published LUT images put roughness 1 on top
     // too. N = +z, V in the xz-plane.
-    d.probe.xAxis = "N·V 0..1";
-    d.probe.yAxis = "roughness 0.05..1";
-    d.probe.width = 65;
-    d.probe.height = 65;
-    d.probe.at = [](double x, double y) {
-        Surface s;
-        s.covered = true;
-        s.normal = {0, 0, 1};
-        s.view = {std::sqrt(1 - x * x), 0, x};
-        s.roughness = 0.05 + 0.95 * y;
-        return s;
-    };
+    d.probe = viewCosineRoughnessProbe();
     // Bounds: A, B >= 0 and A + B <= 1 over the LUT (with F0 = 1 the specular lobe reflects
     // at most all the light: a white furnace). 1e-3 of slack for Monte Carlo noise at the
     // default sample count (the reference reaches 1.000000 at its maximum).

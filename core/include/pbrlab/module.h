@@ -99,6 +99,26 @@ struct Probe {
     double viewAngle = 0;
 };
 
+// N·V along x, from 0 (grazing) to 1 (along the normal); roughness 0.05..1 along y. N = +z,
+// V in the xz-plane. Shared by the steps that are functions of the view angle and roughness
+// only (g1, brdf_lut).
+inline Probe viewCosineRoughnessProbe() {
+    Probe p;
+    p.xAxis = "N·V 0..1";
+    p.yAxis = "roughness 0.05..1";
+    p.width = 65;
+    p.height = 65;
+    p.at = [](double x, double y) {
+        Surface s;
+        s.covered = true;
+        s.normal = {0, 0, 1};
+        s.view = {std::sqrt(1 - x * x), 0, x};
+        s.roughness = 0.05 + 0.95 * y;
+        return s;
+    };
+    return p;
+}
+
 // The plane-of-incidence probe the specular steps share: N = +z, V 60 degrees from N, L swept
 // in the same plane from -90 degrees (x = 0, grazing on the mirror side) through the mirror
 // direction (x = 1/6), N (x = 1/2) and V itself (x = 5/6) to +90 degrees; y = roughness
