@@ -19,7 +19,7 @@ TEST(Gltf, GeneratedSphereGridHasTheLessonsLayout) {
     ASSERT_EQ(m.primitives.size(), 49u);
     ASSERT_EQ(m.materials.size(), 49u);
     EXPECT_EQ(m.meshCount, 49);
-    EXPECT_EQ(m.imageCount, 0);
+    EXPECT_EQ(m.images.size(), 0u);
     for (const auto& p : m.primitives) {
         const ModelMaterial& mat = m.materials.at(size_t(p.material));
         glm::dvec3 at(p.transform[3]);

@@ -250,7 +250,6 @@ bool collectImage(tinygltf::Image* image, const int index, std::string*, std::st
     if (!image->uri.empty() && image->uri.rfind("data:", 0) != 0) {
         t.file = c->file.parent_path() / percentDecode(image->uri);
         t.key = t.file.string();
-        t.extension = t.file.extension().string();
     } else {
         t.key = c->file.string() + "#image " + std::to_string(index) +
                 (image->name.empty() ? "" : " (" + image->name + ")");
@@ -326,7 +325,6 @@ ModelData loadGltf(const fs::path& file) {
             data.warnings.push_back("extension " + extension +
                                     " is not supported: drawn without it");
     data.meshCount = int(model.meshes.size());
-    data.imageCount = int(model.images.size());
     auto image = [&](const tinygltf::TextureInfo& info, const std::string& what) {
         ModelMaterial::Map map;
         if (info.index < 0) return map;

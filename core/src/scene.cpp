@@ -44,7 +44,6 @@ struct Reader {
         TextureSource t;
         t.file = fs::weakly_canonical(p);
         t.key = t.file.string();
-        t.extension = t.file.extension().string();
         return t;
     }
     void onlyKnown(const json& j, const std::string& field,
@@ -220,7 +219,6 @@ Scene loadScene(const fs::path& file) {
             } catch (const Error& e) {
                 r.fail(f + ".model", e.what());
             }
-            obj.primitive = "model";
             obj.model = addModel(scene, model);
         }
         if (o.contains("translate")) obj.translate = r.vec3(o["translate"], f + ".translate");
@@ -289,7 +287,6 @@ Scene sceneForModel(const Scene& base, const fs::path& modelFile) {
     scene.models.clear();
     scene.materials.clear();
     ObjectDesc object;
-    object.primitive = "model";
     object.model = addModel(scene, model);
     object.material = -1;
     scene.objects.push_back(object);

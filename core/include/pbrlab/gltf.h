@@ -47,7 +47,7 @@ struct ModelData {
     std::vector<ModelPrimitive> primitives;
     std::vector<ModelMaterial> materials;
     std::vector<TextureSource> images;  // not decoded (see above)
-    int meshCount = 0, imageCount = 0;
+    int meshCount = 0;
     std::vector<std::string> warnings;  // features read but not rendered (e.g. TEXCOORD_1)
 
     size_t vertexCount() const;

@@ -53,8 +53,7 @@ struct SceneModel {
 };
 
 struct ObjectDesc {
-    std::string primitive = "sphere";  // "sphere" or "model"
-    int model = -1;                    // index into Scene::models when a model
+    int model = -1;  // index into Scene::models; -1: the built-in unit sphere
     glm::dvec3 translate{0};
     double scale = 1;
     // Index into Scene::materials; for a model -1 keeps the model's own materials, any other
