@@ -2,8 +2,8 @@
 // view, CPU reference.
 #include <gtest/gtest.h>
 
-#include "check.h"
 #include "gl/context.h"
+#include "grading.h"
 #include "ibl.h"
 #include "pbrlab/error.h"
 #include "pbrlab/log.h"
@@ -19,10 +19,13 @@ struct Headless {
     ModuleRegistry modules{PBRLAB_MODULE_DIR, paths.labs()};
     LabRenderer renderer{paths};
 
-    CheckResult check(const std::string& id, const StudentSource& source = {}) {
-        const LoadedModule& m = modules.find(id);
-        Scene scene = loadScene(paths.scene(m.desc->scene));
-        return checkModule(renderer, m, ParamValues(m.desc->params), scene, source, 96, 96);
+    StepResult check(const std::string& id, const StudentSource& source = {}) {
+        return gradeStep(renderer, modules.find(id), paths, source, GradeSettings{});
+    }
+    static const CheckReport& named(const StepResult& r, const std::string& name) {
+        for (const CheckReport& c : r.checks)
+            if (c.name == name) return c;
+        throw std::runtime_error("no check named " + name);
     }
 };
 
@@ -35,20 +38,21 @@ TEST(Headless, ContextIsOpenGL45Core) {
 
 TEST(Headless, NdotlSolutionMatchesCpuReference) {
     Headless h;
-    CheckResult r = h.check("ndotl");
-    EXPECT_TRUE(r.passed) << describe(r.scene, h.modules.find("ndotl").desc->tolerance) << "\n"
-                          << describe(r.probe, h.modules.find("ndotl").desc->tolerance);
-    EXPECT_GT(r.scene.compared, 96 * 96 / 3);  // the sphere covers a good part of the frame
-    EXPECT_EQ(r.probe.compared, 65 * 17);
+    StepResult r = h.check("ndotl");
+    EXPECT_TRUE(r.passed) << r.message;
+    // the sphere covers a good part of the frame
+    EXPECT_GT(Headless::named(r, "scene sphere").points, 96 * 96 / 3);
+    EXPECT_EQ(Headless::named(r, "probe").points, 65 * 17);
 }
 
 TEST(Headless, StudentWithoutClampIsCaught) {
     Headless h;
     test::TempDir kit;
     kit.write("ndotl.glsl", "float lambertCosine(vec3 N, vec3 L) { return dot(N, L); }\n");
-    CheckResult r = h.check("ndotl", {kit.path});
+    StepResult r = h.check("ndotl", {kit.path});
     EXPECT_FALSE(r.passed);
-    EXPECT_GT(r.probe.negativeCount, 0);  // the half of the probe where L is below the surface
+    // the half of the probe where L is below the surface
+    EXPECT_GT(Headless::named(r, "probe").negative, 0);
 }
 
 TEST(Headless, StudentFileWithSyntaxErrorNamesFileAndLine) {
@@ -73,8 +77,9 @@ TEST(Headless, ProgramsAreCachedByDefineSet) {
     int compiles = h.renderer.programs().compileCount();
     h.check("ndotl");
     EXPECT_EQ(h.renderer.programs().compileCount(), compiles);
-    // G-buffer, scene view and probe view (PBRLAB_PROBE): three permutations.
-    EXPECT_EQ(compiles, 3);
+    // G-buffer; scene views for one and four lights (the lesson's grid); probe views for one,
+    // three (does it read the scene's lights?) and five (the stability sweep's) lights.
+    EXPECT_EQ(compiles, 6);
 }
 
 TEST(Headless, NdotlLoadsNoTextures) {

@@ -1,12 +1,17 @@
-// Stepwise checking must accept correct solutions written differently and reject typical
-// mistakes at their own step. Correct variants live in tests/variants/<id>/correct_*.glsl;
-// the typical mistakes in labs/NN-id/mistakes/*.glsl, where the grader also reads them to name
-// a student's mistake (tests/variants/<id>/mistake_*.glsl are still read, for modules in
-// progress). Each is a complete student file, checked as `pbrlab check <id> --submission` does.
+// Correct solutions written differently must pass and typical mistakes must fail, at their
+// own step, graded exactly as a submission is (gradeSubmission: a child process, every check).
+//   tests/variants/<id>/correct_*.glsl   correct alternatives (other frames, sequences,
+//                                        quadratures, epsilons, the lesson's code)
+//   labs/NN-id/mistakes/*.glsl           the typical mistakes the grader also names
+//   tests/exploits/<id>/*.glsl           shortcuts found by reading the grader; a line
+//                                        "// expect: TEXT" says what the message must name
+// A mistake must fail by a margin, not by a hair: its worst check is at least twice outside
+// the band (or an invariant, convergence or contract check fails).
 #include <gtest/gtest.h>
 
-#include "check.h"
-#include "gl/context.h"
+#include <fstream>
+
+#include "grade.h"
 #include "pbrlab/contract.h"
 #include "test_support.h"
 
@@ -15,81 +20,115 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path variantsRoot() {
-    return fs::path(PBRLAB_SOURCE_DIR) / "tests" / "variants";
-}
-
 struct Variant {
-    std::string module, file;  // file: "correct_x.glsl" or "mistake_x.glsl"
+    std::string module, kind, file;  // kind: correct | mistake | exploit
     fs::path path;
 };
 void PrintTo(const Variant& v, std::ostream* os) {
-    *os << v.module << "/" << v.file;
+    *os << v.module << "/" << v.kind << "/" << v.file;
 }
 
 std::vector<Variant> allVariants() {
     std::vector<Variant> v;
-    if (fs::exists(variantsRoot()))
-        for (const auto& dir : fs::directory_iterator(variantsRoot()))
+    const fs::path root = fs::path(PBRLAB_SOURCE_DIR) / "tests";
+    for (const char* kind : {"variants", "exploits"}) {
+        if (!fs::exists(root / kind)) continue;
+        for (const auto& dir : fs::directory_iterator(root / kind))
             for (const auto& f : fs::directory_iterator(dir.path()))
                 if (f.path().extension() == ".glsl")
-                    v.push_back(
-                        {dir.path().filename().string(), f.path().filename().string(), f.path()});
+                    v.push_back({dir.path().filename().string(),
+                                 std::string(kind) == "exploits" ? "exploit" : "correct",
+                                 f.path().filename().string(), f.path()});
+    }
     for (const auto& step : contractSteps()) {
         fs::path dir = fs::path(PBRLAB_SOURCE_DIR) / "labs" / step.folder() / "mistakes";
         if (!fs::exists(dir)) continue;
         for (const auto& f : fs::directory_iterator(dir))
             if (f.path().extension() == ".glsl")
-                v.push_back({step.id, "mistake_" + f.path().filename().string(), f.path()});
+                v.push_back({step.id, "mistake", f.path().filename().string(), f.path()});
     }
     std::sort(v.begin(), v.end(), [](const Variant& a, const Variant& b) {
-        return a.module + a.file < b.module + b.file;
+        return a.module + a.kind + a.file < b.module + b.kind + b.file;
     });
     return v;
 }
 
-struct Session {
-    std::unique_ptr<GlContext> context = createHeadlessContext();
+// What the file says the message must contain ("// expect: pi/4"), or "".
+std::string expectation(const fs::path& file) {
+    std::ifstream in(file);
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("// expect: ", 0) == 0) return line.substr(11);
+    return "";
+}
+
+struct Grader {
     DataPaths paths{PBRLAB_SOURCE_DIR};
     ModuleRegistry modules{PBRLAB_MODULE_DIR, paths.labs()};
-    LabRenderer renderer{paths};
 };
+
+// How clearly a failed grade failed: the worst band excess of its failed value checks, or
+// infinity when an invariant, convergence or contract check failed.
+double failureMargin(const ModuleGrade& g) {
+    double margin = 0;
+    for (const auto& c : g.checks) {
+        if (c.value("passed", true) || !c.value("deducted", true)) continue;
+        if (c.value("kind", "") == "values")
+            margin = std::max(margin, double(c.value("worst_excess", 0.0)));
+        else
+            margin = 1e30;
+    }
+    return margin;
+}
 
 class VariantTest : public testing::TestWithParam<Variant> {};
 
 }  // namespace
 
-TEST_P(VariantTest, CorrectPassesAndMistakeFailsAtItsOwnStep) {
+TEST_P(VariantTest, CorrectPassesMistakeFailsAtItsOwnStepByAMargin) {
     const Variant& v = GetParam();
-    Session s;
-    const LoadedModule& m = s.modules.find(v.module);
+    Grader g;
     test::TempDir kit;
     fs::copy(v.path, kit.path / (v.module + ".glsl"));
-    Scene scene = loadScene(s.paths.scene(m.desc->scene));
-    CheckResult r = checkModule(s.renderer, m, ParamValues(m.desc->params), scene, {kit.path}, 128,
-                                128);  // a mistake that does not compile throws: test fails
-    std::string details = "scene: " + describe(r.scene, m.desc->tolerance) +
-                          "\nprobe: " + describe(r.probe, m.desc->tolerance);
-    if (v.file.rfind("correct_", 0) == 0)
-        EXPECT_TRUE(r.passed) << details;
-    else
-        EXPECT_FALSE(r.passed) << details;
+    GradeOptions o;
+    o.submission = fs::canonical(kit.path);
+    o.modules = {v.module};
+    o.timeoutSeconds = 300;
+    const GradeReport r = gradeSubmission(g.modules, g.paths, o);
+    ASSERT_EQ(r.modules.size(), 1u);
+    const ModuleGrade& m = r.modules[0];
+    if (v.kind == "correct") {
+        EXPECT_EQ(m.status, "passed") << m.message;
+        return;
+    }
+    // A mistake that does not compile proves nothing about the grader.
+    EXPECT_EQ(m.status, "failed") << m.message;
+    const double margin = failureMargin(m);
+    std::printf("[ measured ] %s/%s: fails by %.3g x the tolerance\n", v.module.c_str(),
+                v.file.c_str(), margin);
+    EXPECT_GE(margin, 2.0) << m.message;
+    if (const std::string e = expectation(v.path); !e.empty()) {
+        EXPECT_NE(m.message.find(e), std::string::npos)
+            << "expected \"" << e << "\" in: " << m.message;
+    }
 }
 
 TEST(Variants, EveryModuleHasTwoCorrectVariantsAndThreeMistakes) {
-    Session s;
-    for (const auto& m : s.modules.modules()) {
+    Grader g;
+    ASSERT_EQ(g.modules.modules().size(), contractSteps().size());  // all 21 load
+    for (const auto& m : g.modules.modules()) {
         int correct = 0, mistakes = 0;
         for (const auto& v : allVariants())
-            if (v.module == m.desc->id) (v.file.rfind("correct_", 0) == 0 ? correct : mistakes)++;
-        EXPECT_GE(correct, 2) << m.desc->id;
+            if (v.module == m.desc->id) (v.kind == "correct" ? correct : mistakes)++;
+        // Estimators: other frames, sequences, quadratures, filtered sampling, plain MC.
+        EXPECT_GE(correct, m.desc->estimator ? 3 : 2) << m.desc->id;
         EXPECT_GE(mistakes, 3) << m.desc->id;
     }
 }
 
 INSTANTIATE_TEST_SUITE_P(Labs, VariantTest, testing::ValuesIn(allVariants()),
                          [](const testing::TestParamInfo<Variant>& info) {
-                             std::string name = info.param.module + "_" + info.param.file;
+                             std::string name =
+                                 info.param.module + "_" + info.param.kind + "_" + info.param.file;
                              name = name.substr(0, name.size() - 5);  // drop .glsl
                              for (char& c : name)
                                  if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';

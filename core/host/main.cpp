@@ -11,14 +11,17 @@
 #include <fstream>
 #include <iostream>
 #include <set>
+#include <thread>
 
-#include "check.h"
 #include "converge.h"
+#include "evaluate.h"
 #include "gl/context.h"
 #include "grade.h"
+#include "grading.h"
 #include "gui/gui.h"
 #include "ibl.h"
 #include "kit.h"
+#include "mutation.h"
 #include "pbrlab/contract.h"
 #include "pbrlab/display.h"
 #include "pbrlab/envgen.h"
@@ -168,22 +171,25 @@ int runRender(const Options& o, const std::string& id, const std::string& submis
     return 0;
 }
 
+// Grades one step in this process, exactly as `pbrlab grade` does in its child (gradeStep),
+// and prints every check. --set, --scene and --model pick what the extra picture shows.
 int runCheck(const Options& o, const std::string& id, const std::string& submission,
-             bool cumulative, const std::vector<std::string>& sets, const std::string& size,
-             const std::string& sceneName, const std::string& model) {
+             bool cumulative, const std::string& size, std::uint64_t seed) {
     Session session(o);
     const LoadedModule& m = session.modules->find(id);
-    ParamValues values = parseSets(*m.desc, sets);
     Size s = parseSize(size);
-    Scene scene = sceneFor(session, *m.desc, sceneName, model);
-    CheckResult r = checkModule(*session.renderer, m, values, scene,
-                                studentSource(submission, cumulative, id), s.width, s.height);
-    const Tolerance& t = m.desc->tolerance;
-    std::cout << id << " scene (" << scene.file.filename().string() << "): " << describe(r.scene, t)
-              << "\n"
-              << id << " probe (x: " << m.desc->probe.xAxis << "; y: " << m.desc->probe.yAxis
-              << "): " << describe(r.probe, t) << "\n"
-              << id << ": " << (r.passed ? "PASS" : "FAIL") << "\n";
+    GradeSettings settings;
+    settings.size = std::min(s.width, s.height);
+    settings.seed = seed;
+    const StepResult r = gradeStep(*session.renderer, m, session.paths,
+                                   studentSource(submission, cumulative, id), settings);
+    for (const CheckReport& c : r.checks) {
+        const char* mark = c.passed ? "ok  " : c.deducted ? "FAIL" : "note";
+        std::printf("%s %-12s %s: %s\n", mark, c.kind.c_str(), c.name.c_str(), c.detail.c_str());
+        if (!c.passed && !c.worstAt.empty()) std::printf("     worst at %s\n", c.worstAt.c_str());
+    }
+    if (!r.passed) std::printf("%s\n", r.message.c_str());
+    std::printf("%s: %s (%.1f s)\n", id.c_str(), r.passed ? "PASS" : "FAIL", r.seconds);
     if (o.stats) printStats(session);
     return r.passed ? 0 : 1;
 }
@@ -191,8 +197,8 @@ int runCheck(const Options& o, const std::string& id, const std::string& submiss
 int runStability(const Options& o, const std::vector<std::string>& ids,
                  const std::string& submission) {
     Session session(o);
-    std::printf("%-12s %8s %8s %8s %8s %10s %10s  %s\n", "module", "gpu NaN", "gpu Inf", "gpu neg",
-                "ref bad", "max err", "mean err", "first problem");
+    std::printf("%-12s %8s %8s %8s %8s %12s  %s\n", "module", "gpu NaN", "gpu Inf", "gpu neg",
+                "ref bad", "worst/tol", "first problem");
     int bad = 0;
     for (const auto& m : session.modules->modules()) {
         if (!ids.empty() && std::find(ids.begin(), ids.end(), m.desc->id) == ids.end()) continue;
@@ -204,12 +210,14 @@ int runStability(const Options& o, const std::vector<std::string>& ids,
         int negatives = m.desc->nonNegative ? r.gpu.negativeCount : 0;
         int refBad = r.referenceNonFinite + r.referenceNegative;
         bad += r.gpu.nonFinite() + negatives + refBad;
-        std::printf("%-12s %8d %8d %8d %8d %10.3g %10.3g  %s\n", m.desc->id.c_str(), r.gpu.nanCount,
-                    r.gpu.infCount, negatives, refBad, r.gpu.maxError, r.gpu.meanError,
+        std::printf("%-12s %8d %8d %8d %8d %12.3g  %s\n", m.desc->id.c_str(), r.gpu.nanCount,
+                    r.gpu.infCount, negatives, refBad, r.gpu.worstExcess,
                     r.firstProblem.empty() ? "-" : r.firstProblem.c_str());
     }
-    std::printf("(%zu extreme inputs per module; error = |gpu - ref| / max(|ref|, module floor))\n",
-                extremeSurfaces().labels.size());
+    std::printf(
+        "(%zu extreme inputs per module; worst/tol: the largest distance outside the "
+        "reference's band, in tolerances)\n",
+        extremeSurfaces().labels.size());
     return bad ? 1 : 0;
 }
 
@@ -358,6 +366,53 @@ int runGallery(const Options& o, const std::string& outDir, const std::string& s
     return failures ? 1 : 0;
 }
 
+// The mutation score: every mutant of each reference solution graded as a submission.
+int runMutants(const Options& o, const std::vector<std::string>& ids, const std::string& jsonFile,
+               int every, int jobs, bool feedback) {
+    Session session(o, false);  // no GL here: the grades fork, the comparisons too
+    MutationOptions m;
+    m.modules = ids;
+    m.every = std::max(every, 1);
+    m.jobs = jobs;
+    m.feedback = feedback;
+    m.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<ModuleMutation> result = runMutants(*session.modules, session.paths, m);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf(
+        "| step | mutants | do not compile | killed | survived: equivalent | survived: "
+        "NOT equivalent |%s seconds |\n",
+        feedback ? " mistake named |" : "");
+    std::printf("|---|---|---|---|---|---|%s---|\n", feedback ? "---|" : "");
+    int bad = 0;
+    for (const ModuleMutation& r : result) {
+        const int survived = r.count("survived"), notEquivalent = r.nonEquivalentSurvivors();
+        const int killed = r.count("killed") + r.count("timeout") + r.count("crashed");
+        bad += notEquivalent;
+        std::string named;
+        if (feedback) {
+            int withName = 0, failed = 0;
+            for (const MutantOutcome& x : r.mutants)
+                if (x.status == "killed") ++failed, withName += !x.mistake.empty();
+            named = " " + std::to_string(withName) + " of " + std::to_string(failed) + " |";
+        }
+        std::printf("| %s | %zu | %d | %d | %d | %d |%s %.0f |\n", r.id.c_str(), r.mutants.size(),
+                    r.count("stillborn"), killed, survived - notEquivalent, notEquivalent,
+                    named.c_str(), r.seconds);
+    }
+    for (const ModuleMutation& r : result)
+        for (const MutantOutcome& x : r.mutants)
+            if (x.status == "survived")
+                std::printf("%s %s [%s] %s\n    %s\n", r.id.c_str(),
+                            x.equivalence == "equivalent" ? "equivalent" : "SURVIVOR",
+                            x.mutant.family.c_str(), x.mutant.description.c_str(),
+                            x.evidence.c_str());
+    std::printf("%d non-equivalent survivors; %.0f s\n", bad, seconds);
+    if (!jsonFile.empty()) writeFileAtomically(jsonFile, jsonText(toJson(result)));
+    return bad ? 1 : 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -394,9 +449,18 @@ int main(int argc, char** argv) {
     addCommon(render);
     render->add_flag("--probe", probe, "Render the probe grid instead of the scene");
     render->add_option("--out", out, "Output .png (display-encoded) or .exr (linear)")->required();
+    std::string checkSize = "96x96";
+    std::uint64_t gradeSeed = 1;
     auto* check = app.add_subcommand(
-        "check", "Compare a module on the GPU with its CPU reference (scene and probe)");
-    addCommon(check);
+        "check",
+        "Grade one step here, exactly as `grade` does, and print every check (exit 0: passed)");
+    check->add_option("id", id, "Module id (see `pbrlab list`)")->required();
+    check->add_option("--submission", submission,
+                      "Folder with the student's <id>.glsl (default: the reference solution)");
+    check->add_flag("--cumulative", cumulative, "Also use the student's files for the other steps");
+    check->add_option("--size", checkSize, "Side of the scene checks WxH (default 96x96)");
+    check->add_option("--seed", gradeSeed, "Seed of the random domain points (default 1)");
+    check->add_flag("--stats", o.stats, "Print what was compiled, loaded and precomputed");
     GuiOptions gui;
     std::string guiSize = "1600x960";
     auto* guiCmd = app.add_subcommand("gui", "Open the interactive lab (needs a display)");
@@ -454,6 +518,12 @@ int main(int argc, char** argv) {
     gradeCmd->add_flag("--cumulative", gradeOptions.cumulative,
                        "Use the student's own earlier steps too (default: stepwise)");
     gradeCmd->add_option("--timeout", gradeOptions.timeoutSeconds, "Seconds per module (60)");
+    gradeOptions.jobs = int(std::max(1u, std::thread::hardware_concurrency()));
+    gradeCmd->add_option("--jobs", gradeOptions.jobs,
+                         "Modules graded at once (default: one per core)");
+    gradeCmd->add_option("--seed", gradeOptions.settings.seed,
+                         "Seed of the random domain points (default 1: instructors may keep "
+                         "their own)");
     ConvergeOptions converge;
     auto* convergeCmd = app.add_subcommand(
         "converge", "Error against run time of the IBL approximations: CSV, table and plot");
@@ -500,6 +570,20 @@ int main(int argc, char** argv) {
         "textures", "Write the project's procedural metal-plates texture set (deterministic)");
     textures->add_option("--out", texturesDir, "Output folder")->required();
     textures->add_option("--size", textureSize, "Width and height in texels (16..4096)");
+    std::vector<std::string> mutantIds;
+    std::string mutantsJson;
+    int mutantsEvery = 1, mutantsJobs = int(std::max(1u, std::thread::hardware_concurrency()));
+    bool mutantsFeedback = false;
+    auto* mutantsCmd = app.add_subcommand(
+        "mutants",
+        "Mutation score: grade mechanical mutants of each reference solution as submissions; "
+        "exit 1 when one that is not equivalent survives");
+    mutantsCmd->add_option("ids", mutantIds, "Module ids (default: all)");
+    mutantsCmd->add_option("--json", mutantsJson, "Write every mutant's outcome here");
+    mutantsCmd->add_option("--every", mutantsEvery, "Grade every n-th mutant only (default 1)");
+    mutantsCmd->add_option("--jobs", mutantsJobs, "Mutants graded at once (default: cores)");
+    mutantsCmd->add_flag("--feedback", mutantsFeedback,
+                         "Grade fully and count the mutants whose mistake the feedback names");
     std::string galleryDir = "gallery";
     auto* gallery = app.add_subcommand("gallery", "Render every module's default view");
     gallery->add_option("--out", galleryDir, "Output folder (default: gallery)");
@@ -515,9 +599,12 @@ int main(int argc, char** argv) {
         if (*list) return runList(o);
         if (*render)
             return runRender(o, id, submission, cumulative, sets, size, scene, model, probe, out);
-        if (*check) return runCheck(o, id, submission, cumulative, sets, size, scene, model);
+        if (*check) return runCheck(o, id, submission, cumulative, checkSize, gradeSeed);
         if (*permutationsCmd) return runPermutations(o, permutationIds, scene, model);
         if (*gallery) return runGallery(o, galleryDir, size);
+        if (*mutantsCmd)
+            return runMutants(o, mutantIds, mutantsJson, mutantsEvery, mutantsJobs,
+                              mutantsFeedback);
         if (*stability) return runStability(o, stabilityIds, stabilitySubmission);
         if (*modelsCmd) {
             const fs::path grid = fs::path(modelsDir) / "sphere-grid.glb",
@@ -548,8 +635,10 @@ int main(int argc, char** argv) {
             Session session(o, false);
             if (batchOut.empty()) throw Error("--batch needs --out DIR for the reports");
             std::vector<fs::path> subs;
-            for (const auto& e : fs::directory_iterator(batchDir))
-                if (e.is_directory()) subs.push_back(e.path());
+            for (const auto& e : fs::directory_iterator(batchDir)) {
+                std::error_code ec;
+                if (e.is_directory(ec)) subs.push_back(e.path());
+            }
             std::sort(subs.begin(), subs.end());
             std::ofstream summary;
             fs::create_directories(batchOut);
@@ -563,16 +652,22 @@ int main(int argc, char** argv) {
                           << subs.size() << " " << subs[i].filename().string() << "   "
                           << std::flush;
                 GradeOptions each = gradeOptions;
-                each.submission = fs::canonical(subs[i]);
                 fs::path out = fs::path(batchOut) / subs[i].filename();
                 each.html = out / "html";
-                GradeReport report = gradeSubmission(*session.modules, session.paths, each);
-                writeFileAtomically(out / "report.json", toJson(report).dump(2));
-                writeFileAtomically(out / "results.json", toGradescope(report).dump(2));
-                writeHtml(report, each.html);
-                table += subs[i].filename().string() + "," + std::to_string(report.score) + "," +
-                         std::to_string(report.maxScore) + "," + std::to_string(report.seconds) +
-                         "\n";
+                try {
+                    each.submission = fs::canonical(subs[i]);
+                    GradeReport report = gradeSubmission(*session.modules, session.paths, each);
+                    writeFileAtomically(out / "report.json", jsonText(toJson(report)));
+                    writeFileAtomically(out / "results.json", jsonText(toGradescope(report)));
+                    writeHtml(report, each.html);
+                    table += subs[i].filename().string() + "," + std::to_string(report.score) +
+                             "," + std::to_string(report.maxScore) + "," +
+                             std::to_string(report.seconds) + "\n";
+                } catch (const std::exception& e) {
+                    // One unreadable submission folder stops nothing: it is listed with why.
+                    std::cerr << "\nerror: " << subs[i].string() << ": " << e.what() << "\n";
+                    table += subs[i].filename().string() + ",0,0,0\n";
+                }
             }
             std::cerr << "\r[" << std::string(30, '#') << "] " << subs.size() << "/" << subs.size()
                       << " done" << std::string(20, ' ') << "\n";
@@ -593,9 +688,10 @@ int main(int argc, char** argv) {
                             g.score, g.maxScore, g.message.substr(0, 160).c_str());
             std::printf("total %.1f / %.1f in %.1f s\n", report.score, report.maxScore,
                         report.seconds);
-            if (!gradeJsonFile.empty()) writeFileAtomically(gradeJsonFile, toJson(report).dump(2));
+            if (!gradeJsonFile.empty())
+                writeFileAtomically(gradeJsonFile, jsonText(toJson(report)));
             if (!gradescopeFile.empty())
-                writeFileAtomically(gradescopeFile, toGradescope(report).dump(2));
+                writeFileAtomically(gradescopeFile, jsonText(toGradescope(report)));
             if (!gradeOptions.html.empty()) writeHtml(report, gradeOptions.html);
             return 0;
         }

@@ -78,6 +78,13 @@ const std::vector<ContractStep>& contractSteps() {
     return steps;
 }
 
+std::string contractPrototypes() {
+    std::string text =
+        "// Every contract function, declared before any is defined: any step may call any.\n";
+    for (const auto& s : contractSteps()) text += s.function + ";\n";
+    return text + kFresnelSchlickRoughness + ";\n";
+}
+
 const ContractStep* findContractStep(const std::string& id) {
     for (const auto& s : contractSteps())
         if (s.id == id) return &s;

@@ -88,21 +88,24 @@ const AreaLight kLights[2] = {
 };
 
 // 0..1 coverage of an area light at direction (az, el).
-double lightCoverage(const AreaLight& l, double az, double el) {
+double lightCoverage(const AreaLight& l, double az, double el, bool soft) {
     double dAz = std::remainder(az - l.az, 2.0 * kPi) * std::cos(l.el);
     const double dEl = el - l.el;
     const double ex = std::abs(dAz) - l.halfW, ey = std::abs(dEl) - l.halfH;
-    return (1.0 - smoothstep(-l.softness, l.softness, ex)) *
-           (1.0 - smoothstep(-l.softness, l.softness, ey));
+    const double edge = soft ? 5.0 * l.softness : l.softness;
+    return (1.0 - smoothstep(-edge, edge, ex)) * (1.0 - smoothstep(-edge, edge, ey));
 }
 
-dvec3 skyRadiance(const dvec3& d) {
+dvec3 skyRadiance(const dvec3& d, bool soft) {
     const double y = std::max(d.y, 0.0);
     const dvec3 zenith(0.08, 0.18, 0.50), horizon(0.65, 0.75, 0.90);
     dvec3 sky = glm::mix(horizon, zenith, std::pow(y, 0.45));
     // Brighter towards the sun: a broad glow, and a tighter aureole around the disc.
     const double gamma = std::acos(std::clamp(glm::dot(d, kSunDir), -1.0, 1.0));
-    sky += dvec3(1.0, 0.85, 0.6) * (0.35 * std::exp(-gamma / 0.5) + 6.0 * std::exp(-gamma / 0.04));
+    // (The soft sky spreads the aureole's energy over ten times the angle.)
+    sky += dvec3(1.0, 0.85, 0.6) *
+           (0.35 * std::exp(-gamma / 0.5) +
+            (soft ? 0.6 * std::exp(-gamma / 0.4) : 6.0 * std::exp(-gamma / 0.04)));
     // Clouds: fractal noise on the direction (seamless on the sphere), thinning to nothing at
     // the horizon, brighter and warmer near the sun.
     const double n = fbm3(d * 3.2, 5, kSeedClouds);
@@ -132,12 +135,14 @@ dvec3 groundRadiance(const dvec3& d) {
     return glm::mix(horizon, lit, std::exp(-t / 120.0));
 }
 
-dvec3 environmentRadiance(const dvec3& d) {
-    dvec3 L = d.y >= 0.0 ? skyRadiance(d) : groundRadiance(d);
+dvec3 environmentRadiance(const dvec3& d, bool soft) {
+    dvec3 L = d.y >= 0.0 ? skyRadiance(d, soft) : groundRadiance(d);
     if (d.y >= -0.02) {  // the lights stand on the horizon at the lowest
         const double az = std::atan2(d.x, -d.z), el = std::asin(std::clamp(d.y, -1.0, 1.0));
-        for (const AreaLight& l : kLights) L = glm::mix(L, l.radiance, lightCoverage(l, az, el));
+        for (const AreaLight& l : kLights)
+            L = glm::mix(L, (soft ? 0.1 : 1.0) * l.radiance, lightCoverage(l, az, el, soft));
     }
+    if (soft) return L;
     const double gamma = std::acos(std::clamp(glm::dot(d, kSunDir), -1.0, 1.0));
     if (gamma < kSunRadius) {
         const double r = gamma / kSunRadius;
@@ -149,6 +154,28 @@ dvec3 environmentRadiance(const dvec3& d) {
 
 }  // namespace
 
+Image generateSmoothEnvironment(int width) {
+    if (width < 16 || width > 8192 || width % 2 != 0)
+        throw Error("smooth environment: width " + std::to_string(width) +
+                    " must be even and in [16, 8192]");
+    Image image;
+    image.width = width;
+    image.height = width / 2;
+    image.channels = 3;
+    image.pixels.resize(size_t(image.width) * image.height * 3);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const double phi = ((x + 0.5) / image.width - 0.5) * 2.0 * kPi;
+            const double theta = (y + 0.5) / image.height * kPi;
+            const dvec3 d(std::sin(theta) * std::sin(phi), std::cos(theta),
+                          -std::sin(theta) * std::cos(phi));
+            const dvec3 L = dvec3(0.7, 0.8, 1.0) * (1.0 + 0.4 * d.y) +
+                            dvec3(0.3, 0.2, 0.1) * (0.5 + 0.5 * d.x + 0.2 * d.z * d.y);
+            for (int c = 0; c < 3; ++c) image.at(x, y, c) = float(L[c]);
+        }
+    return image;
+}
+
 glm::dvec3 skySunDirection() {
     return kSunDir;
 }
@@ -157,7 +184,7 @@ double skySunAngularRadius() {
     return kSunRadius;
 }
 
-Image generateSkyEnvironment(int width) {
+Image generateSkyEnvironment(int width, bool soft) {
     if (width < 16 || width > 8192 || width % 2 != 0)
         throw Error("sky environment: width " + std::to_string(width) +
                     " must be even and in [16, 8192]");
@@ -177,7 +204,7 @@ Image generateSkyEnvironment(int width) {
                     const double phi = (uv.x - 0.5) * 2.0 * kPi, theta = uv.y * kPi;
                     const dvec3 d(std::sin(theta) * std::sin(phi), std::cos(theta),
                                   -std::sin(theta) * std::cos(phi));
-                    sum += environmentRadiance(d);
+                    sum += environmentRadiance(d, soft);
                 }
             sum /= double(kSub * kSub);
             for (int c = 0; c < 3; ++c) image.at(x, y, c) = float(sum[c]);

@@ -9,10 +9,11 @@
 #include <chrono>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
-#include "check.h"
 #include "gl/context.h"
+#include "pbrlab/contract.h"
 #include "pbrlab/display.h"
 #include "pbrlab/error.h"
 #include "stability.h"
@@ -26,230 +27,75 @@ namespace {
 
 constexpr std::uintmax_t kMaxStudentFileBytes = 10u * 1024 * 1024;
 
-json statsJson(const ErrorStats& s, const Tolerance& t, bool nonNegative) {
-    return {{"pixels", s.compared},
-            {"max_error", s.maxError},
-            {"mean_error", s.meanError},
-            {"max_abs", s.maxAbs},
-            {"nan", s.nanCount},
-            {"inf", s.infCount},
-            {"negative", s.negativeCount},
-            {"over_tolerance", s.overCount},
-            {"tolerance", t.maxError},
-            {"floor", t.floor},
-            {"passed", s.passes(t, nonNegative)}};
+json gradeJson(const ModuleGrade& g) {
+    return {{"id", g.id},           {"title", g.title},        {"status", g.status},
+            {"score", g.score},     {"max_score", g.maxScore}, {"message", g.message},
+            {"mistake", g.mistake}, {"checks", g.checks},      {"seconds", g.seconds}};
 }
 
-std::string firstLineComment(const fs::path& file) {
-    std::ifstream in(file);
-    std::string line;
-    std::getline(in, line);
-    for (const char* prefix : {"// mistake:", "//"})
-        if (line.rfind(prefix, 0) == 0) {
-            line = line.substr(std::strlen(prefix));
-            break;
-        }
-    size_t b = line.find_first_not_of(' ');
-    return b == std::string::npos ? file.stem().string() : line.substr(b);
-}
-
-double meanDifference(const Image& a, const Image& b, int components) {
-    double sum = 0;
-    int n = 0;
-    for (size_t i = 0; i + 3 < a.pixels.size() && i + 3 < b.pixels.size(); i += 4) {
-        if (a.pixels[i + 3] != 1 || b.pixels[i + 3] != 1) continue;  // surfaces only
-        for (int c = 0; c < components; ++c) {
-            double d = std::abs(double(a.pixels[i + size_t(c)]) - b.pixels[i + size_t(c)]);
-            sum += std::isfinite(d) ? d / (1 + std::abs(double(b.pixels[i + size_t(c)]))) : 1;
-            ++n;
-        }
+// Every string in `j` made valid UTF-8 (messages quote compiler logs of students' files).
+json sanitized(const json& j) {
+    if (j.is_string()) return validUtf8(j.get<std::string>());
+    if (j.is_array() || j.is_object()) {
+        json out = j;
+        for (auto it = out.begin(); it != out.end(); ++it) *it = sanitized(*it);
+        return out;
     }
-    return n ? sum / n : 0;
+    return j;
 }
 
-struct Renders {
-    Image scene, probe;
+std::string dumpJson(const json& j, int indent = -1) {
+    return j.dump(indent, ' ', false, json::error_handler_t::replace);
+}
+
+// The student's and the reference's pictures of the module's scene, and their difference.
+void writeImages(LabRenderer& renderer, const LoadedModule& m, const DataPaths& paths,
+                 const GradeOptions& o) {
+    const ModuleDesc& d = *m.desc;
+    const fs::path dir = o.html / d.id;
+    fs::create_directories(dir);
+    const Scene scene = loadScene(paths.scene(d.scene));
+    const ParamValues params(d.params);
+    EvalRequest request;
+    request.render = {&m,      &params, &scene, StudentSource{o.submission, o.cumulative},
+                      nullptr, 192,     192};
+    request.render.seamlessCubes = false;
+    const Evaluation e = evaluate(renderer, request);
+    Image reference = e.render.value;
+    for (size_t i = 0; i < e.band.expected.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            reference.pixels[i * 4 + size_t(c)] = float(e.band.expected[i][c]);
+    writeImage(dir / "student.png", displayImage(e.render.value, d.display, d.components),
+               FileDepth::Uint8, true);
+    writeImage(dir / "reference.png", displayImage(reference, d.display, d.components),
+               FileDepth::Uint8, true);
+    // Colour scale: half the largest reference value, so a wrong step reads as bright and
+    // rounding stays dark.
+    double peak = 0;
+    for (const auto& v : e.band.expected)
+        for (int c = 0; c < d.components; ++c)
+            if (std::isfinite(v[c])) peak = std::max(peak, std::abs(v[c]));
+    writeImage(dir / "difference.png",
+               differenceImage(e.render.value, reference, d.components, std::max(0.5 * peak, 1e-6)),
+               FileDepth::Uint8, true);
+}
+
+// One module graded in a child process: what the parent keeps while it runs.
+struct Child {
+    const LoadedModule* module = nullptr;
+    size_t slot = 0;  // where its grade goes in the report
+    pid_t pid = -1;
+    int fd = -1;
+    std::chrono::steady_clock::time_point deadline;
+    std::string text;  // what it wrote so far
+    bool timedOut = false;
 };
 
-Renders renderBoth(LabRenderer& r, const LoadedModule& m, const ParamValues& p, const Scene& s,
-                   const StudentSource& src, int size) {
-    return {r.renderScene(m, p, s, src, size, size, false).value,
-            r.renderProbe(m, p, s, src).value};
-}
-
-std::string where(const ErrorStats& s, const Surface& at) {
-    std::ostringstream o;
-    o.precision(4);
-    o << "largest error " << s.maxError << " at pixel (" << s.worstX << ", " << s.worstY
-      << "): yours (" << s.worstGpu.x << ", " << s.worstGpu.y << ", " << s.worstGpu.z
-      << "), reference (" << s.worstRef.x << ", " << s.worstRef.y << ", " << s.worstRef.z
-      << "); inputs N.V " << glm::dot(at.normal, at.view) << ", N.L "
-      << glm::dot(at.normal, at.light) << ", roughness " << at.roughness << ", metallic "
-      << at.metallic;
-    return o.str();
-}
-
-// Runs in the child process: everything GL lives and dies here.
-ModuleGrade gradeModule(const LoadedModule& m, const DataPaths& paths, const GradeOptions& o) {
-    const ModuleDesc& d = *m.desc;
-    ModuleGrade g;
-    g.id = d.id;
-    g.title = d.title;
-    auto context = createHeadlessContext();
-    LabRenderer renderer(paths);
-    ParamValues params(d.params);
-    StudentSource source{o.submission, o.cumulative};
-    Scene scene = loadScene(paths.scene(d.scene));
-    try {
-        CheckResult c = checkModule(renderer, m, params, scene, source, o.size, o.size);
-        g.metrics["scene"] = statsJson(c.scene, d.tolerance, d.nonNegative);
-        g.metrics["probe"] = statsJson(c.probe, d.tolerance, d.nonNegative);
-        bool passed = c.passed;
-        const ErrorStats* worst = c.scene.passes(d.tolerance, d.nonNegative) ? &c.probe : &c.scene;
-        // Direct-lab steps shown on the one-light sphere are also checked on the lesson's grid
-        // of four lights (a sum over one light only passes the sphere).
-        if (d.lab == "direct" && d.scene != "sphere-grid") {
-            Scene grid = loadScene(paths.scene("sphere-grid"));
-            CheckResult cg = checkModule(renderer, m, params, grid, source, o.size, o.size);
-            g.metrics["grid"] = statsJson(cg.scene, d.tolerance, d.nonNegative);
-            if (passed && !cg.passed) worst = &cg.scene;
-            passed = passed && cg.passed;
-        }
-        // Robustness on the extreme inputs: reported, not deducted (DESIGN.md).
-        StabilityResult st = stabilitySweep(renderer, m, scene, source);
-        g.metrics["robustness"] = {{"nan", st.gpu.nanCount},
-                                   {"inf", st.gpu.infCount},
-                                   {"negative", d.nonNegative ? st.gpu.negativeCount : 0},
-                                   {"first_problem", st.firstProblem}};
-        // Invariants of the student's function, where the module defines them: reported.
-        if (d.invariants) {
-            EvaluateFn evaluate = [&](const std::vector<Surface>& surfaces) {
-                const int width = 64, height = int((surfaces.size() + width - 1) / width);
-                std::vector<Surface> padded = surfaces;
-                padded.resize(size_t(width) * height);
-                RenderResult r =
-                    renderer.renderSurfaces(m, params, scene, source, padded, width, height);
-                std::vector<glm::dvec3> values;
-                for (size_t i = 0; i < surfaces.size(); ++i)
-                    values.emplace_back(r.value.pixels[i * 4], r.value.pixels[i * 4 + 1],
-                                        r.value.pixels[i * 4 + 2]);
-                return values;
-            };
-            json list = json::array();
-            for (const InvariantResult& inv : d.invariants(evaluate)) {
-                list.push_back({{"name", inv.name},
-                                {"measured", inv.measured},
-                                {"expected", inv.expected},
-                                {"holds", inv.holds}});
-                if (!inv.holds)
-                    g.message += (g.message.empty() ? "" : "; ") + std::string("invariant ") +
-                                 inv.name + " = " + std::to_string(inv.measured) + ", expected " +
-                                 inv.expected;
-            }
-            g.metrics["invariants"] = list;
-        }
-        g.status = passed ? "passed" : "failed";
-        g.score = passed ? g.maxScore : 0;
-        if (!passed) {
-            // Which surface the worst pixel saw: render again with surfaces read back.
-            RenderResult yours =
-                renderer.renderScene(m, params, scene, source, o.size, o.size, true);
-            std::string message;
-            if (worst == &c.probe) {
-                auto grid = probeSurfaces(d.probe);
-                message =
-                    "probe: " +
-                    where(c.probe,
-                          grid[size_t(c.probe.worstY) * d.probe.width + size_t(c.probe.worstX)]);
-            } else if (worst->worstX >= 0) {
-                message =
-                    "scene: " +
-                    where(*worst,
-                          yours.surfaces[size_t(worst->worstY) * o.size + size_t(worst->worstX)]);
-            }
-            if (worst->nanCount + worst->infCount > 0)
-                message += "; " + std::to_string(worst->nanCount) + " NaN and " +
-                           std::to_string(worst->infCount) + " Inf pixels";
-            // Name the mistake when the output is closer to a known one than to the solution.
-            Renders student = renderBoth(renderer, m, params, scene, source, 64);
-            Renders solution = renderBoth(renderer, m, params, scene, {}, 64);
-            double toSolution = meanDifference(student.scene, solution.scene, d.components) +
-                                meanDifference(student.probe, solution.probe, d.components);
-            std::string best;
-            double bestDistance = 1e300;
-            fs::path mistakes = m.sourceDir / "mistakes";
-            if (fs::exists(mistakes))
-                for (const auto& f : fs::directory_iterator(mistakes)) {
-                    if (f.path().extension() != ".glsl") continue;
-                    fs::path tmp =
-                        fs::temp_directory_path() / ("pbrlab-mistake-" + std::to_string(getpid()));
-                    fs::create_directories(tmp);
-                    fs::copy_file(f.path(), tmp / (d.id + ".glsl"),
-                                  fs::copy_options::overwrite_existing);
-                    try {
-                        Renders r = renderBoth(renderer, m, params, scene, {tmp, false}, 64);
-                        double dist = meanDifference(student.scene, r.scene, d.components) +
-                                      meanDifference(student.probe, r.probe, d.components);
-                        if (dist < bestDistance)
-                            bestDistance = dist, best = firstLineComment(f.path());
-                    } catch (const Error&) {
-                    }
-                    fs::remove_all(tmp);
-                }
-            if (!best.empty() && bestDistance < 0.25 * toSolution)
-                message = "looks like: " + best + ". " + message;
-            g.message = message + (g.message.empty() ? "" : "; " + g.message);
-        }
-        if (!o.html.empty()) {
-            fs::path dir = o.html / d.id;
-            fs::create_directories(dir);
-            RenderResult yours = renderer.renderScene(m, params, scene, source, 192, 192, true);
-            Scene bound = applyParamBindings(scene, d, params);
-            ReferenceContext ctx = referenceContext(bound, params);
-            if (d.needs & NeedsEnvironment) ctx.ibl = &renderer.environmentInputs(bound);
-            std::vector<glm::dvec3> reference;
-            compareWithReference(yours.value, yours.surfaces, d, ctx, &reference);
-            Image ref = yours.value;
-            for (size_t i = 0; i < reference.size(); ++i)
-                for (int c = 0; c < 3; ++c) ref.pixels[i * 4 + size_t(c)] = float(reference[i][c]);
-            writeImage(dir / "student.png", displayImage(yours.value, d.display, d.components),
-                       FileDepth::Uint8, true);
-            writeImage(dir / "reference.png", displayImage(ref, d.display, d.components),
-                       FileDepth::Uint8, true);
-            // Colour scale: half the largest reference value, so a wrong step reads as bright
-            // and rounding stays dark.
-            double peak = 0;
-            for (const auto& v : reference)
-                for (int c = 0; c < d.components; ++c)
-                    if (std::isfinite(v[c])) peak = std::max(peak, std::abs(v[c]));
-            writeImage(dir / "difference.png",
-                       differenceImage(yours.value, ref, d.components, std::max(0.5 * peak, 1e-6)),
-                       FileDepth::Uint8, true);
-        }
-    } catch (const ShaderError& e) {
-        g.status = "compile_error";
-        g.score = 0;
-        g.message = e.what();
-    } catch (const std::exception& e) {
-        g.status = "failed";
-        g.score = 0;
-        g.message = e.what();
-    }
-    return g;
-}
-
-json gradeJson(const ModuleGrade& g) {
-    return {{"id", g.id},          {"title", g.title},        {"status", g.status},
-            {"score", g.score},    {"max_score", g.maxScore}, {"metrics", g.metrics},
-            {"message", g.message}};
-}
-
-// Forks, grades one module in the child, and reads its JSON through a pipe, within the time
-// limit. Anything else (a signal, no answer) is "crashed"; running out of time is "timeout".
-ModuleGrade gradeIsolated(const LoadedModule& m, const DataPaths& paths, const GradeOptions& o) {
-    ModuleGrade g;
-    g.id = m.desc->id;
-    g.title = m.desc->title;
+// Forks and grades one module in the child, which tells each stage it starts ("stage ...")
+// before its result ("result" and one line of JSON), so a crash or a timeout can say where it
+// happened.
+Child startChild(const LoadedModule& m, const DataPaths& paths, const GradeOptions& o,
+                 size_t slot) {
     int fds[2];
     if (pipe(fds) != 0) throw Error("grade: pipe failed");
     pid_t pid = fork();
@@ -258,87 +104,245 @@ ModuleGrade gradeIsolated(const LoadedModule& m, const DataPaths& paths, const G
         close(fds[0]);
         rlimit limit{o.memoryLimitMb << 20, o.memoryLimitMb << 20};
         setrlimit(RLIMIT_AS, &limit);
+        auto send = [&](const std::string& text) {
+            for (size_t done = 0; done < text.size();) {
+                ssize_t n = write(fds[1], text.data() + done, text.size() - done);
+                if (n <= 0) break;
+                done += size_t(n);
+            }
+        };
         std::string out;
         try {
-            out = gradeJson(gradeModule(m, paths, o)).dump();
+            auto context = createHeadlessContext();
+            LabRenderer renderer(paths);
+            GradeOptions options = o;
+            options.settings.stage = [&](const std::string& what) {
+                send("stage " + validUtf8(what) + "\n");
+            };
+            out = dumpJson(sanitized(gradeJson(gradeModule(renderer, m, paths, options))));
         } catch (const std::exception& e) {
             ModuleGrade failed;
             failed.id = m.desc->id;
             failed.title = m.desc->title;
             failed.status = "crashed";
             failed.message = e.what();
-            out = gradeJson(failed).dump();
+            out = dumpJson(sanitized(gradeJson(failed)));
         }
-        for (size_t done = 0; done < out.size();) {
-            ssize_t n = write(fds[1], out.data() + done, out.size() - done);
-            if (n <= 0) break;
-            done += size_t(n);
-        }
+        send("result\n" + out + "\n");
         close(fds[1]);
         _exit(0);
     }
     close(fds[1]);
-    std::string text;
-    auto deadline =
+    Child c;
+    c.module = &m;
+    c.slot = slot;
+    c.pid = pid;
+    c.fd = fds[0];
+    c.deadline =
         std::chrono::steady_clock::now() + std::chrono::milliseconds(long(o.timeoutSeconds * 1000));
-    bool timedOut = false;
-    for (;;) {
-        auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-                        deadline - std::chrono::steady_clock::now())
-                        .count();
-        if (left <= 0) {
-            timedOut = true;
-            break;
-        }
-        pollfd p{fds[0], POLLIN, 0};
-        int ready = poll(&p, 1, int(std::min<long>(left, 1000)));
-        if (ready < 0) break;
-        if (ready == 0) continue;
-        char buf[65536];
-        ssize_t n = read(fds[0], buf, sizeof buf);
-        if (n <= 0) break;
-        text.append(buf, size_t(n));
-    }
-    close(fds[0]);
-    if (timedOut) kill(pid, SIGKILL);
+    return c;
+}
+
+// The grade from what a finished (or killed) child wrote and how it ended.
+ModuleGrade finishChild(Child& c, const GradeOptions& o) {
+    close(c.fd);
+    if (c.timedOut) kill(c.pid, SIGKILL);
     int status = 0;
-    waitpid(pid, &status, 0);
-    if (timedOut) {
+    waitpid(c.pid, &status, 0);
+    ModuleGrade g;
+    g.id = c.module->desc->id;
+    g.title = c.module->desc->title;
+    // The last stage the child announced, and its result when it got that far.
+    std::string stage, result;
+    {
+        std::istringstream lines(c.text);
+        for (std::string line; std::getline(lines, line);) {
+            if (line.rfind("stage ", 0) == 0) stage = line.substr(6);
+            if (line == "result") std::getline(lines, result);
+        }
+    }
+    const bool compiling = stage.size() >= 7 && stage.compare(stage.size() - 7, 7, "compile") == 0;
+    if (c.timedOut) {
         g.status = "timeout";
-        g.message = "killed after " + std::to_string(int(o.timeoutSeconds)) +
-                    " s (an endless loop in the shader?)";
+        g.message = "killed after " + std::to_string(int(o.timeoutSeconds)) + " s" +
+                    (compiling ? " while compiling the shader (a macro that expands without end?)"
+                               : " during " + stage + " (an endless loop in the shader?)");
         return g;
     }
     try {
-        json j = json::parse(text);
+        json j = json::parse(result);
         g.status = j.at("status");
-        g.score = j.at("score");
         g.maxScore = j.at("max_score");
-        g.metrics = j.at("metrics");
         g.message = j.at("message");
+        g.mistake = j.value("mistake", "");
+        g.checks = j.value("checks", json::array());
+        g.seconds = j.value("seconds", 0.0);
     } catch (const std::exception&) {
         g.status = "crashed";
-        g.message = WIFSIGNALED(status)
-                        ? std::string("the grading process died: ") + strsignal(WTERMSIG(status))
-                        : "the grading process ended without a result";
+        const std::string how = WIFSIGNALED(status) ? std::string("the grading process died (") +
+                                                          strsignal(WTERMSIG(status)) + ")"
+                                                    : "the grading process ended without a result";
+        g.message = compiling ? how +
+                                    " while the GLSL compiler read your file: something in "
+                                    "it crashes the compiler (a macro that expands without "
+                                    "end, a construct far too large?)"
+                              : how + (stage.empty() ? "" : " during " + stage);
     }
+    // The score follows from the status here, whatever the child wrote.
+    g.score = g.status == "passed" ? g.maxScore : 0;
     return g;
+}
+
+// Grades the jobs in children, at most `o.jobs` at a time, each within its time limit.
+void gradeInChildren(const std::vector<GradeJob>& work, const DataPaths& paths,
+                     const GradeOptions& o, std::vector<ModuleGrade>& grades) {
+    const size_t jobs = size_t(std::max(1, o.jobs));
+    std::vector<Child> running;
+    size_t next = 0;
+    while (next < work.size() || !running.empty()) {
+        while (running.size() < jobs && next < work.size()) {
+            GradeOptions each = o;
+            each.submission = work[next].submission;
+            running.push_back(startChild(*work[next].module, paths, each, next));
+            ++next;
+        }
+        std::vector<pollfd> fds;
+        for (const Child& c : running) fds.push_back({c.fd, POLLIN, 0});
+        const auto now = std::chrono::steady_clock::now();
+        long wait = 1000;
+        for (const Child& c : running)
+            wait = std::min<long>(
+                wait, std::max<long>(
+                          0, std::chrono::duration_cast<std::chrono::milliseconds>(c.deadline - now)
+                                 .count()));
+        poll(fds.data(), fds.size(), int(wait));
+        for (size_t i = running.size(); i-- > 0;) {
+            Child& c = running[i];
+            bool done = false;
+            if (fds[i].revents & (POLLIN | POLLHUP | POLLERR)) {
+                char buf[65536];
+                ssize_t n = read(c.fd, buf, sizeof buf);
+                if (n > 0)
+                    c.text.append(buf, size_t(n));
+                else
+                    done = true;
+            }
+            if (!done && std::chrono::steady_clock::now() >= c.deadline) done = c.timedOut = true;
+            if (done) {
+                grades[c.slot] = finishChild(c, o);
+                if (o.progress) o.progress(grades[c.slot]);
+                running.erase(running.begin() + long(i));
+            }
+        }
+    }
+}
+
+// What a compiler message means in the contract's terms, where it can tell.
+std::string compileHints(const std::string& log) {
+    std::string hints;
+    std::vector<std::pair<std::string, const ContractStep*>> names;
+    for (const ContractStep& s : contractSteps())
+        names.push_back({s.function.substr(s.function.find(' ') + 1,
+                                           s.function.find('(') - s.function.find(' ') - 1),
+                         &s});
+    names.push_back({"fresnelSchlickRoughness", nullptr});
+    for (const auto& [name, step] : names) {
+        if (log.find("`" + name + "' redefined") == std::string::npos) continue;
+        hints += "\nhint: " + name + " is a contract function that pbrlab provides" +
+                 (step ? " (step " + std::to_string(step->step) + ", " + step->id + ")" : "") +
+                 ": call it, or give your own helper another name.";
+    }
+    if (log.find("recursion") != std::string::npos)
+        hints +=
+            "\nhint: a contract function you call calls yours back, and GLSL allows no "
+            "recursion: compute that part yourself.";
+    return hints;
 }
 
 }  // namespace
 
+std::string jsonText(const json& report) {
+    return dumpJson(report, 2);
+}
+
+std::string validUtf8(const std::string& text) {
+    std::string out;
+    const auto* p = reinterpret_cast<const unsigned char*>(text.data());
+    const size_t n = text.size();
+    for (size_t i = 0; i < n;) {
+        const unsigned char c = p[i];
+        int len = c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3 : (c >> 3) == 30 ? 4 : 0;
+        bool ok = len > 0 && i + size_t(len) <= n;
+        for (int k = 1; ok && k < len; ++k) ok = (p[i + size_t(k)] >> 6) == 2;
+        if (ok && len == 2) ok = c >= 0xC2;  // no overlong forms
+        if (ok && len == 3)
+            ok = !(c == 0xE0 && p[i + 1] < 0xA0) && !(c == 0xED && p[i + 1] >= 0xA0);
+        if (ok && len == 4)
+            ok = c <= 0xF4 && !(c == 0xF0 && p[i + 1] < 0x90) && !(c == 0xF4 && p[i + 1] >= 0x90);
+        if (ok && (c == 0 || (c < 0x20 && c != '\n' && c != '\t'))) ok = false;
+        if (ok) {
+            out.append(text, i, size_t(len));
+            i += size_t(len);
+        } else {
+            out += "\xEF\xBF\xBD";  // U+FFFD
+            ++i;
+        }
+    }
+    return out;
+}
+
+ModuleGrade gradeModule(LabRenderer& renderer, const LoadedModule& m, const DataPaths& paths,
+                        const GradeOptions& o) {
+    ModuleGrade g;
+    g.id = m.desc->id;
+    g.title = m.desc->title;
+    const StudentSource source{o.submission, o.cumulative};
+    try {
+        const StepResult r = gradeStep(renderer, m, paths, source, o.settings);
+        g.status = r.passed ? "passed" : "failed";
+        g.message = r.message;
+        g.mistake = r.mistake;
+        g.seconds = r.seconds;
+        for (const CheckReport& c : r.checks) g.checks.push_back(toJson(c));
+        if (!o.html.empty()) writeImages(renderer, m, paths, o);
+    } catch (const ShaderError& e) {
+        g.status = "compile_error";
+        g.message = e.what() + compileHints(e.what());
+    } catch (const std::exception& e) {
+        g.status = "failed";
+        g.message = e.what();
+    }
+    g.score = g.status == "passed" ? g.maxScore : 0;
+    g.message = validUtf8(g.message);
+    return g;
+}
+
 std::string screenStudentFile(const fs::path& file, const fs::path& submission) {
     std::error_code ec;
-    if (fs::is_symlink(file, ec) && !isInside(fs::canonical(file, ec), submission))
-        return "refused: it is a link to a file outside the submission folder";
+    const bool link = fs::is_symlink(file, ec);
+    if (link) {
+        const fs::path target = fs::canonical(file, ec);
+        if (ec) return "refused: it is a link that cannot be resolved (" + ec.message() + ")";
+        if (!isInside(target, submission))
+            return "refused: it is a link to a file outside the submission folder";
+    }
     if (!isInside(file, submission)) return "refused: outside the submission folder";
+    if (!fs::is_regular_file(file, ec)) return "refused: not a regular file";
     auto size = fs::file_size(file, ec);
     if (ec) return "cannot read it: " + ec.message();
     if (size > kMaxStudentFileBytes) return "refused: larger than 10 MB";
     std::ifstream in(file, std::ios::binary);
+    if (!in) return "cannot read it";
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (text.find('\0') != std::string::npos) return "refused: it contains NUL bytes (not text)";
     return {};
+}
+
+std::vector<ModuleGrade> gradeJobs(const std::vector<GradeJob>& jobs, const DataPaths& paths,
+                                   const GradeOptions& options) {
+    std::vector<ModuleGrade> grades(jobs.size());
+    gradeInChildren(jobs, paths, options, grades);
+    return grades;
 }
 
 GradeReport gradeSubmission(const ModuleRegistry& modules, const DataPaths& paths,
@@ -346,26 +350,43 @@ GradeReport gradeSubmission(const ModuleRegistry& modules, const DataPaths& path
     auto start = std::chrono::steady_clock::now();
     GradeReport report;
     report.submission = o.submission;
+    std::vector<GradeJob> work;
+    std::vector<size_t> slots;  // where each job's grade goes in the report
     for (const auto& m : modules.modules()) {
         if (!o.modules.empty() &&
             std::find(o.modules.begin(), o.modules.end(), m.desc->id) == o.modules.end())
             continue;
-        fs::path file = o.submission / (m.desc->id + ".glsl");
+        const fs::path file = o.submission / (m.desc->id + ".glsl");
         ModuleGrade g;
         g.id = m.desc->id;
         g.title = m.desc->title;
-        if (!fs::exists(file) && !fs::is_symlink(file)) {
-            g.status = "missing";
-            g.message = file.filename().string() + " not found";
-        } else if (std::string why = screenStudentFile(file, o.submission); !why.empty()) {
+        try {
+            std::error_code ec;
+            const bool present = fs::exists(fs::symlink_status(file, ec));
+            if (!present) {
+                g.status = "missing";
+                g.message = file.filename().string() + " not found";
+            } else if (std::string why = screenStudentFile(file, o.submission); !why.empty()) {
+                g.status = "failed";
+                g.message = file.string() + ": " + why;
+            } else {
+                work.push_back({&m, o.submission});
+                slots.push_back(report.modules.size());
+            }
+        } catch (const std::exception& e) {
+            // Whatever went wrong with this file costs this step only.
             g.status = "failed";
-            g.message = file.string() + ": " + why;
-        } else {
-            g = gradeIsolated(m, paths, o);
+            g.message = file.string() + ": " + e.what();
         }
+        report.modules.push_back(std::move(g));
+    }
+    std::vector<ModuleGrade> graded = gradeJobs(work, paths, o);
+    for (size_t i = 0; i < graded.size(); ++i) report.modules[slots[i]] = std::move(graded[i]);
+    for (ModuleGrade& g : report.modules) {
+        g.score = g.status == "passed" ? g.maxScore : 0;
+        g.message = validUtf8(g.message);
         report.score += g.score;
         report.maxScore += g.maxScore;
-        report.modules.push_back(std::move(g));
     }
     report.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -435,7 +456,25 @@ void writeHtml(const GradeReport& r, const fs::path& folder) {
         for (const char* img : {"student", "reference", "difference"})
             h << "<td>" << (images ? "<img width=160 src=\"" + g.id + "/" + img + ".png\">" : "")
               << "</td>";
-        h << "<td><pre>" << escape(g.message) << "</pre></td></tr>\n";
+        h << "<td><pre>" << escape(g.message) << "</pre>";
+        if (!g.checks.empty()) {
+            h << "<details><summary>" << g.checks.size() << " checks</summary><ul>";
+            for (const auto& c : g.checks) {
+                const bool passed = c.value("passed", false), deducted = c.value("deducted", true);
+                h << "<li class="
+                  << (passed     ? "passed"
+                      : deducted ? "failed"
+                                 : "missing")
+                  << ">"
+                  << (passed     ? "ok"
+                      : deducted ? "FAILED"
+                                 : "reported")
+                  << " " << escape(c.value("name", "")) << ": <small>"
+                  << escape(c.value("detail", "")) << "</small></li>";
+            }
+            h << "</ul></details>";
+        }
+        h << "</td></tr>\n";
     }
     h << "</table>";
     writeFileAtomically(folder / "index.html", h.str());

@@ -1,6 +1,6 @@
 // The autograder: every module of a submission graded in its own child process (time and
 // memory limits; a crash or an endless loop costs that module only), stepwise by default,
-// with feedback that names the mistake when the output looks like a known one.
+// through gradeStep (grading.h), with feedback that names the mistake.
 #pragma once
 
 #include <filesystem>
@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "grading.h"
 #include "plugins.h"
 #include "renderer.h"
 
@@ -19,8 +20,11 @@ struct GradeOptions {
     bool cumulative = false;
     double timeoutSeconds = 60;        // per module, wall clock
     std::size_t memoryLimitMb = 8192;  // per module, address space (llvmpipe reserves a lot)
+    int jobs = 2;                      // modules graded at once (one child process each)
     std::filesystem::path html;        // folder for the HTML report and its images, or empty
-    int size = 96;                     // image side of the graded renders
+    GradeSettings settings;            // what gradeStep checks (size, seed, feedback)
+    // Told as each module's grade comes in (progress output).
+    std::function<void(const struct ModuleGrade&)> progress;
 };
 
 struct ModuleGrade {
@@ -29,7 +33,9 @@ struct ModuleGrade {
     std::string status = "missing";
     double score = 0, maxScore = 1;
     std::string message;
-    nlohmann::json metrics = nlohmann::json::object();
+    std::string mistake;  // the mistake named from the shape of the error, when recognised
+    nlohmann::json checks = nlohmann::json::array();  // every check with what it measured
+    double seconds = 0;
 };
 
 struct GradeReport {
@@ -39,10 +45,26 @@ struct GradeReport {
 };
 
 // Rejects what a grader must not read: a file over 10 MB, NUL bytes, a symlink leaving the
-// folder. Empty when the file may be graded, else why not.
+// folder or one that cannot be resolved. Empty when the file may be graded, else why not.
 std::string screenStudentFile(const std::filesystem::path& file,
                               const std::filesystem::path& submission);
 
+// One step in this process (no fork): what a grade's child runs, and the GUI's badges.
+ModuleGrade gradeModule(LabRenderer& renderer, const LoadedModule& module, const DataPaths& paths,
+                        const GradeOptions& options);
+
+// One module of one submission folder.
+struct GradeJob {
+    const LoadedModule* module = nullptr;
+    std::filesystem::path submission;
+};
+
+// Each job in a child process (options.jobs at a time), grades in the order of the jobs.
+std::vector<ModuleGrade> gradeJobs(const std::vector<GradeJob>& jobs, const DataPaths& paths,
+                                   const GradeOptions& options);
+
+// Every step of the submission, each in a child process. Never throws for a bad submission:
+// whatever is wrong with one file is that step's status and message.
 GradeReport gradeSubmission(const ModuleRegistry& modules, const DataPaths& paths,
                             const GradeOptions& options);
 
@@ -51,5 +73,10 @@ nlohmann::json toGradescope(const GradeReport& report);
 void writeHtml(const GradeReport& report, const std::filesystem::path& folder);
 // Temporary file in the same folder, then rename: a reader never sees half a report.
 void writeFileAtomically(const std::filesystem::path& file, const std::string& text);
+// A report as indented JSON text (any invalid UTF-8 left in it replaced).
+std::string jsonText(const nlohmann::json& report);
+// `text` with every byte sequence that is not UTF-8 replaced by U+FFFD, so that a message
+// quoting a student's file can always be written as JSON.
+std::string validUtf8(const std::string& text);
 
 }  // namespace pbrlab

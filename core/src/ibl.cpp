@@ -18,6 +18,9 @@ namespace pbrlab {
 
 const char* const kCubeFaceNames[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
 
+const DerivedMap kDerivedMaps[3] = {
+    {"uIrradianceMap", "irradiance"}, {"uPrefilterMap", "prefilter"}, {"uBrdfLut", "brdf_lut"}};
+
 std::string IblSettings::key() const {
     return "env" + std::to_string(environmentSize) + "_irr" + std::to_string(irradianceSize) +
            "_pre" + std::to_string(prefilterSize) + "x" + std::to_string(prefilterMips) + "s" +
@@ -247,9 +250,15 @@ void IblPrecompute::storeCached(const fs::path& dir, const IblMaps& maps) const 
 
 std::unique_ptr<IblMaps> IblPrecompute::build(const Image& equirect, const IblSettings& s,
                                               const IblDiskCache* cache) {
+    auto maps = buildEnvironment(equirect, s);
+    buildDerived(*maps, equirect, cache);
+    return maps;
+}
+
+std::unique_ptr<IblMaps> IblPrecompute::buildEnvironment(const Image& equirect,
+                                                         const IblSettings& s) {
     auto maps = std::make_unique<IblMaps>();
     maps->settings = s;
-    fs::path cacheDir = cache ? cache->root_ / "ibl" / cacheKey(equirect, s) : fs::path();
     gl::Disable(GL_DEPTH_TEST);
     gl::Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);  // precomputed maps never depend on the caller
     {
@@ -267,9 +276,21 @@ std::unique_ptr<IblMaps> IblPrecompute::build(const Image& equirect, const IblSe
         gl::BindTexture(GL_TEXTURE_CUBE_MAP, maps->environment.id());
         gl::GenerateMipmap(GL_TEXTURE_CUBE_MAP);
     }
+    return maps;
+}
+
+void IblPrecompute::buildDerived(IblMaps& mapsRef, const Image& equirect,
+                                 const IblDiskCache* cache) {
+    if (mapsRef.derived) return;
+    IblMaps* maps = &mapsRef;
+    const IblSettings& s = maps->settings;
+    mapsRef.derived = true;
+    fs::path cacheDir = cache ? cache->root_ / "ibl" / cacheKey(equirect, s) : fs::path();
+    gl::Disable(GL_DEPTH_TEST);
+    gl::Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);  // precomputed maps never depend on the caller
     if (cache && loadCached(cacheDir, *maps)) {
         logLine("precompute", "irradiance, prefilter and LUT from " + cacheDir.string());
-        return maps;
+        return;
     }
     auto bindEnvironment = [&](const Program& p) {
         p.use();
@@ -337,7 +358,6 @@ std::unique_ptr<IblMaps> IblPrecompute::build(const Image& equirect, const IblSe
             logLine("precompute", std::string("cache not written: ") + e.what());
         }
     }
-    return maps;
 }
 
 namespace {

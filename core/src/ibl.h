@@ -33,6 +33,7 @@ struct IblSettings {
 struct IblMaps {
     IblSettings settings;
     gl::Handle environment, irradiance, prefilter, lut;
+    bool derived = false;  // irradiance, prefilter and lut are built (buildDerived)
     float prefilterMaxLod = 0;
     std::map<std::string, double> milliseconds;  // per pass: glFinish + steady clock
 };
@@ -60,6 +61,11 @@ public:
     // else they are computed and stored.
     std::unique_ptr<IblMaps> build(const Image& equirect, const IblSettings& settings,
                                    const IblDiskCache* cache = nullptr);
+    // The two halves of build(): the environment cube with its mips (what steps 17-19 read),
+    // then the maps that steps 18-20's reference solutions compute from it (what step 21
+    // reads), only when something samples them.
+    std::unique_ptr<IblMaps> buildEnvironment(const Image& equirect, const IblSettings& settings);
+    void buildDerived(IblMaps& maps, const Image& equirect, const IblDiskCache* cache = nullptr);
     // Called as each pass starts ("[2/4] irradiance 32"): progress for people waiting.
     std::function<void(const std::string&)> onPass;
 
@@ -82,6 +88,15 @@ private:
     std::filesystem::path shaders_, labs_;
     gl::FullscreenTriangle fullscreen_;
 };
+
+// The maps the precompute derives from the environment, each computed with the reference
+// solution of one contract step: a view may read a map only when that step comes before its
+// own (no step sees what its own or a later step's reference computed).
+struct DerivedMap {
+    const char* sampler;   // the contract's uniform name
+    const char* producer;  // the contract step whose reference solution computes it
+};
+extern const DerivedMap kDerivedMaps[3];
 
 // Six faces named +x -x +y -y +z -z, as cmgen-like tools expect.
 extern const char* const kCubeFaceNames[6];

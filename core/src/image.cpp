@@ -25,6 +25,15 @@
 
 namespace pbrlab {
 
+Image flipRows(const Image& image) {
+    Image flipped = image;
+    const size_t row = size_t(image.width) * size_t(image.channels);
+    for (int y = 0; y < image.height; ++y)
+        std::copy_n(image.pixels.data() + size_t(image.height - 1 - y) * row, row,
+                    flipped.pixels.data() + size_t(y) * row);
+    return flipped;
+}
+
 namespace {
 
 namespace fs = std::filesystem;

@@ -83,33 +83,35 @@ dvec3 fresnelSchlick(double cosTheta, const dvec3& F0) {
 }
 
 dvec3 cookTorranceSpecular(const dvec3& N, const dvec3& V, const dvec3& L, const dvec3& F0,
-                           double roughness) {
+                           double roughness, DenominatorGuard guard) {
     const dvec3 H = halfwayVector(L, V);
     const double D = distributionGGX(N, H, roughness);
     const double G = geometrySmith(N, V, L, roughness);
     const dvec3 F = fresnelSchlick(std::max(glm::dot(H, V), 0.0), F0);
     const double denom = 4.0 * std::max(glm::dot(N, V), 0.0) * std::max(glm::dot(N, L), 0.0);
-    return D * G * F / std::max(denom, kSpecularDenomFloor);
+    return D * G * F /
+           (guard == DenominatorGuard::Floor ? std::max(denom, kSpecularDenomFloor)
+                                             : denom + kLessonDenomEpsilon);
 }
 
 dvec3 cookTorranceBRDF(const dvec3& N, const dvec3& V, const dvec3& L, const dvec3& albedo,
-                       double metallic, double roughness) {
+                       double metallic, double roughness, DenominatorGuard guard) {
     const dvec3 F0 = baseReflectivity(albedo, metallic);
     const dvec3 H = halfwayVector(L, V);
     const dvec3 F = fresnelSchlick(std::max(glm::dot(H, V), 0.0), F0);
     const dvec3 kD = (1.0 - F) * (1.0 - metallic);
-    return kD * albedo / kPi + cookTorranceSpecular(N, V, L, F0, roughness);
+    return kD * albedo / kPi + cookTorranceSpecular(N, V, L, F0, roughness, guard);
 }
 
 dvec3 reflectedRadiance(const dvec3& P, const dvec3& N, const dvec3& V, const dvec3& albedo,
                         double metallic, double roughness, double ao, const PointLight* lights,
-                        int lightCount) {
+                        int lightCount, DenominatorGuard guard) {
     dvec3 Lo(0.0);
     for (int i = 0; i < lightCount; ++i) {
         const dvec3 L = safeNormalize(lights[i].position - P, dvec3(0.0));
         const dvec3 radiance = pointLightRadiance(lights[i].color, lights[i].position, P);
-        Lo +=
-            cookTorranceBRDF(N, V, L, albedo, metallic, roughness) * radiance * lambertCosine(N, L);
+        Lo += cookTorranceBRDF(N, V, L, albedo, metallic, roughness, guard) * radiance *
+              lambertCosine(N, L);
     }
     return Lo + kAmbient * albedo * ao;
 }

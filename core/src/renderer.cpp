@@ -72,19 +72,22 @@ LabRenderer::LabRenderer(const DataPaths& paths)
     : paths_(paths), programs_(ShaderPreprocessor({paths.shaders(), paths.labs()})) {}
 
 ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentSource& source,
-                                      bool probe, int lightCount) const {
+                                      bool probe, int lightCount, const std::string& view) const {
     ProgramRecipe r;
-    r.label = "view " + module.desc->id;
+    const ModuleDesc& d = *module.desc;
+    r.label = "view " + d.id + (view.empty() ? "" : " (" + view + ")");
     r.vertex = {paths_.shaders() / "fullscreen.vert"};
     r.fragment.push_back(paths_.shaders() / "common.glsl");
-    const ModuleDesc& d = *module.desc;
-    // The IBL lab's contract adds fresnelSchlickRoughness to the reference library.
-    if (d.lab == "ibl") r.fragment.push_back(paths_.shaders() / "fresnel_roughness.glsl");
-    for (const ContractStep* step : contractClosure(d.id, d.uses)) {
-        ShaderPart part(paths_.labs() / step->folder() / "solution.glsl");
-        if (!source.dir.empty() && (step->id == d.id || source.cumulative)) {
-            fs::path student = source.dir / (step->id + ".glsl");
-            if (fs::exists(student)) {
+    // The contract's promise: every contract function is callable from every step's file.
+    // Prototypes first, so a step may call one that is defined after it.
+    r.fragment.push_back(ShaderPart("<contract prototypes>", contractPrototypes()));
+    r.fragment.push_back(paths_.shaders() / "fresnel_roughness.glsl");
+    for (const ContractStep& step : contractSteps()) {
+        ShaderPart part(paths_.labs() / step.folder() / "solution.glsl");
+        if (!source.dir.empty() && (step.id == d.id || source.cumulative)) {
+            fs::path student = source.dir / (step.id + ".glsl");
+            std::error_code ec;
+            if (fs::exists(student, ec) || fs::is_symlink(student, ec)) {
                 if (!isInside(student, source.dir))
                     throw Error(student.string() + ": refused, it points outside " +
                                 source.dir.string());
@@ -95,13 +98,13 @@ ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentS
         r.fragment.push_back(part);
     }
     r.fragment.push_back(paths_.shaders() / "surface.glsl");
-    r.fragment.push_back(module.sourceDir / "view.glsl");
+    r.fragment.push_back(module.sourceDir / (view.empty() ? "view.glsl" : view + ".glsl"));
     r.fragment.push_back(paths_.shaders() / "view_main.frag");
     r.defines["NUM_LIGHTS"] = std::to_string(std::max(lightCount, 1));
     if (probe) r.defines["PBRLAB_PROBE"] = "1";
-    // The IBL lab's programs include its earlier steps, some of which name the IBL samplers:
-    // every IBL-lab program declares them; only modules that need the environment get maps.
-    if ((d.needs & NeedsEnvironment) || d.lab == "ibl") r.defines["PBRLAB_IBL"] = "1";
+    // Every program declares the IBL samplers (contract names any step may call through the
+    // IBL functions); only what the step may read is bound (see runView).
+    r.defines["PBRLAB_IBL"] = "1";
     if ((d.needs & NeedsEnvironment) && d.skyBackground && !probe) r.defines["PBRLAB_SKY"] = "1";
     return r;
 }
@@ -203,15 +206,82 @@ void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int
     gl::checkError("G-buffer pass");
 }
 
-double LabRenderer::runView(const LoadedModule& module, const ParamValues& params,
-                            const Scene& scene, const StudentSource& source, bool probe,
+bool LabRenderer::mayRead(const ModuleDesc& d, const std::string& sampler) {
+    if (!(d.needs & NeedsEnvironment)) return false;
+    if (sampler == "uEnvironment") return true;
+    for (const DerivedMap& map : kDerivedMaps)
+        if (sampler == map.sampler) {
+            const ContractStep* producer = findContractStep(map.producer);
+            return producer && producer->step < d.step;
+        }
+    return false;
+}
+
+std::vector<std::string> LabRenderer::forbiddenSamplers(const ModuleDesc& d,
+                                                        const Program& program) {
+    std::vector<std::string> out;
+    if (program.uses("uEnvironment") && !mayRead(d, "uEnvironment")) out.push_back("uEnvironment");
+    for (const DerivedMap& map : kDerivedMaps)
+        if (program.uses(map.sampler) && !mayRead(d, map.sampler)) out.push_back(map.sampler);
+    return out;
+}
+
+GLuint LabRenderer::blackTexture(GLenum target) {
+    gl::Handle& slot = target == GL_TEXTURE_CUBE_MAP ? blackCube_ : black2d_;
+    if (!slot.id()) {
+        slot = gl::makeTexture();
+        gl::BindTexture(target, slot.id());
+        const float black[4] = {0, 0, 0, 0};
+        if (target == GL_TEXTURE_CUBE_MAP)
+            for (int face = 0; face < 6; ++face)
+                gl::TexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face, 0, GL_RGBA32F, 1, 1, 0,
+                               GL_RGBA, GL_FLOAT, black);
+        else
+            gl::TexImage2D(target, 0, GL_RGBA32F, 1, 1, 0, GL_RGBA, GL_FLOAT, black);
+        gl::TexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        gl::TexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        gl::TexParameteri(target, GL_TEXTURE_MAX_LEVEL, 0);
+    }
+    return slot.id();
+}
+
+double LabRenderer::runView(const RenderRequest& request, const Scene& scene, bool probe,
                             const std::vector<GLuint>& inputs, int width, int height) {
+    const LoadedModule& module = *request.module;
+    const ModuleDesc& d = *module.desc;
     // reloadIfChanged: an edited student file is recompiled; if that fails, the error is thrown
     // and the last good program stays cached for the next call.
-    // Precompute (on first use) before binding anything: its passes use the texture units.
-    if (module.desc->needs & NeedsEnvironment) environmentMaps(scene);
-    auto program =
-        programs_.reloadIfChanged(viewRecipe(module, source, probe, int(scene.lights.size())));
+    auto program = programs_.reloadIfChanged(
+        viewRecipe(module, request.source, probe, int(scene.lights.size()), request.view));
+    // The environment and the maps the view may read, built before anything is bound (the
+    // precompute passes use the texture units). A derived map is readable only by steps after
+    // the one whose reference solution computes it; every other sampler the program uses
+    // reads black (the contract declares them all).
+    struct Binding {
+        const char* name;
+        GLenum target;
+        GLuint texture;
+    };
+    std::vector<Binding> bindings;
+    if (program->uses("uEnvironment"))
+        bindings.push_back(
+            {"uEnvironment", GL_TEXTURE_CUBE_MAP,
+             mayRead(d, "uEnvironment") ? environment(scene, false).environment.id() : 0});
+    for (const DerivedMap& map : kDerivedMaps) {
+        if (!program->uses(map.sampler)) continue;
+        const GLenum target =
+            std::string(map.sampler) == "uBrdfLut" ? GL_TEXTURE_2D : GL_TEXTURE_CUBE_MAP;
+        GLuint texture = 0;
+        if (mayRead(d, map.sampler)) {
+            const IblMaps& maps = environment(scene, true);
+            texture = target == GL_TEXTURE_2D                        ? maps.lut.id()
+                      : std::string(map.sampler) == "uIrradianceMap" ? maps.irradiance.id()
+                                                                     : maps.prefilter.id();
+        }
+        bindings.push_back({map.sampler, target, texture});
+    }
+    for (Binding& b : bindings)
+        if (!b.texture) b.texture = blackTexture(b.target);
     if (!valueTarget_ || valueTarget_->width() != width || valueTarget_->height() != height)
         valueTarget_ = std::make_unique<gl::RenderTarget>(width, height, 1, false);
     valueTarget_->bind();
@@ -230,32 +300,24 @@ double LabRenderer::runView(const LoadedModule& module, const ParamValues& param
     program->set("uLightColors", colors);
     if (program->uses("uCameraPosition"))
         program->set("uCameraPosition", glm::vec3(scene.camera.position));
-    if (module.desc->needs & NeedsEnvironment) {
-        const IblMaps& maps = environmentMaps(scene);  // built before anything was bound
-        struct Binding {
-            const char* name;
-            GLenum target;
-            GLuint texture;
-        };
-        const Binding bindings[] = {{"uEnvironment", GL_TEXTURE_CUBE_MAP, maps.environment.id()},
-                                    {"uIrradianceMap", GL_TEXTURE_CUBE_MAP, maps.irradiance.id()},
-                                    {"uPrefilterMap", GL_TEXTURE_CUBE_MAP, maps.prefilter.id()},
-                                    {"uBrdfLut", GL_TEXTURE_2D, maps.lut.id()}};
-        int unit = int(inputs.size());
-        for (const Binding& b : bindings) {
-            if (!program->uses(b.name)) continue;
-            gl::ActiveTexture(GLenum(GL_TEXTURE0 + unit));
-            gl::BindTexture(b.target, b.texture);
-            program->set(b.name, unit++);
-        }
-        program->set("uPrefilterMaxLod", maps.prefilterMaxLod);
-        if (program->uses("uInverseViewProjection")) {
-            program->set("uInverseViewProjection", glm::inverse(viewProjection_));
-            program->set("uViewportSize", glm::vec2(float(width), float(height)));
-        }
+    int unit = int(inputs.size());
+    for (const Binding& b : bindings) {
+        gl::ActiveTexture(GLenum(GL_TEXTURE0 + unit));
+        gl::BindTexture(b.target, b.texture);
+        program->set(b.name, unit++);
     }
-    for (const ParamDecl& p : module.desc->params) {
-        glm::dvec3 v = params.vector(p.name);
+    if (program->uses("uPrefilterMaxLod")) {
+        const auto it = environments_.find(scene.environment + "|" + iblSettings_.key());
+        const bool derived =
+            it != environments_.end() && it->second.maps && it->second.maps->derived;
+        program->set("uPrefilterMaxLod", derived ? it->second.maps->prefilterMaxLod : 0.f);
+    }
+    if (program->uses("uInverseViewProjection")) {
+        program->set("uInverseViewProjection", glm::inverse(viewProjection_));
+        program->set("uViewportSize", glm::vec2(float(width), float(height)));
+    }
+    for (const ParamDecl& p : d.params) {
+        glm::dvec3 v = request.params->vector(p.name);
         const std::string u = p.uniformName();
         switch (p.type) {
             case ParamType::Float:
@@ -273,7 +335,7 @@ double LabRenderer::runView(const LoadedModule& module, const ParamValues& param
         }
     }
     if (extraUniforms_) extraUniforms_(*program);
-    if (seamlessCubes_)
+    if (request.seamlessCubes)
         gl::Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     else
         gl::Disable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
@@ -296,27 +358,74 @@ glm::dvec3 asFloat(const glm::dvec3& v) {
 
 }  // namespace
 
-RenderResult LabRenderer::renderScene(const LoadedModule& module, const ParamValues& params,
-                                      const Scene& sceneIn, const StudentSource& source, int width,
-                                      int height, bool readSurfaces) {
-    Scene scene = applyParamBindings(sceneIn, *module.desc, params);
-    drawGBuffer(scene, module.desc->needs, width, height);
-    std::vector<GLuint> inputs;
-    for (int i = 0; i < kGBufferTextures; ++i) inputs.push_back(gbuffer_->colorTexture(i));
+RenderResult LabRenderer::render(const RenderRequest& request) {
+    const ModuleDesc& d = *request.module->desc;
+    Scene scene = applyParamBindings(*request.scene, d, *request.params);
     RenderResult result;
-    result.milliseconds = runView(module, params, scene, source, false, inputs, width, height);
-    result.value = valueTarget_->read(0);
-    if (readSurfaces) {
-        std::vector<Image> textures;
-        for (int i = 0; i < kGBufferTextures; ++i) textures.push_back(gbuffer_->read(i));
-        ref::PointLight first{asFloat(scene.lights[0].position), asFloat(scene.lights[0].color)};
-        result.surfaces = unpackSurfaces(textures, asFloat(scene.camera.position), first);
+    std::vector<GLuint> inputs;
+    if (!request.surfaces) {
+        drawGBuffer(scene, d.needs, request.width, request.height);
+        for (int i = 0; i < kGBufferTextures; ++i) inputs.push_back(gbuffer_->colorTexture(i));
+        result.milliseconds = runView(request, scene, false, inputs, request.width, request.height);
+        result.value = valueTarget_->read(0);
+        if (request.readSurfaces) {
+            std::vector<Image> textures;
+            for (int i = 0; i < kGBufferTextures; ++i) textures.push_back(gbuffer_->read(i));
+            ref::PointLight first{asFloat(scene.lights[0].position),
+                                  asFloat(scene.lights[0].color)};
+            result.surfaces = unpackSurfaces(textures, asFloat(scene.camera.position), first);
+        }
+        return result;
     }
+    const std::vector<Image> packed =
+        packSurfaces(*request.surfaces, request.width, request.height);
+    const int q = request.isolatePoints ? 2 : 1;  // quad side per point
+    std::vector<Surface> quads;
+    if (q > 1) {
+        quads.resize(request.surfaces->size() * 4);
+        const size_t w = size_t(request.width);
+        for (size_t y = 0; y < size_t(request.height); ++y)
+            for (size_t x = 0; x < w; ++x)
+                for (size_t k = 0; k < 4; ++k)
+                    quads[(2 * y + k / 2) * 2 * w + 2 * x + k % 2] = (*request.surfaces)[y * w + x];
+    }
+    const std::vector<Image> uploaded =
+        q > 1 ? packSurfaces(quads, 2 * request.width, 2 * request.height) : packed;
+    probeInputs_.clear();
+    for (const Image& image : uploaded) {
+        // GL texture rows run bottom-up, like gl_FragCoord.
+        probeInputs_.push_back(gl::uploadTexture(flipRows(image), false, GL_RGBA32F));
+        inputs.push_back(probeInputs_.back().id());
+    }
+    result.milliseconds =
+        runView(request, scene, true, inputs, q * request.width, q * request.height);
+    result.value = valueTarget_->read(0);
+    if (q > 1) {  // one value per quad (all four are the same point)
+        Image value = result.value;
+        value.width = request.width;
+        value.height = request.height;
+        value.pixels.resize(size_t(value.width) * size_t(value.height) * 4);
+        for (int y = 0; y < value.height; ++y)
+            for (int x = 0; x < value.width; ++x)
+                for (int c = 0; c < 4; ++c) value.at(x, y, c) = result.value.at(2 * x, 2 * y, c);
+        result.value = std::move(value);
+    }
+    result.surfaces = unpackSurfaces(packed, {}, {});
     return result;
+}
+
+RenderResult LabRenderer::renderScene(const LoadedModule& module, const ParamValues& params,
+                                      const Scene& scene, const StudentSource& source, int width,
+                                      int height, bool readSurfaces) {
+    RenderRequest r{&module, &params, &scene, source, nullptr, width, height};
+    r.readSurfaces = readSurfaces;
+    return render(r);
 }
 
 Image loadEnvironmentImage(const std::string& source) {
     if (source == "sky") return generateSkyEnvironment(512);
+    if (source == "sky-soft") return generateSkyEnvironment(512, true);
+    if (source == "smooth") return generateSmoothEnvironment(256);
     Image image = readImage(source);
     if (image.width != 2 * image.height || image.channels < 3)
         throw Error(source + ": expected an equirectangular RGB image (width = 2 x height), got " +
@@ -325,38 +434,48 @@ Image loadEnvironmentImage(const std::string& source) {
     return image;
 }
 
-const IblMaps& LabRenderer::environmentMaps(const Scene& scene) {
-    std::string key = scene.environment + "|" + iblSettings_.key();
-    Environment& env = environments_[key];
+IblMaps& LabRenderer::environment(const Scene& scene, bool derived) {
+    Environment& env = environments_[scene.environment + "|" + iblSettings_.key()];
     if (!env.maps) {
         if (!precompute_)
             precompute_ =
                 std::make_unique<IblPrecompute>(programs_, paths_.shaders(), paths_.labs());
         logLine("environment", scene.environment + " (" + iblSettings_.key() + ")");
         precompute_->onPass = precomputeProgress_;
+        env.equirect = loadEnvironmentImage(scene.environment);
+        env.maps = precompute_->buildEnvironment(env.equirect, iblSettings_);
+    }
+    if (derived && !env.maps->derived) {
+        precompute_->onPass = precomputeProgress_;
         IblDiskCache cache(iblCache_);
-        env.maps = precompute_->build(loadEnvironmentImage(scene.environment), iblSettings_,
-                                      iblCache_.empty() ? nullptr : &cache);
+        precompute_->buildDerived(*env.maps, env.equirect, iblCache_.empty() ? nullptr : &cache);
+        env.equirect = Image();  // nothing reads it any more
     }
     return *env.maps;
 }
 
-const IblInputs& LabRenderer::environmentInputs(const Scene& scene) {
-    const IblMaps& maps = environmentMaps(scene);
+const IblMaps& LabRenderer::environmentMaps(const Scene& scene) {
+    return environment(scene, true);
+}
+
+const IblInputs& LabRenderer::environmentInputs(const Scene& scene, bool derived) {
+    const IblMaps& maps = environment(scene, derived);
     Environment& env = environments_[scene.environment + "|" + iblSettings_.key()];
+    const IblSettings& s = maps.settings;
+    auto cube = [](GLuint texture, int size, int levels) {
+        return CubeSampler(IblPrecompute::readCube(texture, size, levels));
+    };
     if (!env.cpu) {
-        auto cpu = std::make_unique<IblInputs>();
-        auto cube = [](GLuint texture, int size, int levels) {
-            return CubeSampler(IblPrecompute::readCube(texture, size, levels));
-        };
-        const IblSettings& s = maps.settings;
-        cpu->environment = cube(maps.environment.id(), s.environmentSize,
-                                int(std::floor(std::log2(s.environmentSize))) + 1);
-        cpu->irradiance = cube(maps.irradiance.id(), s.irradianceSize, 1);
-        cpu->prefilter = cube(maps.prefilter.id(), s.prefilterSize, s.prefilterMips);
-        cpu->prefilterMaxLod = maps.prefilterMaxLod;
-        cpu->lut = IblPrecompute::readTexture(maps.lut.id(), s.lutSize, s.lutSize);
-        env.cpu = std::move(cpu);
+        env.cpu = std::make_unique<IblInputs>();
+        env.cpu->environment = cube(maps.environment.id(), s.environmentSize,
+                                    int(std::floor(std::log2(s.environmentSize))) + 1);
+    }
+    if (derived && !env.cpuDerived) {
+        env.cpu->irradiance = cube(maps.irradiance.id(), s.irradianceSize, 1);
+        env.cpu->prefilter = cube(maps.prefilter.id(), s.prefilterSize, s.prefilterMips);
+        env.cpu->prefilterMaxLod = maps.prefilterMaxLod;
+        env.cpu->lut = IblPrecompute::readTexture(maps.lut.id(), s.lutSize, s.lutSize);
+        env.cpuDerived = true;
     }
     return *env.cpu;
 }
@@ -378,28 +497,11 @@ RenderResult LabRenderer::renderProbe(const LoadedModule& module, const ParamVal
 }
 
 RenderResult LabRenderer::renderSurfaces(const LoadedModule& module, const ParamValues& params,
-                                         const Scene& sceneIn, const StudentSource& source,
+                                         const Scene& scene, const StudentSource& source,
                                          const std::vector<Surface>& surfaces, int width,
                                          int height) {
-    Scene scene = applyParamBindings(sceneIn, *module.desc, params);
-    std::vector<Image> packed = packSurfaces(surfaces, width, height);
-    probeInputs_.clear();
-    std::vector<GLuint> inputs;
-    for (const Image& image : packed) {
-        // GL texture rows run bottom-up, like gl_FragCoord.
-        Image flipped = image;
-        const size_t row = size_t(image.width) * 4;
-        for (int y = 0; y < image.height; ++y)
-            std::copy_n(image.pixels.data() + size_t(image.height - 1 - y) * row, row,
-                        flipped.pixels.data() + size_t(y) * row);
-        probeInputs_.push_back(gl::uploadTexture(flipped, false, GL_RGBA32F));
-        inputs.push_back(probeInputs_.back().id());
-    }
-    RenderResult result;
-    result.milliseconds = runView(module, params, scene, source, true, inputs, width, height);
-    result.value = valueTarget_->read(0);
-    result.surfaces = unpackSurfaces(packed, {}, {});
-    return result;
+    RenderRequest r{&module, &params, &scene, source, &surfaces, width, height};
+    return render(r);
 }
 
 }  // namespace pbrlab

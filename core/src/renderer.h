@@ -46,15 +46,50 @@ struct RenderResult {
 // The probe's inputs, row 0 = top (y = 1 there, so larger values are up in pictures).
 std::vector<Surface> probeSurfaces(const Probe& probe);
 
+// One render of a module's view: what, on which inputs, how. Everything a render depends on
+// is here (no renderer modes to set and restore).
+struct RenderRequest {
+    RenderRequest() = default;
+    RenderRequest(const LoadedModule* m, const ParamValues* p, const Scene* s, StudentSource src,
+                  const std::vector<Surface>* inputs, int w, int h)
+        : module(m),
+          params(p),
+          scene(s),
+          source(std::move(src)),
+          surfaces(inputs),
+          width(w),
+          height(h) {}
+    const LoadedModule* module = nullptr;
+    const ParamValues* params = nullptr;
+    const Scene* scene = nullptr;  // camera, lights, environment (objects when no surfaces)
+    StudentSource source;
+    // Null: the scene's G-buffer at width x height. Else these inputs (width * height of them,
+    // row 0 = top), uploaded as textures.
+    const std::vector<Surface>* surfaces = nullptr;
+    int width = 0, height = 0;
+    bool readSurfaces = false;  // scene: read the G-buffer back into RenderResult::surfaces
+    // GL_TEXTURE_CUBE_MAP_SEAMLESS in the view pass: on for pictures; off for checks, so the
+    // GPU reads the texels CubeSampler reads on the CPU.
+    bool seamlessCubes = true;
+    std::string view;  // "" the module's view.glsl, else one of its extra views
+    // Surfaces only: each point drawn as a 2 x 2 quad of its own, so screen-space derivatives
+    // are zero and texture() with implicit LOD reads as at a single point, whatever the
+    // neighbouring points are (grading lays out unrelated points side by side).
+    bool isolatePoints = false;
+};
+
 class LabRenderer {
 public:
     explicit LabRenderer(const DataPaths& paths);
 
-    // The program recipe for a module's view: contract functions (student or reference),
-    // the surface loader, the view, one permutation per (probe, light count).
+    // The program recipe for a module's view: every contract function (the student's for the
+    // graded steps, the reference solutions for the others), the surface loader, the view,
+    // one permutation per (probe, light count).
     ProgramRecipe viewRecipe(const LoadedModule& module, const StudentSource& source, bool probe,
-                             int lightCount) const;
+                             int lightCount, const std::string& view = "") const;
 
+    RenderResult render(const RenderRequest& request);
+    // Pictures (seamless cube filtering), for the gallery, the CLI and the GUI.
     RenderResult renderScene(const LoadedModule& module, const ParamValues& params,
                              const Scene& scene, const StudentSource& source, int width, int height,
                              bool readSurfaces);
@@ -70,13 +105,14 @@ public:
     // The split-sum maps of the scene's environment, precomputed on first use (and only for
     // modules that need an environment), then reused for every frame.
     const IblMaps& environmentMaps(const Scene& scene);
-    // CPU copies of the same maps, for references (read back on first use).
-    const IblInputs& environmentInputs(const Scene& scene);
+    // CPU copies of the same maps, for references (read back on first use). `derived`: also
+    // the irradiance, prefiltered and LUT maps (otherwise only the environment cube).
+    const IblInputs& environmentInputs(const Scene& scene, bool derived = true);
     void setIblSettings(const IblSettings& settings) { iblSettings_ = settings; }
     // True when the scene's environment maps are ready (no precompute on the next render).
     bool hasEnvironmentMaps(const Scene& scene) const {
         auto it = environments_.find(scene.environment + "|" + iblSettings_.key());
-        return it != environments_.end() && it->second.maps;
+        return it != environments_.end() && it->second.maps && it->second.maps->derived;
     }
     // Told as each precompute pass starts, for progress output.
     void setPrecomputeProgress(std::function<void(const std::string&)> f) {
@@ -84,12 +120,17 @@ public:
     }
     // Where precomputed maps are kept between runs (empty: no disk cache).
     void setIblCache(std::filesystem::path root) { iblCache_ = std::move(root); }
-    // Seamless cube filtering (GL_TEXTURE_CUBE_MAP_SEAMLESS) in the view pass: on for
-    // pictures; off for checks, so the GPU reads the texels CubeSampler reads on the CPU.
-    void setSeamlessCubes(bool on) { seamlessCubes_ = on; }
     // Sets uniforms a host-made view declares beyond the module's parameters (converge).
     void setExtraUniforms(std::function<void(const Program&)> f) { extraUniforms_ = std::move(f); }
     const IblSettings& iblSettings() const { return iblSettings_; }
+
+    // Whether the module's view may read this IBL sampler: the environment cube when it needs
+    // the environment, a derived map (kDerivedMaps) only when the step that computes it comes
+    // before the module's own. Anything else reads black.
+    static bool mayRead(const ModuleDesc& module, const std::string& sampler);
+    // The samplers a program reads that its module may not.
+    static std::vector<std::string> forbiddenSamplers(const ModuleDesc& module,
+                                                      const Program& program);
 
     // The G-buffer program for a material: one HAS_*_MAP define per map the material has and
     // the module reads.
@@ -105,10 +146,12 @@ private:
     static std::vector<MaterialMap> materialMaps(const MaterialDesc& m);
     const gl::GpuMesh& mesh(const MeshData* data);  // nullptr: the unit sphere
     void drawGBuffer(const Scene& scene, unsigned needs, int width, int height);
-    double runView(const LoadedModule& module, const ParamValues& params, const Scene& scene,
-                   const StudentSource& source, bool probe, const std::vector<GLuint>& inputs,
-                   int width, int height);
+    double runView(const RenderRequest& request, const Scene& scene, bool probe,
+                   const std::vector<GLuint>& inputs, int width, int height);
     GLuint texture(const TextureSource& source);  // read and uploaded on first use
+    // The scene's environment: the cube only, or with the derived maps too.
+    IblMaps& environment(const Scene& scene, bool derived);
+    GLuint blackTexture(GLenum target);  // 1 x 1 black, for samplers a view may not read
 
     DataPaths paths_;
     ProgramCache programs_;
@@ -120,14 +163,16 @@ private:
     std::set<std::shared_ptr<const ModelData>> keepModels_;
     std::map<std::string, gl::Handle> textures_;  // by TextureSource::key
     std::vector<gl::Handle> probeInputs_;
+    gl::Handle blackCube_, black2d_;
     glm::mat4 viewProjection_{1};
 
     struct Environment {
         std::unique_ptr<IblMaps> maps;
         std::unique_ptr<IblInputs> cpu;
+        bool cpuDerived = false;
+        Image equirect;  // kept for the derived maps' first use
     };
     IblSettings iblSettings_;
-    bool seamlessCubes_ = true;
     std::filesystem::path iblCache_ = IblDiskCache::defaultRoot();
     std::function<void(const Program&)> extraUniforms_;
     std::function<void(const std::string&)> precomputeProgress_;

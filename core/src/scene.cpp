@@ -148,9 +148,9 @@ Scene loadScene(const fs::path& file) {
 
     if (doc.contains("environment")) {
         if (!doc["environment"].is_string())
-            r.fail("environment", "expected \"sky\" or a file path");
+            r.fail("environment", "expected \"sky\", \"sky-soft\", \"smooth\" or a file path");
         std::string env = doc["environment"].get<std::string>();
-        if (env != "sky") {
+        if (env != "sky" && env != "sky-soft" && env != "smooth") {
             fs::path p = file.parent_path() / env;
             if (!fs::exists(p)) r.fail("environment", p.string() + " does not exist");
             env = p.string();

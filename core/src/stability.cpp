@@ -119,47 +119,38 @@ Scene extremeLights(Scene scene) {
     return scene;
 }
 
-void merge(ErrorStats& into, const ErrorStats& more) {
-    const int total = into.compared + more.compared;
-    if (more.maxError > into.maxError) {
-        into.maxError = more.maxError;
+void merge(Comparison& into, const Comparison& more) {
+    if (more.worstExcess > into.worstExcess) {
+        into.worstExcess = more.worstExcess;
         into.worstX = more.worstX;
         into.worstY = more.worstY;
-        into.worstGpu = more.worstGpu;
-        into.worstRef = more.worstRef;
+        into.worstValue = more.worstValue;
+        into.worstExpected = more.worstExpected;
     }
-    into.maxAbs = std::max(into.maxAbs, more.maxAbs);
-    into.quantileError = std::max(into.quantileError, more.quantileError);
-    if (total > 0) {
-        into.meanAbs = (into.meanAbs * into.compared + more.meanAbs * more.compared) / total;
-        into.meanError = (into.meanError * into.compared + more.meanError * more.compared) / total;
-    }
-    into.compared = total;
+    into.quantileExcess = std::max(into.quantileExcess, more.quantileExcess);
+    into.compared += more.compared;
     into.nanCount += more.nanCount;
     into.infCount += more.infCount;
     into.negativeCount += more.negativeCount;
-    into.overCount += more.overCount;
+    into.outside += more.outside;
 }
 
 StabilityResult sweepOnce(LabRenderer& renderer, const LoadedModule& module, const Scene& scene,
                           const StudentSource& source, const ExtremeSet& set,
                           const std::string& labelSuffix) {
     const ModuleDesc& d = *module.desc;
-    ParamValues params(d.params);
-    ReferenceContext context = referenceContext(scene, params);
-    if (d.needs & NeedsEnvironment) context.ibl = &renderer.environmentInputs(scene);
-    renderer.setSeamlessCubes(false);  // as in checks: the CPU sampler reads the same texels
-    RenderResult r =
-        renderer.renderSurfaces(module, params, scene, source, set.surfaces, set.width, set.height);
-    renderer.setSeamlessCubes(true);
+    const ParamValues params(d.params);
+    EvalRequest request;  // as in checks: the CPU sampler reads the texels the GPU reads
+    request.render = {&module, &params, &scene, source, &set.surfaces, set.width, set.height};
+    request.render.seamlessCubes = false;
+    const Evaluation e = evaluate(renderer, request);
     StabilityResult result;
-    std::vector<glm::dvec3> reference;
-    result.gpu = compareWithReference(r.value, r.surfaces, d, context, &reference);
+    result.gpu = e.comparison;
     for (size_t i = 0; i < set.labels.size(); ++i) {
         bool broken = false;
         for (int c = 0; c < d.components; ++c) {
-            double ref = reference[i][c];
-            double gpu = r.value.pixels[i * 4 + size_t(c)];
+            double ref = e.band.expected[i][c];
+            double gpu = e.render.value.pixels[i * 4 + size_t(c)];
             if (!std::isfinite(ref)) ++result.referenceNonFinite, broken = true;
             if (d.nonNegative && ref < 0) ++result.referenceNegative, broken = true;
             if (!std::isfinite(gpu) || (d.nonNegative && gpu < 0)) broken = true;
@@ -171,13 +162,6 @@ StabilityResult sweepOnce(LabRenderer& renderer, const LoadedModule& module, con
 }
 
 }  // namespace
-
-bool readsSceneLights(LabRenderer& renderer, const LoadedModule& module,
-                      const StudentSource& source, int lightCount) {
-    return renderer.programs()
-        .get(renderer.viewRecipe(module, source, true, lightCount))
-        ->uses("uLightPositions");
-}
 
 StabilityResult stabilitySweep(LabRenderer& renderer, const LoadedModule& module,
                                const Scene& scene, const StudentSource& source) {

@@ -3,7 +3,7 @@
 // 1e6, F0 = 0 and 1, degenerate normal-map inputs, denormals).
 #pragma once
 
-#include "check.h"
+#include "evaluate.h"
 
 namespace pbrlab {
 
@@ -16,7 +16,7 @@ struct ExtremeSet {
 ExtremeSet extremeSurfaces();
 
 struct StabilityResult {
-    ErrorStats gpu;              // GPU vs reference on the extreme set
+    Comparison gpu;              // GPU vs the reference's band on the extreme set
     int referenceNonFinite = 0;  // CPU reference NaN/Inf count (must be 0)
     int referenceNegative = 0;   // negative reference values for a non-negative module
     std::string firstProblem;    // label of the first cell where anything broke
@@ -26,9 +26,5 @@ struct StabilityResult {
 // scene's lights placed at the extremes (distance 0 and 1e-6, intensity 1e6, below, grazing).
 StabilityResult stabilitySweep(LabRenderer& renderer, const LoadedModule& module,
                                const Scene& scene, const StudentSource& source = {});
-
-// Whether the module's view (probe permutation) reads the scene's light uniforms.
-bool readsSceneLights(LabRenderer& renderer, const LoadedModule& module,
-                      const StudentSource& source, int lightCount);
 
 }  // namespace pbrlab

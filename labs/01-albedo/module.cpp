@@ -15,11 +15,21 @@ ModuleDesc describeModule() {
     d.components = 3;
     d.display = {DisplayMode::LinearColor, 0, 1};
     d.needs = NeedsAlbedo;
-    // pow(c, 2.2) is a correct variant and differs from the exact curve by up to 0.085
-    // (floor 0.05); 0.15 accepts it, float rounding is 7e-7, and mistakes are off by >= 0.9.
-    d.tolerance = {0.05, 0.15};
+    // Band: between the exact curve and pow(c, 2.2), +- 1e-3 of the value or the spread of
+    // 8 ulps of the texel (README.md, "Tolerance and why").
+    d.tolerance = {1e-6, 1e-3, 8};
     d.reference = [](const Surface& s, const ReferenceContext&) {
         return ref::srgbToLinear(s.albedoTexel);
+    };
+    d.alternatives = {{"pow(c, 2.2), the usual approximation of the sRGB curve (DESIGN.md)",
+                       [](const Surface& s, const ReferenceContext&) {
+                           return glm::pow(glm::clamp(s.albedoTexel, 0.0, 1.0), glm::dvec3(2.2));
+                       }}};
+    // Any texel, each channel on its own.
+    d.domain = [](DomainRandom& r) {
+        Surface s;
+        s.albedoTexel = r.color();
+        return s;
     };
     // x: the red texel, y: the green texel, every 8-bit code value i / 255 (0 and 1 included);
     // blue is their mean, so each channel covers [0, 1] and the channels differ.

@@ -15,12 +15,29 @@ ModuleDesc describeModule() {
     d.params = {lightDirectionParam()};
     d.components = 3;
     d.display = {DisplayMode::HdrColor, 0, 1};
-    // Float rounding of a difference, a dot and a division: measured <= 3.2e-7 relative;
-    // 5e-6 leaves 15x for other drivers, and any wrong falloff is off by > 1.
-    d.tolerance = {1e-3, 5e-6};
+    // Band: the floored and the epsilon forms, +- 1e-3 of the value or the spread of 8 ulps
+    // of the positions (README.md, "Tolerance and why").
+    d.tolerance = {1e-6, 1e-3, 8};
     d.reference = [](const Surface& s, const ReferenceContext&) {
         return ref::pointLightRadiance(s.lightColor, s.lightPosition, s.position);
     };
+    d.alternatives = {{"an epsilon added to d^2 instead of a floor, as large as the floor (1e-4)",
+                       [](const Surface& s, const ReferenceContext&) {
+                           const glm::dvec3 v = s.lightPosition - s.position;
+                           return s.lightColor / (glm::dot(v, v) + ref::kMinDistance2);
+                       },
+                       true}};
+    // A point anywhere near the sphere, a light in any direction at 0.05 to 20 units (every
+    // decade as likely), of any colour and intensity up to 100 per channel.
+    d.domain = [](DomainRandom& r) {
+        Surface s;
+        s.position = {r.range(-1.5, 1.5), r.range(-1.5, 1.5), r.range(-1.5, 1.5)};
+        s.light = r.direction();
+        s.lightPosition = s.position + s.light * r.logRange(0.05, 20);
+        s.lightColor = r.color(100);
+        return s;
+    };
+    d.cases = {lessonGridCase()};
     // x: distance from the point to the light, 0.05 to 5 (2.525 at the centre column);
     // y: intensity of a white light, 0 to 10.
     d.probe.xAxis = "distance d 0.05..5";

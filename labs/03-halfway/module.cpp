@@ -20,9 +20,19 @@ ModuleDesc describeModule() {
     d.components = 3;
     d.nonNegative = false;  // a direction: components are signed
     d.display = {DisplayMode::SignedVector, -1, 1};
-    // Float rounding of a normalisation: measured <= 4.8e-6 (floor 0.01) with the light in
-    // front; 1e-4 leaves 20x, and the nearest mistake (the average) is off by 0.19.
-    d.tolerance = {1e-2, 1e-4};
+    // Band: +- 1e-3 of each component, at least 1e-6, or the spread of 8 ulps of L and V
+    // (README.md, "Tolerance and why").
+    d.tolerance = {1e-6, 1e-3, 8};
+    // Any L and V but nearly opposite ones (V.L >= -0.9; V = -L has no half vector and
+    // belongs to the robustness sweep).
+    d.domain = [](DomainRandom& r) {
+        Surface s;
+        s.view = r.direction();
+        s.light = r.around(s.view, -0.9, 1);
+        s.normal = r.direction();
+        return s;
+    };
+    d.cases = {lessonGridCase()};
     d.reference = [](const Surface& s, const ReferenceContext&) {
         return ref::halfwayVector(s.light, s.view);
     };

@@ -18,9 +18,19 @@ ModuleDesc describeModule() {
     d.components = 1;
     d.display = {DisplayMode::Grey, 0, 1};
     d.needs = NeedsRoughness;
-    // Rounding of N·V and N·L near silhouette and terminator, amplified by 1/k <= 7.2:
-    // measured <= 4.7e-5 (floor 0.01); 5e-4 leaves 10x, mistakes are off by >= 0.88.
-    d.tolerance = {1e-2, 5e-4};
+    // Band: +- 1e-3 of G, at least 1e-6, or the spread of 8 ulps of N, V and L (README.md).
+    d.tolerance = {1e-6, 1e-3, 8};
+    // V and L on either side of N and a little below the horizon (N.V, N.L from -0.3: what
+    // interpolated normals give at silhouettes and terminators), roughness 0.05 to 1.
+    d.domain = [](DomainRandom& r) {
+        Surface s;
+        s.normal = r.direction();
+        s.view = r.around(s.normal, -0.3, 1);
+        s.light = r.around(s.normal, -0.3, 1);
+        s.roughness = r.range(0.05, 1);
+        return s;
+    };
+    d.cases = {lessonGridCase()};
     d.reference = [](const Surface& s, const ReferenceContext&) {
         return glm::dvec3(ref::geometrySmith(s.normal, s.view, s.light, s.roughness));
     };
@@ -56,8 +66,9 @@ ModuleDesc describeModule() {
         std::vector<glm::dvec3> G = evaluate(grid);
         double lo = 1e300, hi = -1e300;
         for (const auto& g : G) lo = std::min(lo, g.x), hi = std::max(hi, g.x);
-        return std::vector<InvariantResult>{{"smallest G", lo, ">= 0", lo >= 0},
-                                            {"largest G", hi, "<= 1 (+1e-5)", hi <= 1 + 1e-5}};
+        return std::vector<InvariantResult>{
+            {"smallest G", lo, ">= 0", lo >= 0, "G is a visible fraction"},
+            {"largest G", hi, "<= 1 (+1e-5)", hi <= 1 + 1e-5, "G is a visible fraction"}};
     };
     return d;
 }

@@ -16,8 +16,9 @@
 #include <set>
 #include <sstream>
 
-#include "check.h"
+#include "evaluate.h"
 #include "gl/context.h"
+#include "grade.h"
 #include "handout.h"
 #include "pbrlab/contract.h"
 #include "pbrlab/display.h"
@@ -31,7 +32,6 @@ namespace pbrlab {
 namespace {
 
 constexpr int kRenderSize = 512;  // the lab image; scaled to fit the window
-constexpr int kStatusSize = 48;   // quick check behind the status badges
 
 enum class Status { Unknown, Missing, CompileError, Passes, Fails };
 
@@ -76,6 +76,7 @@ const std::vector<std::string> kTabs = {"handout", "plot", "log", "programs"};
 struct ModuleState {
     ParamValues params;
     Status status = Status::Unknown;
+    std::string gradeMessage;  // why the badge says "fails": the grader's message
     fs::file_time_type stamp{};
     bool stampKnown = false;
 };
@@ -139,9 +140,6 @@ public:
         if (registry_->modules().empty())
             throw Error("no modules in " + options.modulesDir.string());
         renderer_ = std::make_unique<LabRenderer>(paths_);
-        // Views read cube maps as the CPU reference does (see LabRenderer::setSeamlessCubes),
-        // so the statistics under the image mean what `pbrlab check` means.
-        renderer_->setSeamlessCubes(false);
         submission_ = options.submission;
         if (submission_.empty()) {
             for (const auto& m : registry_->modules())
@@ -387,23 +385,28 @@ private:
         Scene scene = currentScene();
         ModuleState& st = state();
         auto start = std::chrono::steady_clock::now();
+        // Views read cube maps as the CPU reference does (RenderRequest::seamlessCubes off),
+        // so the statistics under the image are the ones `pbrlab check` grades with.
         try {
-            RenderResult solution =
-                renderer_->renderScene(m, st.params, scene, {}, kRenderSize, kRenderSize, true);
-            solutionValue_ = solution.value;
-            surfaces_ = solution.surfaces;
-            std::vector<glm::dvec3> reference;
-            Scene bound = applyParamBindings(scene, module(), st.params);
-            ReferenceContext context = referenceContext(bound, st.params);
-            if (module().needs & NeedsEnvironment)
-                context.ibl = &renderer_->environmentInputs(bound);
-            solutionStats_ =
-                compareWithReference(solution.value, surfaces_, module(), context, &reference);
-            referenceValue_ = solution.value;
-            for (size_t i = 0; i < reference.size(); ++i)
+            EvalRequest request;
+            request.render = {&m, &st.params, &scene, {}, nullptr, kRenderSize, kRenderSize};
+            request.render.readSurfaces = true;
+            request.render.seamlessCubes = false;
+            Evaluation solution = evaluate(*renderer_, request);
+            solutionValue_ = solution.render.value;
+            surfaces_ = solution.render.surfaces;
+            band_ = solution.band;
+            solutionStats_ = solution.comparison;
+            referenceValue_ = solution.render.value;
+            for (size_t i = 0; i < band_.expected.size(); ++i)
                 for (int c = 0; c < 3; ++c)
-                    referenceValue_.pixels[i * 4 + size_t(c)] = float(reference[i][c]);
-            probeSolution_ = renderer_->renderProbe(m, st.params, scene, {}).value;
+                    referenceValue_.pixels[i * 4 + size_t(c)] = float(band_.expected[i][c]);
+            request.render.surfaces = nullptr;
+            const std::vector<Surface> probe = probeSurfaces(module().probe);
+            RenderRequest probeRequest{
+                &m, &st.params, &scene, {}, &probe, module().probe.width, module().probe.height};
+            probeRequest.seamlessCubes = false;
+            probeSolution_ = renderer_->render(probeRequest).value;
             renderError_.clear();
         } catch (const Error& e) {
             renderError_ = e.what();
@@ -414,17 +417,23 @@ private:
         if (hasStudent_) {
             for (int attempt = 0; attempt < 2; ++attempt) {
                 try {
-                    RenderResult student = renderer_->renderScene(
-                        m, st.params, scene, studentSource(), kRenderSize, kRenderSize, false);
-                    studentValue_ = student.value;
-                    Scene bound = applyParamBindings(scene, module(), st.params);
-                    ReferenceContext studentContext = referenceContext(bound, st.params);
-                    if (module().needs & NeedsEnvironment)
-                        studentContext.ibl = &renderer_->environmentInputs(bound);
+                    RenderRequest request{&m,      &st.params,  &scene,     studentSource(),
+                                          nullptr, kRenderSize, kRenderSize};
+                    request.seamlessCubes = false;
+                    studentValue_ = renderer_->render(request).value;
                     studentStats_ =
-                        compareWithReference(student.value, surfaces_, module(), studentContext);
-                    probeStudent_ =
-                        renderer_->renderProbe(m, st.params, scene, studentSource()).value;
+                        compareWithBand(studentValue_, surfaces_, band_, module().components,
+                                        module().nonNegative, module().tolerance.outlierFraction);
+                    const std::vector<Surface> probe = probeSurfaces(module().probe);
+                    RenderRequest probeRequest{&m,
+                                               &st.params,
+                                               &scene,
+                                               studentSource(),
+                                               &probe,
+                                               module().probe.width,
+                                               module().probe.height};
+                    probeRequest.seamlessCubes = false;
+                    probeStudent_ = renderer_->render(probeRequest).value;
                     if (attempt == 0) compileLog_.clear();
                     rendered = true;
                     break;
@@ -479,16 +488,16 @@ private:
             if (st.stampKnown && stamp == st.stamp) continue;
             st.stamp = stamp;
             st.stampKnown = true;
-            try {
-                Scene scene = pbrlab::loadScene(paths_.scene(m.desc->scene));
-                CheckResult r = checkModule(*renderer_, m, st.params, scene, {submission_, false},
-                                            kStatusSize, kStatusSize);
-                st.status = r.passed ? Status::Passes : Status::Fails;
-            } catch (const ShaderError&) {
-                st.status = Status::CompileError;
-            } catch (const Error&) {
-                st.status = Status::Fails;
-            }
+            // The badge is the grade: the same gradeStep `pbrlab grade` runs in its child.
+            GradeOptions grade;
+            grade.submission = submission_;
+            grade.settings.robustness = false;  // reported, never deducted: not for a badge
+            grade.settings.feedback = true;
+            const ModuleGrade g = gradeModule(*renderer_, m, paths_, grade);
+            st.status = g.status == "passed"          ? Status::Passes
+                        : g.status == "compile_error" ? Status::CompileError
+                                                      : Status::Fails;
+            st.gradeMessage = g.message;
             dirty_ = dirty_ || m.desc->id == module().id;
             return;
         }
@@ -846,17 +855,21 @@ private:
     }
 
     void drawStats() {
-        const Tolerance& t = module().tolerance;
-        auto row = [&](const char* who, const ErrorStats& s) {
-            bool ok = s.passes(t, module().nonNegative);
+        auto row = [&](const char* who, const Comparison& s) {
+            bool ok = s.passes(module().nonNegative, module().tolerance.outlierFraction);
             ImGui::TextColored(ok ? ImVec4(0.4f, 0.9f, 0.45f, 1) : ImVec4(1, 0.5f, 0.3f, 1),
-                               "%-9s max err %.3g  mean %.3g  NaN %d  Inf %d  neg %d  %s", who,
-                               s.maxError, s.meanError, s.nanCount, s.infCount, s.negativeCount,
-                               ok ? "within tolerance" : "over tolerance");
+                               "%-9s worst %.3g x the tolerance  outside %d  NaN %d  Inf %d  "
+                               "neg %d  %s",
+                               who, s.worstExcess, s.outside, s.nanCount, s.infCount,
+                               s.negativeCount, ok ? "within the band" : "outside the band");
         };
-        ImGui::TextDisabled("vs CPU reference (tolerance %.3g, floor %.3g):", t.maxError, t.floor);
+        ImGui::TextDisabled(
+            "vs the CPU reference's band on this picture (the badge is the grade):");
         if (!studentValue_.pixels.empty()) row("student", studentStats_);
         row("solution", solutionStats_);
+        const ModuleState& st = states_.at(module().id);
+        if (st.status == Status::Fails && !st.gradeMessage.empty())
+            ImGui::TextWrapped("grade: %s", st.gradeMessage.c_str());
     }
 
     void drawSidePanel() {
@@ -1326,7 +1339,8 @@ private:
     fs::file_time_type lastStudentStamp_{};
     Image studentValue_, solutionValue_, referenceValue_, probeSolution_, probeStudent_;
     std::vector<Surface> surfaces_;
-    ErrorStats studentStats_, solutionStats_;
+    Comparison studentStats_, solutionStats_;
+    Band band_;  // the reference's band on the current picture
     gl::Handle imageTexture_;
     int imageWidth_ = 1, imageHeight_ = 1, nanCount_ = 0, infCount_ = 0, plotRow_ = 0;
     float diffRange_ = 1e-3f, split_ = 0.5f;

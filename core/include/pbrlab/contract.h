@@ -17,6 +17,14 @@ struct ContractStep {
 };
 
 const std::vector<ContractStep>& contractSteps();
+
+// The contract helper every step may call besides the steps' functions (shaders/
+// fresnel_roughness.glsl).
+inline constexpr const char* kFresnelSchlickRoughness =
+    "vec3 fresnelSchlickRoughness(float cosTheta, vec3 F0, float roughness)";
+
+// GLSL prototypes of every contract function (and the helper), for programs that link them all.
+std::string contractPrototypes();
 const ContractStep* findContractStep(const std::string& id);
 
 // The contract steps whose GLSL a program for `id` needs, in step order: every earlier step

@@ -22,7 +22,18 @@ namespace pbrlab {
 // The brightest texels are over 10^4 times the median. Each texel is the average of 4 x 4
 // stratified sub-samples (the sun's edge is antialiased, its energy kept). width must be even
 // and in [16, 8192] (512 is the shipped size); throws pbrlab::Error otherwise.
-Image generateSkyEnvironment(int width = 512);
+// `soft` ("sky-soft" in scenes): the same range without the sun's disc, its aureole spread ten
+// times wider, the panels a tenth as bright with edges five times softer (ground unchanged,
+// still lit by the sun). Every feature is then wider than a degree and the brightest is about
+// 8, so Monte Carlo and quadrature estimators of any correct kind converge on it: the
+// environment the IBL steps are graded on.
+Image generateSkyEnvironment(int width = 512, bool soft = false);
+
+// A smooth environment ("smooth" in scenes): low-order polynomials of the direction per
+// channel, from about 0.3 to 1.6, no feature at all. Any consistent quadrature of the
+// irradiance converges on it almost at once, while a wrong one (a gap, a double count, a
+// wrong weight) stays off: how `pbrlab mutants` tells another quadrature from a mistake.
+Image generateSmoothEnvironment(int width = 256);
 
 // Where the sun of generateSkyEnvironment is (unit vector, y up) and its angular radius in
 // radians, for tests and handouts (e.g. where a mirror sphere shows its highlight).

@@ -54,6 +54,22 @@ double pdfGGXHalfVector(double NdotH, double roughness);
 // Jacobian dH/dL = 1 / (4 V.H) of the reflection. 0 when V.H <= 0.
 double pdfGGXReflected(double NdotH, double VdotH, double roughness);
 
+// P(X >= chi2) for a chi-square distribution with `dof` degrees of freedom (the regularised
+// upper incomplete gamma Q(dof / 2, chi2 / 2)): the p-value of a chi-square test.
+double chiSquareTail(double chi2, int dof);
+
+// A chi-square test of half vectors against the GGX density D(h) (N.h) per steradian, in a
+// frame of the test's own around N (a correct sampler in any orthonormal frame is a rotation
+// or reflection of it, which leaves a uniform phi uniform). 16 theta bins by s = ln tan(theta),
+// edges at the closed-form quantiles, probabilities integrated numerically from the density
+// (so a wrong quantile formula cannot hide); 8 phi bins. Samples that are not finite unit
+// vectors above the surface (|1 - |H|| > 1e-3, N.H <= 0) are invalid and left out of the bins.
+struct ChiSquareTest {
+    double pValue = 0, chi2 = 0;
+    int dof = 0, valid = 0, invalid = 0;
+};
+ChiSquareTest ggxHalfVectorChiSquare(const std::vector<dvec3>& H, const dvec3& N, double roughness);
+
 // Smith-Schlick-GGX for image-based lighting: k = alpha / 2 = roughness^2 / 2 (not the
 // direct-light (roughness + 1)^2 / 8 of step 6), alpha floored at kIblMinAlpha like D.
 double geometrySchlickGGXIBL(double NdotX, double roughness);
@@ -101,6 +117,21 @@ dvec3 equirectDirection(const dvec2& uv);  // its inverse
 // contributing 0. This is f_spec(l) (N.L) / pdf(l) with D cancelled (pdf = D (N.H) / 4 (V.H)).
 dvec3 specularIBLReference(const Environment& env, const dvec3& N, const dvec3& V, const dvec3& F0,
                            double roughness, std::uint32_t sampleCount);
+
+// What grading an estimator needs at one point (steps 17, 19, 20): its converged value and
+// the standard deviation of a one-sample estimate, both measured with `m` Hammersley-driven
+// samples of the reference's own estimator in double. An estimator of n samples is then
+// within a few sigma / sqrt(n) of the mean (docs/grading.md, "Estimators").
+struct Moments {
+    dvec3 mean{0}, sigma{0};
+};
+Moments specularIBLMoments(const Environment& env, const dvec3& N, const dvec3& V, const dvec3& F0,
+                           double roughness, std::uint32_t m);
+// The ratio estimator sum L (N.l) / sum (N.l): sigma from the delta method,
+// Var = E[w^2 (L - mean)^2] / E[w]^2 for one sample of weight w = (N.l)+.
+Moments prefilterMoments(const Environment& env, const dvec3& R, double roughness, std::uint32_t m);
+// (A, B) in x and y; the mean from brdfLutExact.
+Moments brdfLutMoments(double NdotV, double roughness, std::uint32_t m);
 
 // ---- 18 irradiance --------------------------------------------------------------------------
 
@@ -159,6 +190,6 @@ dvec2 brdfLutExact(double NdotV, double roughness);
 // result = (kD albedo irradiance + prefiltered (F0 A + B)) ao.
 dvec3 ambientIBL(const dvec3& N, const dvec3& V, const dvec3& albedo, double metallic,
                  double roughness, double ao, const dvec3& irradiance, const dvec3& prefiltered,
-                 const dvec2& lut);
+                 const dvec2& lut, double minNdotV = 0);
 
 }  // namespace pbrlab::ref

@@ -25,6 +25,9 @@ struct Image {
     float at(int x, int y, int c) const { return pixels[(size_t(y) * width + x) * channels + c]; }
 };
 
+// The same picture with its rows in the other order (GL textures and read-back run bottom-up).
+Image flipRows(const Image& image);
+
 // Reads any file OpenImageIO knows. Values are the stored code values scaled to [0, 1] for
 // integer formats (16-bit stays 16-bit precise: no detour through 8 bits) and unchanged for
 // float formats; no colour conversion is applied (sourceIsSrgb says how to interpret them).

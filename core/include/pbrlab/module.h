@@ -6,10 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <glm/glm.hpp>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,7 +22,7 @@
 namespace pbrlab {
 
 // Bump when ModuleDesc or anything it contains changes layout.
-constexpr int kModuleAbiVersion = 4;
+constexpr int kModuleAbiVersion = 5;
 
 // Everything a contract function may take, per pixel. The GPU fills the same fields in
 // GLSL (shaders/surface.glsl) from the G-buffer (scene) or from uploaded textures (probe), so
@@ -74,17 +76,60 @@ struct Display {
     bool logScale = false;  // FalseColor: map log10(v) between log10(lo) and log10(hi)
 };
 
-// Pass/fail rule: per component, error = |gpu - ref| / max(|ref|, floor). The floor turns the
-// measure into an absolute error where the reference is small. Numbers and their measured
-// reason are written in the module's handout.
+// The pass band around the CPU reference, per value component (docs/grading.md). At a point
+// with reference r, accepted range alternatives a_k and float inputs x, a value v passes when
+//     min(r, a_k) - t <= v <= max(r, a_k) + t,   t = max(absolute, relative |r|, spread),
+// or when it is within t of one separate alternative (AcceptedAlternative),
+// where spread is the largest change of the reference when every float input moves by up to
+// `ulps` units in the last place: the measured conditioning of the function at that point,
+// so the band is tight where the function is well conditioned and loose only where the
+// rounding of its float inputs says so. The numbers and their measured reasons are written in
+// the module's handout.
 struct Tolerance {
-    double floor = 1e-3;
-    double maxError = 1e-3;
-    // Share of compared pixels allowed over maxError (0: none). For views that filter HDR
+    double absolute = 1e-6;  // in the value's own units: the band's width near zero
+    double relative = 1e-3;  // of |r|: 50x under a 5% constant-factor mistake
+    double ulps = 8;         // conditioning: input rounding budget (0: no spread term)
+    // Share of compared points allowed outside the band (0: none). For views that filter HDR
     // textures: GL leaves the precision of bilinear weights to the implementation (llvmpipe
-    // uses 8 bits), so next to a 20000-bright sun a handful of pixels differ by whole
-    // percents while the function is right. NaN, Inf and negatives are never excused.
+    // uses 8 bits), so next to a 20000-bright sun a handful of pixels differ by whole percents
+    // while the function is right. NaN, Inf and negatives are never excused.
     double outlierFraction = 0;
+};
+
+// Deterministic random numbers for sampling a module's teaching domain (seeded by the grader,
+// so instructors can choose other points than the ones students see).
+class DomainRandom {
+public:
+    explicit DomainRandom(std::uint64_t seed) : state_(seed * 0x9E3779B97F4A7C15ull + 1) {}
+    // Uniform in [0, 1) with 24 bits, so every value is exact in a float.
+    double uniform() {
+        state_ = state_ * 6364136223846793005ull + 1442695040888963407ull;
+        std::uint64_t z = state_;
+        z = (z ^ (z >> 33)) * 0xff51afd7ed558ccdull;
+        z = (z ^ (z >> 33)) * 0xc4ceb9fe1a85ec53ull;
+        return double((z ^ (z >> 33)) >> 40) * (1.0 / 16777216.0);
+    }
+    double range(double lo, double hi) { return lo + (hi - lo) * uniform(); }
+    // Log-uniform in [lo, hi] (lo > 0): every decade as likely.
+    double logRange(double lo, double hi) { return lo * std::pow(hi / lo, uniform()); }
+    glm::dvec3 color(double hi = 1) { return {range(0, hi), range(0, hi), range(0, hi)}; }
+    // A uniformly distributed unit vector.
+    glm::dvec3 direction() {
+        const double z = range(-1, 1), phi = range(0, 2 * std::numbers::pi);
+        const double r = std::sqrt(std::max(0.0, 1 - z * z));
+        return {r * std::cos(phi), r * std::sin(phi), z};
+    }
+    // A unit vector at cosine c from n, c uniform in [minCos, maxCos], azimuth uniform.
+    glm::dvec3 around(const glm::dvec3& n, double minCos, double maxCos) {
+        const double c = range(minCos, maxCos), phi = range(0, 2 * std::numbers::pi);
+        const glm::dvec3 a = std::abs(n.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+        const glm::dvec3 t = glm::normalize(a - n * glm::dot(n, a)), b = glm::cross(n, t);
+        const double s = std::sqrt(std::max(0.0, 1 - c * c));
+        return glm::normalize(n * c + t * (s * std::cos(phi)) + b * (s * std::sin(phi)));
+    }
+
+private:
+    std::uint64_t state_;
 };
 
 // A full-screen grid whose pixels map to the function's inputs, domain ends included:
@@ -153,24 +198,108 @@ enum SurfaceNeeds : unsigned {
     NeedsRoughness = 1u << 2,
     NeedsAo = 1u << 3,
     NeedsNormalMap = 1u << 4,
-    NeedsEnvironment = 1u << 5,  // IBL: environment cube and the split-sum maps (precompute)
+    NeedsEnvironment = 1u << 5,  // IBL: the environment cube uEnvironment (with mips)
     NeedsEmissive = 1u << 6,     // emitted radiance (modules whose view is the final picture)
+    // The maps derived from the environment (irradiance, prefiltered, BRDF LUT), computed by
+    // earlier steps' reference solutions: what the split sum reads. Without it a step sees
+    // the environment cube only, and no precompute runs for it.
+    NeedsPrecomputedMaps = 1u << 7,
     NeedsMaterial = NeedsAlbedo | NeedsMetallic | NeedsRoughness | NeedsAo,
 };
 
-// Evaluates the module's view, with the code being graded, on the given surfaces (one value
-// each): what invariants are measured with.
-using EvaluateFn = std::function<std::vector<glm::dvec3>(const std::vector<Surface>&)>;
-
-// A property any correct answer has (normalisation, bounds, reciprocity, end values),
-// reported with the measured value to the student.
-struct InvariantResult {
-    std::string name;      // "∫ D(h) (n·h) dω = 1 at roughness 0.5"
-    double measured = 0;   // the quantity that should meet `expected`
-    std::string expected;  // "1 ± 0.02"
-    bool holds = false;
+// Runs the code being graded: the module's view (or one of its extra views, by name) on the
+// given surfaces, one value each; parameters at their defaults unless `set` assigns them
+// ("samples=16"). What invariants and distribution tests are measured with.
+struct Evaluator {
+    std::function<std::vector<glm::dvec3>(const std::vector<Surface>&, const std::string& view,
+                                          const std::vector<std::string>& set)>
+        run;
+    std::vector<glm::dvec3> operator()(const std::vector<Surface>& surfaces) const {
+        return run(surfaces, "", {});
+    }
 };
-using InvariantsFn = std::function<std::vector<InvariantResult>(const EvaluateFn&)>;
+using EvaluateFn = Evaluator;
+
+// A property every correct answer has (normalisation, bounds, reciprocity, end values, a
+// distribution), measured on the student's function. It is part of the contract: a property
+// that does not hold fails the step, and its name and value are the feedback.
+struct InvariantResult {
+    std::string name;      // "integral of D(h) (n.h) dw at roughness 0.5"
+    double measured = 0;   // the quantity that should meet `expected`
+    std::string expected;  // "1 +- 0.01"
+    bool holds = false;
+    std::string hint;  // when it fails: what that usually means ("is PI missing?"), optional
+};
+using InvariantsFn = std::function<std::vector<InvariantResult>(const Evaluator&)>;
+
+// A legitimately different definition that the contract accepts. Two kinds:
+//   range: one end of a continuous family of correct definitions, the reference the other
+//          (an epsilon anywhere between the reference's floor and the lesson's + 0.001): a
+//          value anywhere between the two passes;
+//   separate: a definition on its own (pow(c, 2.2) for the sRGB curve): a value near it
+//          passes, a blend of it and the reference does not.
+struct AcceptedAlternative {
+    std::string name;  // why it is correct too
+    ReferenceFn value;
+    bool range = false;
+};
+
+// The module's teaching domain as a distribution: one random point, every input the function
+// reads varied independently over the range it is taught on (the ends of the domain belong
+// to the probe; the extremes beyond it to the robustness sweep). Graded as "random inputs",
+// and read by the feedback to tell which input an error depends on.
+using DomainFn = std::function<Surface(DomainRandom&)>;
+
+// One more set of inputs the grader checks, beyond the ones it makes for every module (the
+// probe, the module's scene, random points of the domain, every parameter at other values,
+// coloured lights for steps that sum the scene's lights).
+struct GradeCase {
+    enum class Inputs { Scene, Probe, Domain };
+    std::string name;  // "the lesson's four-light grid"
+    Inputs inputs = Inputs::Scene;
+    std::string scene;             // a scene name for Inputs::Scene ("" the module's own)
+    std::vector<std::string> set;  // parameter assignments, "samples=7"
+};
+
+// The lesson's sphere grid with four lights (seed 001): direct-lab steps shown on one light
+// are also checked there, so a sum over one light only cannot pass.
+inline GradeCase lessonGridCase() {
+    return {"the lesson's sphere grid (four lights)", GradeCase::Inputs::Scene, "sphere-grid", {}};
+}
+
+// Estimators (Monte Carlo, quadratures) are judged by convergence, not sample by sample: the
+// value is compared with the converged integral, within what any correct estimator of the same
+// budget reaches (DESIGN.md "Grading").
+struct Estimate {
+    glm::dvec3 mean{0};   // the converged value (the CPU double reference of the integral)
+    glm::dvec3 sigma{0};  // standard deviation of a one-sample estimate (0: deterministic)
+};
+struct EstimatorSpec {
+    std::string samplesParam;       // the parameter that sets the sample count ("" none)
+    std::vector<int> sampleCounts;  // graded counts, smallest first
+    // The environment correctness is judged on: one where legitimate estimators converge (no
+    // sub-degree sun). The module's own scene stays for the quality report.
+    std::string environment = "sky-soft";
+    // The converged value and one sample's spread at a point, measured with `truthSamples`
+    // samples of the reference's estimator where it is not known in closed form.
+    std::function<Estimate(const Surface&, const ReferenceContext&, std::uint32_t truthSamples)>
+        converged;
+    std::uint32_t truthSamples = 16384;
+    // At n samples: |v - mean| <= t + sigmas * sigma / sqrt(n), t from `systematic` (what
+    // correct estimators differ by beyond noise: filtering, quadrature; measured).
+    double sigmas = 5;
+    Tolerance systematic;
+    // The mean error at the smallest count must be at least this many times the mean error at
+    // the largest: an estimator that ignores its sample count does not converge.
+    double minimumFall = 3;
+    // > 0: the value may be off by a constant factor within this (a quadrature normalised by
+    // its node count, as LearnOpenGL's is); the band then applies to the value divided by its
+    // best-fit factor (the median ratio to the converged value), so an error that varies
+    // with the inputs is held to `systematic` alone.
+    double scaleTolerance = 0;
+    int domainPoints = 384;  // random points of the domain per count
+    int probeStride = 2;     // every probeStride-th row and column of the probe (ends kept)
+};
 
 struct ModuleDesc {
     int abiVersion = kModuleAbiVersion;
@@ -188,9 +317,23 @@ struct ModuleDesc {
     std::vector<std::string> uses;   // other contract ids the view calls
     bool skyBackground = false;      // draw the environment behind the scene (radiance views)
     Tolerance tolerance;
+    std::vector<Tolerance> componentTolerances;  // per component when not empty
     ReferenceFn reference;
+    std::vector<AcceptedAlternative> alternatives;
     Probe probe;
+    DomainFn domain;  // optional
+    std::vector<GradeCase> cases;
+    std::optional<EstimatorSpec> estimator;
+    // Extra views in the module's folder (<name>.glsl, each `vec3 view(Surface s)`), for
+    // invariants that need other outputs than the picture's (the raw sample of a sampler).
+    std::vector<std::string> extraViews;
     InvariantsFn invariants;  // optional
+
+    const Tolerance& toleranceFor(int component) const {
+        return componentTolerances.empty() ? tolerance
+                                           : componentTolerances[size_t(std::min<int>(
+                                                 component, int(componentTolerances.size()) - 1))];
+    }
 };
 
 }  // namespace pbrlab

@@ -12,7 +12,11 @@ namespace fs = std::filesystem;
 namespace pbrlab {
 
 bool isInside(const fs::path& path, const fs::path& root) {
-    fs::path p = fs::weakly_canonical(path), r = fs::weakly_canonical(root);
+    // A path that cannot be resolved (a symlink loop, a component that is not a folder) is
+    // not inside anything.
+    std::error_code ec1, ec2;
+    fs::path p = fs::weakly_canonical(path, ec1), r = fs::weakly_canonical(root, ec2);
+    if (ec1 || ec2) return false;
     auto [rootEnd, _] = std::mismatch(r.begin(), r.end(), p.begin(), p.end());
     return rootEnd == r.end();
 }
@@ -26,7 +30,11 @@ std::string readText(const fs::path& path) {
     if (!in) throw Error(path.string() + ": cannot open shader file");
     std::ostringstream s;
     s << in.rdbuf();
-    return s.str();
+    std::string text = s.str();
+    // GL reads the source as a C string: a NUL would silently cut the program short there.
+    if (text.find('\0') != std::string::npos)
+        throw Error(path.string() + ": contains NUL bytes (not text): refused");
+    return text;
 }
 
 struct Expander {
@@ -46,13 +54,23 @@ struct Expander {
         if (!from.empty()) candidates.push_back(from.parent_path() / target);
         for (const auto& root : roots) candidates.push_back(root / target);
         for (const auto& c : candidates) {
-            if (!fs::exists(c)) continue;
+            std::error_code ec;
+            if (!fs::exists(c, ec)) {
+                if (ec && ec != std::errc::no_such_file_or_directory)
+                    throw Error(where + ": #include \"" + target + "\" cannot be read (" +
+                                ec.message() + ")");
+                continue;
+            }
             bool allowed = false;
             for (const auto& root : roots) allowed = allowed || isInside(c, root);
             if (!allowed)
                 throw Error(where + ": #include \"" + target +
                             "\" leaves the allowed shader folders");
-            return fs::canonical(c);
+            fs::path resolved = fs::canonical(c, ec);
+            if (ec)
+                throw Error(where + ": #include \"" + target + "\" cannot be resolved (" +
+                            ec.message() + ")");
+            return resolved;
         }
         throw Error(where + ": #include \"" + target + "\" not found");
     }
@@ -100,7 +118,9 @@ ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
             ex.expandText(part.text, part.name.empty() ? "<generated>" : part.name, {});
             continue;
         }
-        fs::path file = fs::weakly_canonical(part.file);
+        std::error_code ec;
+        fs::path file = fs::weakly_canonical(part.file, ec);
+        if (ec) throw Error(part.file.string() + ": cannot be resolved (" + ec.message() + ")");
         if (!ex.included.insert(file).second) continue;
         ex.out.files.push_back(file);
         ex.roots = part.includeRoots.empty() ? roots_ : part.includeRoots;

@@ -1,0 +1,37 @@
+// Feedback that names the mistake from the shape of the error (docs/grading.md): a constant
+// factor, an offset, a power, a sign, a constant output, an error confined to one region of
+// an input, an input the function ignores or depends on wrongly. General patterns, not a
+// list of known files; grading.cpp adds the nearest typical mistake on top.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pbrlab/module.h"
+
+namespace pbrlab {
+
+struct FeedbackInputs {
+    const ModuleDesc* module = nullptr;
+    std::vector<Surface> surfaces;             // covered points of the failing check
+    std::vector<glm::dvec3> values, expected;  // the student's and the reference's
+    std::vector<glm::dvec3> slack;             // the band's half-width there
+    // The student's function on other inputs, and the reference there: for the sensitivity
+    // test (which input does the error follow?). Optional.
+    std::function<std::vector<glm::dvec3>(const std::vector<Surface>&)> student;
+    std::function<glm::dvec3(const Surface&)> reference;
+    DomainFn domain;
+};
+
+// What the inputs at a point were, in the module's terms: the fields its domain (or probe)
+// varies, and the cosines between the directions it reads ("N.V 0.42, roughness 0.05").
+std::string describeInputs(const ModuleDesc& module, const Surface& s);
+
+// One sentence (or two) saying what the error looks like, or "" when no pattern fits.
+std::string classifyError(const FeedbackInputs& in);
+
+// The constant that `ratio` is closest to among the usual suspects (pi, 1/pi, 2, 4, ...), as
+// "pi/4", when it is within 1%; else "".
+std::string nameConstant(double ratio);
+
+}  // namespace pbrlab

@@ -1,0 +1,69 @@
+// What grading one step means (docs/grading.md): every check that the module's declarations
+// and the contract call for, run on the student's function (or the reference solution), each
+// with what it measured. The grader's child processes, `pbrlab check`, the GUI's badges and
+// `pbrlab mutants` all grade through gradeStep, so they cannot disagree.
+#pragma once
+
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "evaluate.h"
+#include "feedback.h"
+
+namespace pbrlab {
+
+struct GradeSettings {
+    int size = 96;           // image side of the scene checks
+    std::uint64_t seed = 1;  // of the random domain points (instructors may choose another)
+    int domainPoints = 2048;
+    bool feedback = true;    // on failure, name the mistake (costs a few more renders)
+    bool robustness = true;  // the extreme-input sweep (reported, not deducted)
+    // Stop at the first check that fails (the verdict is the same; what mutation testing
+    // needs, fast).
+    bool stopAtFirstFailure = false;
+    // Told as each check starts, so that a crash can be reported with where it happened.
+    std::function<void(const std::string&)> stage;
+};
+
+struct CheckReport {
+    std::string name;  // "probe", "random inputs", "samples = 7", "integral of D ..."
+    // values | invariant | convergence | robustness | quality
+    std::string kind = "values";
+    bool passed = true;
+    bool deducted = true;  // robustness and quality are reported, not deducted
+    std::string detail;    // one line: what was measured and the rule
+    // values: points compared and where the band was left worst
+    int points = 0, outside = 0, nan = 0, inf = 0, negative = 0;
+    double worstExcess = 0;  // distance outside the band at the worst point, in tolerances
+    std::string worstAt;     // the inputs there
+    glm::dvec3 worstValue{0}, worstExpected{0}, worstLo{0}, worstHi{0};
+    // invariants and convergence
+    double measured = 0;
+    std::string expected;
+};
+
+struct StepResult {
+    bool passed = false;
+    std::vector<CheckReport> checks;
+    std::string message;  // why it failed (the first failed check, the named mistake)
+    std::string mistake;  // the mistake recognised from the shape of the error, or empty
+    double seconds = 0;
+};
+
+// Throws ShaderError when the student's file does not compile, pbrlab::Error for refused
+// files; everything else is a result.
+StepResult gradeStep(LabRenderer& renderer, const LoadedModule& module, const DataPaths& paths,
+                     const StudentSource& source, const GradeSettings& settings);
+
+// The random points of the module's domain the grader uses (seeded), empty when it has none.
+std::vector<Surface> domainSurfaces(const ModuleDesc& module, std::uint64_t seed, int count);
+
+// The values a parameter is graded at besides its default ("samples=7"): every parameter the
+// student's function receives is exercised.
+std::vector<std::string> exercisedValues(const ParamDecl& p);
+
+nlohmann::json toJson(const CheckReport& check);
+
+}  // namespace pbrlab

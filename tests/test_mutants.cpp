@@ -1,0 +1,97 @@
+// The mutation score, in CI: the generator makes every family from a solution's text (and
+// leaves comments and preprocessor lines alone), and a fixed subset of the reference
+// solutions' mutants, graded exactly as submissions are, leaves no survivor that is not
+// equivalent. The full run is `pbrlab mutants` (docs/grading.md has its table).
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "mutation.h"
+#include "test_support.h"
+
+using namespace pbrlab;
+
+namespace {
+
+const char* kSample = R"(// a comment with 2.0 * PI that is left alone
+#define PBRLAB_SOMETHING 3
+float pbrlab_helper(float x) { return x * x; }
+
+vec3 fresnelLike(float cosTheta, vec3 F0, uint n)
+{
+    // BEGIN SOLUTION
+    float c = clamp(1.0 - cosTheta, 0.0, 1.0);
+    vec3 sum = vec3(0.0);
+    for (uint i = 0u; i < n; ++i) sum += F0 * float(i);
+    float w = c > 0.5 ? c : -c;
+    return F0 + (1.0 - F0) * pow(c, 5.0) / PI + normalize(sum).xyz * sqrt(w) + max(w, 0.1);
+    // END SOLUTION
+}
+)";
+
+}  // namespace
+
+TEST(Mutants, EveryFamilyIsMadeAndCommentsArePreserved) {
+    const std::vector<Mutant> mutants = generateMutants(kSample);
+    std::set<std::string> families;
+    for (const Mutant& m : mutants) {
+        families.insert(m.family);
+        EXPECT_NE(m.text, kSample);
+        EXPECT_NE(m.text.find("// a comment with 2.0 * PI that is left alone"), std::string::npos)
+            << m.description;
+        EXPECT_NE(m.text.find("#define PBRLAB_SOMETHING 3"), std::string::npos) << m.description;
+        EXPECT_GT(m.line, 2) << m.description;
+    }
+    for (const MutantFamily& f : mutantFamilies())
+        EXPECT_TRUE(families.count(f.name)) << "no mutant of family " << f.name;
+    // No two mutants are the same program.
+    std::set<std::string> texts;
+    for (const Mutant& m : mutants) EXPECT_TRUE(texts.insert(m.text).second) << m.description;
+}
+
+TEST(Mutants, TypicalMutationsAreAmongThem) {
+    const std::vector<Mutant> mutants = generateMutants(kSample);
+    auto has = [&](const std::string& text) {
+        for (const Mutant& m : mutants)
+            if (m.text.find(text) != std::string::npos) return true;
+        return false;
+    };
+    EXPECT_TRUE(has("pow(c, 5.0) / 1.0"));            // PI removed
+    EXPECT_TRUE(has("pow(c, 2.5)"));                  // a constant halved
+    EXPECT_TRUE(has("float c = (1.0 - cosTheta);"));  // the clamp dropped
+    EXPECT_TRUE(has("pow(5.0, c)"));                  // arguments swapped
+    EXPECT_TRUE(has("(sum).xyz"));                    // normalize removed
+    EXPECT_TRUE(has("i < 64u"));                      // the sample count fixed
+    EXPECT_TRUE(has("return F0 + (1.0 - F0) * pow(c, 5.0) / PI + normalize(sum).xyz * sqrt(w);"));
+    EXPECT_TRUE(has("float w = c > 0.5 ? -c : c;"));  // branches swapped
+    EXPECT_TRUE(has("return x;"));                    // a square removed
+    EXPECT_TRUE(has("F0 + (F0) * pow"));              // 1.0 - x turned into x
+}
+
+// A fixed third of the mutants of four steps of both labs (a deterministic subset), graded as
+// submissions: every survivor must be proven equivalent on the teaching domain.
+TEST(Mutants, NoMutantThatIsNotEquivalentSurvivesASubset) {
+    DataPaths paths{PBRLAB_SOURCE_DIR};
+    ModuleRegistry modules{PBRLAB_MODULE_DIR, paths.labs()};
+    MutationOptions o;
+    o.modules = {"ndf", "fresnel", "reflectance", "hammersley", "brdf_lut"};
+    o.every = 3;
+    const std::vector<ModuleMutation> result = runMutants(modules, paths, o);
+    ASSERT_EQ(result.size(), o.modules.size());
+    for (const ModuleMutation& m : result) {
+        EXPECT_GT(m.count("killed"), 0) << m.id;
+        std::printf(
+            "[ measured ] %s: %zu mutants, %d killed, %d equivalent survivors, %d do not "
+            "compile, %.0f s\n",
+            m.id.c_str(), m.mutants.size(), m.count("killed"),
+            m.count("survived") - m.nonEquivalentSurvivors(), m.count("stillborn"), m.seconds);
+        for (const MutantOutcome& x : m.mutants)
+            if (x.status == "survived")
+                EXPECT_EQ(x.equivalence, "equivalent")
+                    << m.id << ": " << x.mutant.description << "\n"
+                    << x.evidence;
+            else
+                EXPECT_TRUE(x.status == "killed" || x.status == "stillborn")
+                    << m.id << ": " << x.mutant.description << " " << x.status;
+    }
+}
