@@ -181,7 +181,7 @@ double chiSquarePValue(const Sampler& sample, const dvec3& N, double roughness, 
             const double o = observed[size_t(j * phiBins + k)];
             chi2 += (o - e) * (o - e) / e;
         }
-    return pbrlab::test::gammaQ((thetaBins * phiBins - 1) / 2.0, chi2 / 2.0);
+    return pbrlab::ref::chiSquareTail(chi2, thetaBins * phiBins - 1);
 }
 
 TEST(IblImportance, SampledHalfVectorsFollowTheGgxDensityChiSquare) {

@@ -171,27 +171,43 @@ int runRender(const Options& o, const std::string& id, const std::string& submis
     return 0;
 }
 
-// Grades one step in this process, exactly as `pbrlab grade` does in its child (gradeStep),
-// and prints every check. --set, --scene and --model pick what the extra picture shows.
+// Grades one step in this process, exactly as `pbrlab grade` does in its child (gradeModule,
+// gradeStep inside), and prints every check; --json writes the grade as `grade --json` writes
+// one module (the GUI's badges read it).
 int runCheck(const Options& o, const std::string& id, const std::string& submission,
-             bool cumulative, const std::string& size, std::uint64_t seed) {
+             bool cumulative, const std::string& size, std::uint64_t seed,
+             const std::string& jsonFile) {
     Session session(o);
     const LoadedModule& m = session.modules->find(id);
     Size s = parseSize(size);
-    GradeSettings settings;
-    settings.size = std::min(s.width, s.height);
-    settings.seed = seed;
-    const StepResult r = gradeStep(*session.renderer, m, session.paths,
-                                   studentSource(submission, cumulative, id), settings);
-    for (const CheckReport& c : r.checks) {
-        const char* mark = c.passed ? "ok  " : c.deducted ? "FAIL" : "note";
-        std::printf("%s %-12s %s: %s\n", mark, c.kind.c_str(), c.name.c_str(), c.detail.c_str());
-        if (!c.passed && !c.worstAt.empty()) std::printf("     worst at %s\n", c.worstAt.c_str());
+    GradeOptions grade;
+    const StudentSource source = studentSource(submission, cumulative, id);
+    grade.submission = source.dir;
+    grade.cumulative = cumulative;
+    grade.settings.size = std::min(s.width, s.height);
+    grade.settings.seed = seed;
+    const ModuleGrade g = gradeModule(*session.renderer, m, session.paths, grade);
+    for (const auto& c : g.checks) {
+        const bool passed = c.value("passed", false), deducted = c.value("deducted", true);
+        std::printf("%s %-12s %s: %s\n",
+                    passed     ? "ok  "
+                    : deducted ? "FAIL"
+                               : "note",
+                    c.value("kind", "").c_str(), c.value("name", "").c_str(),
+                    c.value("detail", "").c_str());
+        const std::string at = c.value("worst_at", c.value("first_problem", ""));
+        if (!passed && !at.empty()) std::printf("     worst at %s\n", at.c_str());
     }
-    if (!r.passed) std::printf("%s\n", r.message.c_str());
-    std::printf("%s: %s (%.1f s)\n", id.c_str(), r.passed ? "PASS" : "FAIL", r.seconds);
+    if (g.status != "passed") std::printf("%s\n", g.message.c_str());
+    std::printf("%s: %s (%.1f s)\n", id.c_str(), g.status == "passed" ? "PASS" : "FAIL", g.seconds);
+    if (!jsonFile.empty()) {
+        GradeReport one;
+        one.submission = grade.submission;
+        one.modules = {g};
+        writeFileAtomically(jsonFile, jsonText(toJson(one)));
+    }
     if (o.stats) printStats(session);
-    return r.passed ? 0 : 1;
+    return g.status == "passed" ? 0 : 1;
 }
 
 int runStability(const Options& o, const std::vector<std::string>& ids,
@@ -392,10 +408,12 @@ int runMutants(const Options& o, const std::vector<std::string>& ids, const std:
         bad += notEquivalent;
         std::string named;
         if (feedback) {
-            int withName = 0, failed = 0;
+            int byPattern = 0, byAny = 0, failed = 0;
             for (const MutantOutcome& x : r.mutants)
-                if (x.status == "killed") ++failed, withName += !x.mistake.empty();
-            named = " " + std::to_string(withName) + " of " + std::to_string(failed) + " |";
+                if (x.status == "killed")
+                    ++failed, byAny += !x.mistake.empty(), byPattern += x.namedBy == "pattern";
+            named = " " + std::to_string(byPattern) + " / " + std::to_string(byAny) + " of " +
+                    std::to_string(failed) + " |";
         }
         std::printf("| %s | %zu | %d | %d | %d | %d |%s %.0f |\n", r.id.c_str(), r.mutants.size(),
                     r.count("stillborn"), killed, survived - notEquivalent, notEquivalent,
@@ -461,6 +479,8 @@ int main(int argc, char** argv) {
     check->add_option("--size", checkSize, "Side of the scene checks WxH (default 96x96)");
     check->add_option("--seed", gradeSeed, "Seed of the random domain points (default 1)");
     check->add_flag("--stats", o.stats, "Print what was compiled, loaded and precomputed");
+    std::string checkJson;
+    check->add_option("--json", checkJson, "Also write the grade here (as `grade --json` does)");
     GuiOptions gui;
     std::string guiSize = "1600x960";
     auto* guiCmd = app.add_subcommand("gui", "Open the interactive lab (needs a display)");
@@ -599,7 +619,7 @@ int main(int argc, char** argv) {
         if (*list) return runList(o);
         if (*render)
             return runRender(o, id, submission, cumulative, sets, size, scene, model, probe, out);
-        if (*check) return runCheck(o, id, submission, cumulative, checkSize, gradeSeed);
+        if (*check) return runCheck(o, id, submission, cumulative, checkSize, gradeSeed, checkJson);
         if (*permutationsCmd) return runPermutations(o, permutationIds, scene, model);
         if (*gallery) return runGallery(o, galleryDir, size);
         if (*mutantsCmd)

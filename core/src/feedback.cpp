@@ -123,11 +123,15 @@ std::string region(const FeedbackInputs& in) {
                 if (inBad < 0.97 * badCount || otherSize < 0.15 * total ||
                     otherBad > 0.02 * otherSize)
                     continue;
-                const double score = double(inBad) / sideSize;  // purity of the wrong side
+                // Purity of the wrong side; among equally pure splits, the one holding more
+                // of the wrong points.
+                const double score = double(inBad) / sideSize + 1e-6 * inBad;
                 if (score > bestScore) {
                     bestScore = score;
-                    const double t = 0.5 * (xs[k].first + xs[k + 1].first);
-                    double shown = std::abs(t) < 0.02 ? 0.0 : t;
+                    // A threshold between the two neighbours; 0 when 0 lies between them
+                    // (where clamps and guards sit).
+                    const double a = xs[k].first, b = xs[k + 1].first;
+                    const double shown = a <= 0 && b >= 0 ? 0.0 : 0.5 * (a + b);
                     best = std::string("wrong only where ") + f.name + (side == 0 ? " < " : " > ") +
                            num(shown, 2) + " (" + std::to_string(inBad) + " of " +
                            std::to_string(sideSize) + " points there), right elsewhere";
@@ -301,7 +305,7 @@ std::string termFit(const FeedbackInputs& in) {
 }
 
 // One component wrong while the others are right: the patterns above on that component.
-std::string componentPattern(const FeedbackInputs& in) {
+std::string componentPattern(const FeedbackInputs& in, bool& exact) {
     const int n = in.module->components;
     if (n < 2) return "";
     static const char* names[] = {"first", "second", "third"};
@@ -341,6 +345,7 @@ std::string componentPattern(const FeedbackInputs& in) {
                    " everywhere; the others are right.";
         }
     }
+    exact = false;
     return which + " is wrong (" + std::to_string(int(offsets.size())) +
            " points); the others are right.";
 }
@@ -439,7 +444,10 @@ std::string nameConstant(double ratio) {
     return "";
 }
 
-std::string classifyError(const FeedbackInputs& in) {
+std::string classifyError(const FeedbackInputs& in, bool* exactOut) {
+    bool unused = false;
+    bool& exact = exactOut ? *exactOut : unused;
+    exact = true;  // every pattern below explains every point, but the last ones
     const int n = in.module->components;
     const std::vector<Entry> all = entries(in);
     // Not finite.
@@ -447,12 +455,13 @@ std::string classifyError(const FeedbackInputs& in) {
     for (const glm::dvec3& v : in.values) nonFinite += !finite(v, n);
     std::string where = region(in);
     if (nonFinite > 0) {
+        exact = false;
         std::string s = "Your function returns NaN or Inf at " + std::to_string(nonFinite) +
                         " of " + std::to_string(in.values.size()) + " points";
         return s + (where.empty() ? " (a division by zero or a sqrt/pow of a negative?)."
                                   : ": " + where);
     }
-    if (all.empty()) return "";
+    if (all.empty()) return exact = false, "";
     // A constant output.
     double lo = all.front().value, hi = lo, elo = all.front().expected, ehi = elo;
     for (const Entry& e : all) {
@@ -536,7 +545,7 @@ std::string classifyError(const FeedbackInputs& in) {
                 powers.push_back(std::log(e.value) / std::log(e.expected));
         if (powers.size() >= 8) {
             const double p = median(powers);
-            if (std::abs(p - 1) > 0.02 && shareNear(powers, p, 0.01) >= 0.9)
+            if (std::abs(p - 1) > 0.02 && std::abs(p) > 0.05 && shareNear(powers, p, 0.01) >= 0.9)
                 return "Your value is the reference to the power " + num(p) + " (x^" + num(p) +
                        " where the reference has x): an exponent is off.";
         }
@@ -544,7 +553,8 @@ std::string classifyError(const FeedbackInputs& in) {
     // The error explained by one input: value = reference + k x (albedo x ao, N.L, ...).
     if (std::string f = termFit(in); !f.empty()) return f;
     // One component wrong, the others right.
-    if (std::string c = componentPattern(in); !c.empty()) return c;
+    if (std::string c = componentPattern(in, exact); !c.empty()) return c;
+    exact = false;
     std::string s = where.empty() ? "" : "Your function is " + where;
     const std::string sens = sensitivity(in);
     if (!sens.empty()) s += (s.empty() ? "" : " ") + sens;

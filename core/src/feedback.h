@@ -28,7 +28,9 @@ struct FeedbackInputs {
 std::string describeInputs(const ModuleDesc& module, const Surface& s);
 
 // One sentence (or two) saying what the error looks like, or "" when no pattern fits.
-std::string classifyError(const FeedbackInputs& in);
+// `exact`: the pattern accounts for every point (a factor, an offset, a power, a constant
+// output, swapped components, a term), not only where the error lies.
+std::string classifyError(const FeedbackInputs& in, bool* exact = nullptr);
 
 // The constant that `ratio` is closest to among the usual suspects (pi, 1/pi, 2, 4, ...), as
 // "pi/4", when it is within 1%; else "".

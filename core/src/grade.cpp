@@ -30,7 +30,8 @@ constexpr std::uintmax_t kMaxStudentFileBytes = 10u * 1024 * 1024;
 json gradeJson(const ModuleGrade& g) {
     return {{"id", g.id},           {"title", g.title},        {"status", g.status},
             {"score", g.score},     {"max_score", g.maxScore}, {"message", g.message},
-            {"mistake", g.mistake}, {"checks", g.checks},      {"seconds", g.seconds}};
+            {"mistake", g.mistake}, {"named_by", g.namedBy},   {"checks", g.checks},
+            {"seconds", g.seconds}};
 }
 
 // Every string in `j` made valid UTF-8 (messages quote compiler logs of students' files).
@@ -175,6 +176,7 @@ ModuleGrade finishChild(Child& c, const GradeOptions& o) {
         g.maxScore = j.at("max_score");
         g.message = j.at("message");
         g.mistake = j.value("mistake", "");
+        g.namedBy = j.value("named_by", "");
         g.checks = j.value("checks", json::array());
         g.seconds = j.value("seconds", 0.0);
     } catch (const std::exception&) {
@@ -302,6 +304,7 @@ ModuleGrade gradeModule(LabRenderer& renderer, const LoadedModule& m, const Data
         g.status = r.passed ? "passed" : "failed";
         g.message = r.message;
         g.mistake = r.mistake;
+        g.namedBy = r.namedBy;
         g.seconds = r.seconds;
         for (const CheckReport& c : r.checks) g.checks.push_back(toJson(c));
         if (!o.html.empty()) writeImages(renderer, m, paths, o);

@@ -34,6 +34,7 @@ struct ModuleGrade {
     double score = 0, maxScore = 1;
     std::string message;
     std::string mistake;  // the mistake named from the shape of the error, when recognised
+    std::string namedBy;  // pattern | typical | mutant (see StepResult)
     nlohmann::json checks = nlohmann::json::array();  // every check with what it measured
     double seconds = 0;
 };

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "feedback.h"
+#include "mutants.h"
 #include "pbrlab/contract.h"
 #include "pbrlab/error.h"
 #include "stability.h"
@@ -77,6 +78,7 @@ struct ValuesRun {
     ParamValues params;
     bool fromScene = false;  // the scene's G-buffer (else the surfaces were uploaded)
     int width = 0, height = 0;
+    int worstIndex = -1;  // the point outside the band by most
 };
 
 // The name of a typical mistake: its file's leading comment block, one sentence.
@@ -229,6 +231,7 @@ private:
         run.fromScene = surfaces == nullptr;
         run.width = width;
         run.height = height;
+        run.worstIndex = e.comparison.worstIndex;
         return run;
     }
 
@@ -397,6 +400,7 @@ private:
                 run.params = params;
                 run.width = set.width;
                 run.height = set.height;
+                run.worstIndex = c.worstIndex;
                 keep(std::move(run));
             }
             meanError.push_back(errorCount ? errorSum / errorCount : 0);
@@ -417,13 +421,15 @@ private:
             record(fall);
         }
         if (counts.back() > 0) biasTest(sets, counts.back());
-        // NaN, Inf and negatives are never excused: the module's own scene at every count.
-        for (int n : counts) {
-            if (n <= 0) continue;
+        // NaN, Inf and negatives are never excused: the module's own scene (64^2) at the
+        // smallest count (other samples than the default's; the quality report below checks
+        // that one).
+        std::vector<int> finiteCounts;
+        if (counts.front() > 0) finiteCounts.push_back(counts.front());
+        for (int n : finiteCounts) {
             const ParamValues params = withSets(d_, {e.samplesParam + "=" + std::to_string(n)});
             stage("finite values with " + e.samplesParam + " = " + std::to_string(n));
-            RenderRequest request{&m_,     &params,        &scene,        source_,
-                                  nullptr, settings_.size, settings_.size};
+            RenderRequest request{&m_, &params, &scene, source_, nullptr, 64, 64};
             request.seamlessCubes = false;
             request.readSurfaces = true;
             const RenderResult r = renderer_.render(request);
@@ -698,11 +704,26 @@ private:
             // The estimator's bands are not the reference's: the sensitivity test would
             // compare against the same-sample reference, so it is left out there.
             if (!d_.estimator) in.domain = d_.domain;
-            result_.mistake = classifyError(in);
-            const std::string typical = typicalMistake(f, in.values);
-            if (!typical.empty())
+            bool exact = false;
+            result_.mistake = classifyError(in, &exact);
+            if (!result_.mistake.empty()) result_.namedBy = "pattern";
+            const std::string typical =
+                settings_.typicalMistakes ? typicalMistake(f, in.values) : "";
+            if (!typical.empty()) {
                 result_.mistake += (result_.mistake.empty() ? "" : " ") +
                                    std::string("It matches a typical mistake: ") + typical;
+                if (!exact) result_.namedBy = "typical";
+            }
+            // When no pattern accounts for every point, the mutants of the reference solution:
+            // the one change the student's values equal.
+            if (!exact && typical.empty() && settings_.mutantCatalogue) {
+                stage("feedback: one change from the reference");
+                const std::string change = mutantMatch(f);
+                if (!change.empty()) {
+                    result_.mistake += (result_.mistake.empty() ? "" : " ") + change;
+                    result_.namedBy = "mutant";
+                }
+            }
         }
         for (const CheckReport& c : result_.checks)
             if (c.deducted && !c.passed && c.kind != "values" && &c != first)
@@ -757,6 +778,78 @@ private:
                 const double share = covered ? double(same) / covered : 0;
                 if (share >= bestShare) bestShare = share, best = mistakeName(file);
             } catch (const Error&) {
+            }
+        }
+        fs::remove_all(tmp, ec);
+        return best;
+    }
+
+    // The student's values and each mutant's (mutants.h) on up to 96 points of the failed
+    // check (evenly spread, its worst among them): a mutant they equal, within twice the band's
+    // width at 95% of the points, is the mistake, said by its family and its change.
+    std::string mutantMatch(const ValuesRun& f) {
+        std::vector<size_t> covered;
+        for (size_t i = 0; i < f.surfaces.size(); ++i)
+            if (f.surfaces[i].covered) covered.push_back(i);
+        if (covered.empty()) return "";
+        std::vector<size_t> picked;
+        const size_t step = std::max<size_t>(1, covered.size() / 95);
+        for (size_t k = 0; k < covered.size() && picked.size() < 95; k += step)
+            picked.push_back(covered[k]);
+        if (f.worstIndex >= 0 && f.surfaces[size_t(f.worstIndex)].covered)
+            picked.push_back(size_t(f.worstIndex));
+        std::vector<Surface> points;
+        for (size_t i : picked) points.push_back(f.surfaces[i]);
+        points.resize((points.size() + kRowWidth - 1) / kRowWidth * kRowWidth);
+        const int height = int(points.size() / kRowWidth);
+        auto values = [&](const StudentSource& source) {
+            RenderRequest request{&m_, &f.params, &f.scene, source, &points, kRowWidth, height};
+            request.seamlessCubes = false;
+            request.isolatePoints = true;
+            return renderer_.render(request).value;
+        };
+        const Image student = values(source_);
+        std::ifstream in(m_.sourceDir / "solution.glsl", std::ios::binary);
+        std::stringstream text;
+        text << in.rdbuf();
+        const std::vector<Mutant> mutants = generateMutants(text.str());
+        const fs::path tmp =
+            fs::temp_directory_path() / ("pbrlab-feedback-" + std::to_string(::getpid()));
+        std::error_code ec;
+        fs::create_directories(tmp, ec);
+        std::string best;
+        double bestDistance = 1e300;
+        for (size_t k = 0; k < mutants.size(); ++k) {
+            const fs::path dir = tmp / std::to_string(k);
+            fs::create_directories(dir, ec);
+            std::ofstream(dir / (d_.id + ".glsl"), std::ios::binary) << mutants[k].text;
+            Image mutant;
+            try {
+                mutant = values(StudentSource{dir, false});
+            } catch (const Error&) {
+                continue;  // does not compile
+            }
+            int same = 0;
+            double distance = 0;
+            for (size_t p = 0; p < picked.size(); ++p) {
+                bool equal = true;
+                for (int c = 0; c < d_.components; ++c) {
+                    const double a = student.pixels[p * 4 + size_t(c)],
+                                 b = mutant.pixels[p * 4 + size_t(c)];
+                    const double slack = 2 * f.band.slack[picked[p]][c] + 1e-6 * std::abs(b);
+                    const double e = a == b ? 0 : std::abs(a - b) / std::max(slack, 1e-300);
+                    equal = equal && e <= 1;
+                    distance += std::isfinite(e) ? std::min(e, 1e6) : 1e6;
+                }
+                same += equal;
+            }
+            if (same >= 0.95 * double(picked.size()) && distance < bestDistance) {
+                bestDistance = distance;
+                std::string mistake = mutants[k].family;
+                for (const MutantFamily& family : mutantFamilies())
+                    if (mutants[k].family == family.name) mistake = family.mistake;
+                best = "It behaves like the reference with one change, " + mistake + ": " +
+                       mutants[k].change + ".";
             }
         }
         fs::remove_all(tmp, ec);

@@ -18,7 +18,11 @@ struct GradeSettings {
     int size = 96;           // image side of the scene checks
     std::uint64_t seed = 1;  // of the random domain points (instructors may choose another)
     int domainPoints = 2048;
-    bool feedback = true;    // on failure, name the mistake (costs a few more renders)
+    bool feedback = true;  // on failure, name the mistake (costs a few more renders)
+    // What the feedback may compare with besides the patterns: the step's typical mistakes
+    // (labs/NN-id/mistakes) and the mutants of its reference solution. Off: patterns alone
+    // (how the patterns' reach is measured).
+    bool typicalMistakes = true, mutantCatalogue = true;
     bool robustness = true;  // the extreme-input sweep (reported, not deducted)
     // Stop at the first check that fails (the verdict is the same; what mutation testing
     // needs, fast).
@@ -49,6 +53,7 @@ struct StepResult {
     std::vector<CheckReport> checks;
     std::string message;  // why it failed (the first failed check, the named mistake)
     std::string mistake;  // the mistake recognised from the shape of the error, or empty
+    std::string namedBy;  // pattern | typical | mutant: what named it (empty: nothing)
     double seconds = 0;
 };
 

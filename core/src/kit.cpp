@@ -84,13 +84,13 @@ int writeKit(const ModuleRegistry& modules, const KitOptions& o) {
               "One file per step. Write the body of each function where the TODO is; you may "
               "add helper functions of your own above it (do not name them `pbrlab_*`, and do "
               "not define `PI`: it is provided, as are `NUM_LIGHTS`, `uLightPositions`, "
-              "`uLightColors` and every contract function of the earlier steps). The handouts "
+              "`uLightColors` and every contract function of both labs). The handouts "
               "in `handouts/` explain each step.\n\n"
               "| step | file | function | status |\n|---|---|---|---|\n" +
                   list +
                   "\n## Run and test\n\n"
                   "    pbrlab gui                      # from this folder: live view, hot reload\n"
-                  "    pbrlab check ndotl --submission .   # one step against the CPU reference\n"
+                  "    pbrlab check ndotl --submission .   # grade one step, every check printed\n"
                   "    pbrlab render ndotl --submission . --out ndotl.png\n"
                   "    pbrlab grade .                  # every step, as the autograder does\n");
     return written;

@@ -234,11 +234,15 @@ private:
         return false;
     }
 
-    std::string apply(std::vector<Edit> edits) const {
+    // The text with the edits made; between significant tokens first and last (all: the
+    // whole file).
+    std::string apply(std::vector<Edit> edits, size_t first = 0, size_t last = size_t(-1)) const {
         std::sort(edits.begin(), edits.end(),
                   [](const Edit& a, const Edit& b) { return a.begin < b.begin; });
+        const bool whole = last == size_t(-1);
+        const size_t endToken = whole ? tokens_.size() : sig_[last - 1] + 1;
         std::string out;
-        size_t token = 0;
+        size_t token = whole ? 0 : sig_[first];
         for (const Edit& e : edits) {
             const size_t from = sig_[e.begin];
             for (; token < from; ++token) out += tokens_[token].text;
@@ -252,7 +256,7 @@ private:
                 tokens_[token].text.find('\n') == std::string::npos)
                 ++token;  // "(1.0 - x)" -> "(x)"
         }
-        for (; token < tokens_.size(); ++token) out += tokens_[token].text;
+        for (; token < endToken; ++token) out += tokens_[token].text;
         return out;
     }
 
@@ -269,10 +273,28 @@ private:
         Mutant m;
         m.family = family;
         m.line = line(at);
+        // The edited tokens with two of context each side, before and after.
+        size_t b = sig_.size(), e = 0;
+        for (const Edit& x : edits) b = std::min(b, x.begin), e = std::max(e, x.end);
+        auto boundary = [&](size_t k) { return is(k, ";") || is(k, "{") || is(k, "}"); };
+        for (int k = 0; k < 2 && b > 0 && !boundary(b - 1); ++k) --b;
+        for (int k = 0; k < 2 && e < sig_.size() && !boundary(e); ++k) ++e;
+        m.change = "`" + flat(apply(edits, b, e)) + "` for `" + flat(span(b, e)) + "`";
         m.text = apply(std::move(edits));
         m.description = "line " + std::to_string(m.line) + ": `" + lineOf(source_, m.line) +
                         "` -> `" + lineOf(m.text, m.line) + "`";
         mutants_.push_back(std::move(m));
+    }
+
+    static std::string flat(const std::string& text) {  // one line, single spaces
+        std::string out;
+        for (char c : text) {
+            const bool space = std::isspace(static_cast<unsigned char>(c));
+            if (space && (out.empty() || out.back() == ' ')) continue;
+            out += space ? ' ' : c;
+        }
+        while (!out.empty() && out.back() == ' ') out.pop_back();
+        return out;
     }
 
     static std::string formatFloat(double v) {
@@ -534,21 +556,26 @@ private:
 
 const std::vector<MutantFamily>& mutantFamilies() {
     static const std::vector<MutantFamily> f = {
-        {"operator", "+ and -, * and / swapped (also in += -= *= /=)"},
-        {"constant", "a literal x2, /2, xPI, /PI, x1.1, x0.9 (integers +-1)"},
-        {"pi", "PI removed (1.0)"},
-        {"guard", "a max/min/clamp/abs dropped (its first or second argument left)"},
-        {"swap", "two arguments of a call, or two components of a constructor, swapped"},
-        {"square", "a square removed (x * x, pow(x, 2.0)) or added to a returned/assigned value"},
-        {"normalize", "normalize() removed"},
-        {"sqrt", "sqrt() removed"},
-        {"term", "a term of a sum dropped, or an accumulation (+=, -=) removed"},
-        {"complement", "1.0 - x turned into x"},
-        {"condition", "a comparison negated, or an if's condition made true"},
-        {"argument", "a parameter ignored (fixed: samples 64, a float 0.5, a vector +z)"},
-        {"ternary", "the two branches of a ? : swapped"},
-        {"swizzle", "a component swapped (.x/.y, .rg/.gr, ...)"},
-        {"sign", "a unary minus removed"},
+        {"operator", "+ and -, * and / swapped (also in += -= *= /=)", "an operation inverted"},
+        {"constant", "a literal x2, /2, xPI, /PI, x1.1, x0.9 (integers +-1)", "a constant off"},
+        {"pi", "PI removed (1.0)", "PI missing"},
+        {"guard", "a max/min/clamp/abs dropped (its first or second argument left)",
+         "a clamp or guard missing"},
+        {"swap", "two arguments of a call, or two components of a constructor, swapped",
+         "arguments or components swapped"},
+        {"square", "a square removed (x * x, pow(x, 2.0)) or added to a returned/assigned value",
+         "a square missing or extra"},
+        {"normalize", "normalize() removed", "a normalisation missing"},
+        {"sqrt", "sqrt() removed", "a square root missing"},
+        {"term", "a term of a sum dropped, or an accumulation (+=, -=) removed", "a term missing"},
+        {"complement", "1.0 - x turned into x", "x where 1 - x belongs"},
+        {"condition", "a comparison negated, or an if's condition made true",
+         "a condition reversed or missing"},
+        {"argument", "a parameter ignored (fixed: samples 64, a float 0.5, a vector +z)",
+         "an argument ignored"},
+        {"ternary", "the two branches of a ? : swapped", "the two cases of a choice swapped"},
+        {"swizzle", "a component swapped (.x/.y, .rg/.gr, ...)", "a wrong component"},
+        {"sign", "a unary minus removed", "a sign missing"},
     };
     return f;
 }

@@ -13,14 +13,17 @@ namespace pbrlab {
 struct Mutant {
     std::string family;       // "operator", "constant", "pi", "guard", ...
     std::string description;  // where and what, for instructors: "line 9: `*` -> `/`"
-    int line = 0;             // in the solution file
-    std::string text;         // the whole mutated file
+    // The change in a few tokens, as a student can read it: "`r * r * 8.0` for `r * r / 8.0`".
+    std::string change;
+    int line = 0;      // in the solution file
+    std::string text;  // the whole mutated file
 };
 
 // The families, in the order they are generated, with what each means.
 struct MutantFamily {
     const char* name;
     const char* meaning;
+    const char* mistake;  // the mistake it stands for, as feedback says it
 };
 const std::vector<MutantFamily>& mutantFamilies();
 

@@ -269,7 +269,9 @@ std::vector<ModuleMutation> runMutants(const ModuleRegistry& modules, const Data
             fs::create_directories(dir);
             std::ofstream(dir / (d.id + ".glsl"), std::ios::binary) << all[i].text;
             jobs.push_back({&m, fs::canonical(dir)});
-            result.mutants.push_back({all[i], "", "", "", "", ""});
+            MutantOutcome outcome;
+            outcome.mutant = all[i];
+            result.mutants.push_back(outcome);
         }
         if (o.progress)
             o.progress(d.id + ": " + std::to_string(jobs.size()) + " of " +
@@ -289,6 +291,7 @@ std::vector<ModuleMutation> runMutants(const ModuleRegistry& modules, const Data
                        : grade.status == "failed"        ? "killed"
                                                          : grade.status;
             r.mistake = grade.mistake;
+            r.namedBy = grade.namedBy;
             for (const auto& c : grade.checks)
                 if (!c.value("passed", true) && c.value("deducted", true)) {
                     r.killedBy = c.value("name", "");
@@ -374,6 +377,7 @@ json toJson(const std::vector<ModuleMutation>& result) {
                             {"status", r.status},
                             {"killed_by", r.killedBy},
                             {"mistake", r.mistake},
+                            {"named_by", r.namedBy},
                             {"equivalence", r.equivalence},
                             {"evidence", r.evidence}});
         modules.push_back({{"id", m.id},

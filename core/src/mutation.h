@@ -31,6 +31,7 @@ struct MutantOutcome {
     std::string status;
     std::string killedBy;  // the first failed check
     std::string mistake;   // the feedback's named mistake (with feedback)
+    std::string namedBy;   // pattern | typical | mutant
     // Survivors: "equivalent" (same values within rounding on the whole domain), or
     // "differs" (a hole: what and where).
     std::string equivalence, evidence;

@@ -1,9 +1,12 @@
 #include "renderer.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "pbrlab/contract.h"
@@ -422,15 +425,55 @@ RenderResult LabRenderer::renderScene(const LoadedModule& module, const ParamVal
     return render(r);
 }
 
-Image loadEnvironmentImage(const std::string& source) {
-    if (source == "sky") return generateSkyEnvironment(512);
-    if (source == "sky-soft") return generateSkyEnvironment(512, true);
-    if (source == "smooth") return generateSmoothEnvironment(256);
-    Image image = readImage(source);
-    if (image.width != 2 * image.height || image.channels < 3)
-        throw Error(source + ": expected an equirectangular RGB image (width = 2 x height), got " +
-                    std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
-                    std::to_string(image.channels));
+Image loadEnvironmentImage(const std::string& source, const fs::path& cache) {
+    const bool generated = source == "sky" || source == "sky-soft" || source == "smooth";
+    if (!generated) {
+        Image image = readImage(source);
+        if (image.width != 2 * image.height || image.channels < 3)
+            throw Error(source +
+                        ": expected an equirectangular RGB image (width = 2 x height), got " +
+                        std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
+                        std::to_string(image.channels));
+        return image;
+    }
+    auto generate = [&] {
+        if (source == "sky") return generateSkyEnvironment(512);
+        if (source == "sky-soft") return generateSkyEnvironment(512, true);
+        return generateSmoothEnvironment(256);
+    };
+    if (cache.empty()) return generate();
+    // Raw floats with their size; the generator's version is in the name, so an edit to it
+    // never reads a stale image.
+    const fs::path file =
+        cache / "environments" / (source + "-v" + std::to_string(kEnvironmentVersion) + ".bin");
+    {
+        std::ifstream in(file, std::ios::binary);
+        std::int32_t size[3] = {0, 0, 0};
+        if (in.read(reinterpret_cast<char*>(size), sizeof size) && size[0] > 0 && size[0] <= 8192 &&
+            size[1] > 0 && size[1] <= 8192 && size[2] == 3) {
+            Image image;
+            image.width = size[0];
+            image.height = size[1];
+            image.channels = 3;
+            image.pixels.resize(size_t(size[0]) * size_t(size[1]) * 3);
+            if (in.read(reinterpret_cast<char*>(image.pixels.data()),
+                        std::streamsize(image.pixels.size() * sizeof(float))))
+                return image;
+        }
+    }
+    Image image = generate();
+    std::error_code ec;
+    fs::create_directories(file.parent_path(), ec);
+    const fs::path tmp = file.string() + ".tmp" + std::to_string(::getpid());
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        const std::int32_t size[3] = {image.width, image.height, image.channels};
+        out.write(reinterpret_cast<const char*>(size), sizeof size);
+        out.write(reinterpret_cast<const char*>(image.pixels.data()),
+                  std::streamsize(image.pixels.size() * sizeof(float)));
+        if (!out) return image;  // no cache: fine
+    }
+    fs::rename(tmp, file, ec);
     return image;
 }
 
@@ -442,7 +485,7 @@ IblMaps& LabRenderer::environment(const Scene& scene, bool derived) {
                 std::make_unique<IblPrecompute>(programs_, paths_.shaders(), paths_.labs());
         logLine("environment", scene.environment + " (" + iblSettings_.key() + ")");
         precompute_->onPass = precomputeProgress_;
-        env.equirect = loadEnvironmentImage(scene.environment);
+        env.equirect = loadEnvironmentImage(scene.environment, iblCache_);
         env.maps = precompute_->buildEnvironment(env.equirect, iblSettings_);
     }
     if (derived && !env.maps->derived) {

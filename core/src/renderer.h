@@ -180,7 +180,9 @@ private:
     std::unique_ptr<IblPrecompute> precompute_;
 };
 
-// Loads an environment: "sky" (generated) or an equirectangular .hdr/.exr file.
-Image loadEnvironmentImage(const std::string& source);
+// Loads an environment: "sky", "sky-soft", "smooth" (generated) or an equirectangular
+// .hdr/.exr file. The generated ones are kept in `cache` (when not empty) after the first time:
+// the sky takes a second to generate, and grading reads it in every child process.
+Image loadEnvironmentImage(const std::string& source, const std::filesystem::path& cache = {});
 
 }  // namespace pbrlab

@@ -1,5 +1,11 @@
 #include "gui.h"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
@@ -191,6 +197,12 @@ public:
     }
 
     ~GuiApp() {
+        if (badgeJob_.pid > 0) {  // a badge still grading: not needed any more
+            kill(badgeJob_.pid, SIGKILL);
+            waitpid(badgeJob_.pid, nullptr, 0);
+            std::error_code ec;
+            fs::remove(badgeJob_.json, ec);
+        }
         saveState();
         imageTexture_.reset();
         ImGui_ImplOpenGL3_Shutdown();
@@ -471,8 +483,31 @@ private:
         permutation_.insert({view.label, definesText(view.defines)});
     }
 
-    // One module's badge per frame, so the window stays responsive.
+    // The badges are the grade: `pbrlab check ID --json`, the same gradeStep `pbrlab grade`
+    // runs, in a process of its own (a step takes up to seconds to grade), one at a time; the
+    // window polls it each frame and stays responsive.
     void updateOneStatus() {
+        if (badgeJob_.pid > 0) {
+            int status = 0;
+            if (waitpid(badgeJob_.pid, &status, WNOHANG) == 0) return;  // still grading
+            ModuleState& st = states_[badgeJob_.id];
+            try {
+                const nlohmann::json report = nlohmann::json::parse(std::ifstream(badgeJob_.json));
+                const nlohmann::json& g = report.at("modules").at(0);
+                const std::string result = g.at("status");
+                st.status = result == "passed"          ? Status::Passes
+                            : result == "compile_error" ? Status::CompileError
+                                                        : Status::Fails;
+                st.gradeMessage = g.value("message", "");
+            } catch (const std::exception&) {
+                st.status = Status::Fails;
+                st.gradeMessage = "the grade did not finish";
+            }
+            std::error_code ec;
+            fs::remove(badgeJob_.json, ec);
+            dirty_ = dirty_ || badgeJob_.id == module().id;
+            badgeJob_ = {};
+        }
         const auto& ms = registry_->modules();
         for (size_t k = 0; k < ms.size(); ++k) {
             statusCursor_ = (statusCursor_ + 1) % ms.size();
@@ -488,18 +523,36 @@ private:
             if (st.stampKnown && stamp == st.stamp) continue;
             st.stamp = stamp;
             st.stampKnown = true;
-            // The badge is the grade: the same gradeStep `pbrlab grade` runs in its child.
-            GradeOptions grade;
-            grade.submission = submission_;
-            grade.settings.robustness = false;  // reported, never deducted: not for a badge
-            grade.settings.feedback = true;
-            const ModuleGrade g = gradeModule(*renderer_, m, paths_, grade);
-            st.status = g.status == "passed"          ? Status::Passes
-                        : g.status == "compile_error" ? Status::CompileError
-                                                      : Status::Fails;
-            st.gradeMessage = g.message;
-            dirty_ = dirty_ || m.desc->id == module().id;
+            st.status = Status::Unknown;
+            startBadge(m.desc->id);
             return;
+        }
+    }
+
+    void startBadge(const std::string& id) {
+        badgeJob_.id = id;
+        badgeJob_.json = fs::temp_directory_path() /
+                         ("pbrlab-badge-" + std::to_string(getpid()) + "-" + id + ".json");
+        const std::string exe = fs::read_symlink("/proc/self/exe").string();
+        const std::string modules = options_.modulesDir.string(), sub = submission_.string(),
+                          json = badgeJob_.json.string();
+        std::vector<std::string> args = {exe, "--modules", modules, "check", id, "--submission",
+                                         sub, "--json",    json};
+        std::vector<char*> argv;
+        for (std::string& a : args) argv.push_back(a.data());
+        argv.push_back(nullptr);
+        posix_spawn_file_actions_t quiet;
+        posix_spawn_file_actions_init(&quiet);
+        posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);
+        posix_spawn_file_actions_addopen(&quiet, 2, "/dev/null", O_WRONLY, 0);
+        pid_t pid = -1;
+        if (posix_spawn(&pid, exe.c_str(), &quiet, nullptr, argv.data(), environ) != 0) pid = -1;
+        posix_spawn_file_actions_destroy(&quiet);
+        badgeJob_.pid = pid;
+        if (pid < 0) {
+            states_[id].status = Status::Fails;
+            states_[id].gradeMessage = "could not start the grade (pbrlab check)";
+            badgeJob_ = {};
         }
     }
 
@@ -1339,6 +1392,11 @@ private:
     fs::file_time_type lastStudentStamp_{};
     Image studentValue_, solutionValue_, referenceValue_, probeSolution_, probeStudent_;
     std::vector<Surface> surfaces_;
+    struct BadgeJob {
+        pid_t pid = -1;
+        std::string id;
+        fs::path json;
+    } badgeJob_;  // the badge being graded (a `pbrlab check` process)
     Comparison studentStats_, solutionStats_;
     Band band_;  // the reference's band on the current picture
     gl::Handle imageTexture_;

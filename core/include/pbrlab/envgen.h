@@ -29,6 +29,10 @@ namespace pbrlab {
 // environment the IBL steps are graded on.
 Image generateSkyEnvironment(int width = 512, bool soft = false);
 
+// Bump when the generators below change what they make: caches of generated environments
+// are keyed by it.
+constexpr int kEnvironmentVersion = 2;
+
 // A smooth environment ("smooth" in scenes): low-order polynomials of the direction per
 // channel, from about 0.3 to 1.6, no feature at all. Any consistent quadrature of the
 // irradiance converges on it almost at once, while a wrong one (a gap, a double count, a

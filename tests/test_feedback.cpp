@@ -1,0 +1,157 @@
+// Feedback names the mistake from the shape of the error: each pattern, on synthetic values
+// made from a reference by a known mistake (no GL: the classifier sees values only).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "feedback.h"
+
+using namespace pbrlab;
+
+namespace {
+
+// A one-component step whose value is N.L-like, and a three-component one for colours.
+ModuleDesc module(int components) {
+    ModuleDesc d;
+    d.id = "test";
+    d.components = components;
+    d.needs = NeedsAlbedo | NeedsRoughness | NeedsAo;
+    d.domain = [](DomainRandom& r) {
+        Surface s;
+        s.normal = r.direction();
+        s.light = r.direction();
+        s.view = r.around(s.normal, 0, 1);
+        s.albedo = r.color();
+        s.roughness = r.range(0.05, 1);
+        s.ao = r.uniform();
+        return s;
+    };
+    return d;
+}
+
+// Inputs where the reference is `truth` and the student's function is `student`.
+template <class Truth, class Student>
+FeedbackInputs inputs(const ModuleDesc& d, Truth truth, Student student) {
+    FeedbackInputs in;
+    in.module = &d;
+    DomainRandom random(5);
+    for (int i = 0; i < 400; ++i) {
+        Surface s = d.domain(random);
+        s.covered = true;
+        const glm::dvec3 r = truth(s), v = student(s);
+        in.surfaces.push_back(s);
+        in.expected.push_back(r);
+        in.values.push_back(v);
+        in.slack.push_back(glm::max(glm::abs(r) * 1e-3, glm::dvec3(1e-6)));
+    }
+    return in;
+}
+
+double ndotl(const Surface& s) {
+    return std::max(glm::dot(s.normal, s.light), 0.0);
+}
+
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+TEST(Feedback, ConstantFactorsAreNamed) {
+    const ModuleDesc d = module(1);
+    auto truth = [](const Surface& s) { return glm::dvec3(0.2 + ndotl(s)); };
+    const std::string pi = classifyError(inputs(d, truth, [&](const Surface& s) {
+        return truth(s) * 3.14159265358979;
+    }));
+    EXPECT_TRUE(contains(pi, "(= pi)") && contains(pi, "division by PI")) << pi;
+    const std::string quarter = classifyError(inputs(d, truth, [&](const Surface& s) {
+        return truth(s) * (3.14159265358979 / 4);
+    }));
+    EXPECT_TRUE(contains(quarter, "(= pi/4)")) << quarter;
+    EXPECT_EQ(nameConstant(0.318309886), "1/pi");
+    EXPECT_EQ(nameConstant(1.37), "");
+}
+
+TEST(Feedback, AStubIsRecognised) {
+    const ModuleDesc d = module(1);
+    const std::string s = classifyError(inputs(
+        d, [](const Surface& s) { return glm::dvec3(ndotl(s)); },
+        [](const Surface&) { return glm::dvec3(0); }));
+    EXPECT_TRUE(contains(s, "returns 0 whatever the inputs") && contains(s, "stub")) << s;
+}
+
+TEST(Feedback, OffsetsPowersAndTermsAreNamed) {
+    const ModuleDesc d = module(3);
+    auto truth = [](const Surface& s) { return s.albedo * (0.1 + ndotl(s)) + 0.03 * s.albedo * s.ao; };
+    const std::string offset = classifyError(
+        inputs(d, truth, [&](const Surface& s) { return truth(s) + glm::dvec3(0.01); }));
+    EXPECT_TRUE(contains(offset, "the reference + 0.01 everywhere")) << offset;
+    const std::string ambient = classifyError(inputs(d, truth, [&](const Surface& s) {
+        return truth(s) - 0.01 * s.albedo * s.ao;
+    }));
+    EXPECT_TRUE(contains(ambient, "0.01 x albedo x ao")) << ambient;
+    auto unit = [](const Surface& s) { return 0.05 + 0.9 * s.albedo; };  // in (0, 1)
+    const std::string power = classifyError(
+        inputs(d, unit, [&](const Surface& s) { return glm::pow(unit(s), glm::dvec3(2.2)); }));
+    EXPECT_TRUE(contains(power, "to the power 2.2")) << power;
+}
+
+TEST(Feedback, AnErrorConfinedToOneSideOfAnInputIsLocated) {
+    const ModuleDesc d = module(1);
+    // The clamp dropped: wrong exactly where N.L < 0.
+    const std::string s = classifyError(inputs(
+        d, [](const Surface& s) { return glm::dvec3(ndotl(s)); },
+        [](const Surface& s) { return glm::dvec3(glm::dot(s.normal, s.light)); }));
+    EXPECT_TRUE(contains(s, "wrong only where N.L < 0") && contains(s, "max(")) << "[" << s << "]";
+}
+
+TEST(Feedback, SwappedOrSingleWrongComponentsAreNamed) {
+    const ModuleDesc d = module(3);
+    auto truth = [](const Surface& s) { return s.albedo + glm::dvec3(0.1, 0.5, 0.9); };
+    const std::string swapped = classifyError(inputs(d, truth, [&](const Surface& s) {
+        const glm::dvec3 v = truth(s);
+        return glm::dvec3(v.y, v.x, v.z);
+    }));
+    EXPECT_TRUE(contains(swapped, "components are swapped")) << swapped;
+    const std::string one = classifyError(inputs(d, truth, [&](const Surface& s) {
+        return truth(s) + glm::dvec3(0, 0, 2 * s.roughness);
+    }));
+    EXPECT_TRUE(contains(one, "third component")) << one;
+}
+
+TEST(Feedback, AnIgnoredArgumentIsFoundByVaryingOneInputAtATime) {
+    const ModuleDesc d = module(3);
+    auto truth = [](const Surface& s) { return s.albedo * (0.1 + ndotl(s)) * (0.5 + s.ao); };
+    FeedbackInputs in = inputs(d, truth, [&](const Surface& s) {
+        Surface t = s;
+        t.ao = 0.5;  // ignores ao
+        return truth(t);
+    });
+    in.domain = d.domain;
+    in.reference = truth;
+    in.student = [&](const std::vector<Surface>& surfaces) {
+        std::vector<glm::dvec3> out;
+        for (Surface s : surfaces) {
+            s.ao = 0.5;
+            out.push_back(truth(s));
+        }
+        return out;
+    };
+    const std::string s = classifyError(in);
+    EXPECT_TRUE(contains(s, "does not change with ao")) << s;
+}
+
+TEST(Feedback, InputsAreDescribedByWhatTheDomainVaries) {
+    const ModuleDesc d = module(1);
+    Surface s;
+    s.normal = {0, 0, 1};
+    s.view = glm::normalize(glm::dvec3(0.6, 0, 0.8));
+    s.light = {0, 0, 1};
+    s.roughness = 0.25;
+    s.ao = 0.5;
+    const std::string text = describeInputs(d, s);
+    EXPECT_TRUE(contains(text, "N.V 0.8") && contains(text, "roughness 0.25") &&
+                contains(text, "ao 0.5"))
+        << text;
+    EXPECT_FALSE(contains(text, "metallic")) << text;  // the domain does not vary it
+}
