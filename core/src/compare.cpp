@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-#include <thread>
+
+#include "parallel.h"
 
 namespace pbrlab {
 
@@ -126,14 +127,8 @@ Band referenceBand(const ModuleDesc& module, const std::vector<Surface>& surface
     for (int c = 0; c < module.components; ++c) ulps = std::max(ulps, module.toleranceFor(c).ulps);
     // Nine or more reference evaluations per point (the spread's eight corners): on every
     // core. The references are pure functions of their inputs.
-    const unsigned threads = std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
-    std::vector<std::thread> workers;
-    for (unsigned t = 0; t < threads; ++t)
-        workers.emplace_back([&, t] {
-            for (size_t i = t; i < surfaces.size(); i += threads)
-                bandAt(module, surfaces[i], context, ulps, i, band);
-        });
-    for (std::thread& w : workers) w.join();
+    parallelFor(surfaces.size(),
+                [&](size_t i) { bandAt(module, surfaces[i], context, ulps, i, band); });
     return band;
 }
 

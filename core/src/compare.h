@@ -44,9 +44,7 @@ struct Comparison {
     int outside = 0;            // points with a component outside the band
     double worstExcess = 0;     // the largest distance outside the band, in slacks (<= 1 inside)
     double quantileExcess = 0;  // not exceeded by (1 - outlierFraction) of the points
-    // |value - expected| / max(|expected|, slack / relative) over components: for people.
-    double maxError = 0, meanError = 0;
-    int worstIndex = -1;  // point (row-major) of worstExcess
+    int worstIndex = -1;        // point (row-major) of worstExcess
     int worstX = -1, worstY = -1;
     glm::dvec3 worstValue{0}, worstExpected{0}, worstLo{0}, worstHi{0};  // lo, hi: slack included
 

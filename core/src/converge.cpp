@@ -5,6 +5,7 @@
 #include <fstream>
 #include <thread>
 
+#include "parallel.h"
 #include "pbrlab/contract.h"
 #include "pbrlab/error.h"
 #include "pbrlab/ibl_reference.h"
@@ -31,18 +32,6 @@ struct Method {
         module = {&desc, {}, paths.shaders() / "converge" / name};
     }
 };
-
-// Runs f(i) for i in [0, n) on all cores.
-template <typename F>
-void parallelFor(int n, F f) {
-    int workers = std::max(1u, std::thread::hardware_concurrency());
-    std::vector<std::thread> threads;
-    for (int w = 0; w < workers; ++w)
-        threads.emplace_back([&, w] {
-            for (int i = w; i < n; i += workers) f(i);
-        });
-    for (auto& t : threads) t.join();
-}
 
 // llvmpipe compiles a shader's machine code at its first draw: render once untimed, then keep
 // the fastest of three (the least disturbed by the rest of the machine).
@@ -153,7 +142,7 @@ std::vector<ConvergeRow> runConverge(LabRenderer& renderer, const DataPaths& pat
     truth.diffuse = truth.specular;
     auto start = std::chrono::steady_clock::now();
     const Image coarse = halve(equirect);
-    parallelFor(int(truth.surfaces.size()), [&](int i) {
+    parallelFor(truth.surfaces.size(), [&](size_t i) {
         const Surface& s = truth.surfaces[size_t(i)];
         if (!s.covered) return;
         glm::dvec3 F0 = ref::baseReflectivity(s.albedo, s.metallic);

@@ -8,10 +8,10 @@
 #include <fstream>
 #include <map>
 #include <sstream>
-#include <thread>
 
 #include "feedback.h"
 #include "mutants.h"
+#include "parallel.h"
 #include "pbrlab/contract.h"
 #include "pbrlab/error.h"
 #include "stability.h"
@@ -335,15 +335,10 @@ private:
         for (PointSet& set : sets) {
             set.truth.resize(set.surfaces.size());
             // Thousands of samples per point, on every core (the references are pure).
-            const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-            std::vector<std::thread> workers;
-            for (unsigned t = 0; t < threads; ++t)
-                workers.emplace_back([&, t] {
-                    for (size_t i = t; i < set.surfaces.size(); i += threads)
-                        if (set.surfaces[i].covered)
-                            set.truth[i] = e.converged(set.surfaces[i], context, e.truthSamples);
-                });
-            for (std::thread& w : workers) w.join();
+            parallelFor(set.surfaces.size(), [&](size_t i) {
+                if (set.surfaces[i].covered)
+                    set.truth[i] = e.converged(set.surfaces[i], context, e.truthSamples);
+            });
         }
         const std::vector<int> counts =
             e.sampleCounts.empty() ? std::vector<int>{0} : e.sampleCounts;

@@ -339,13 +339,7 @@ void IblPrecompute::buildDerived(IblMaps& mapsRef, const Image& equirect,
         p->setUnsigned("uSampleCount", unsigned(s.lutSamples));
         fullscreen_.draw();
         // read() returns row 0 at the top; flip back so that t = roughness, as rendered.
-        Image flipped = target.read(0);
-        const size_t row = size_t(flipped.width) * 4;
-        Image lut = flipped;
-        for (int y = 0; y < lut.height; ++y)
-            std::copy_n(flipped.pixels.data() + size_t(lut.height - 1 - y) * row, row,
-                        lut.pixels.data() + size_t(y) * row);
-        maps->lut = gl::uploadTexture(lut, false, GL_RG32F);
+        maps->lut = gl::uploadTexture(flipRows(target.read(0)), false, GL_RG32F);
         gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

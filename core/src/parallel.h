@@ -1,0 +1,22 @@
+// Runs independent work on every core (pure CPU references: bands, converged integrals).
+#pragma once
+
+#include <algorithm>
+#include <thread>
+#include <vector>
+
+namespace pbrlab {
+
+// f(i) for i in [0, n), interleaved over the machine's cores.
+template <typename F>
+void parallelFor(size_t n, F f) {
+    const size_t workers = std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
+    std::vector<std::thread> threads;
+    for (size_t w = 0; w < workers; ++w)
+        threads.emplace_back([&, w] {
+            for (size_t i = w; i < n; i += workers) f(i);
+        });
+    for (std::thread& t : threads) t.join();
+}
+
+}  // namespace pbrlab
