@@ -55,6 +55,9 @@ TEST(Gui, ScriptedRunUnderXvfbWritesTheWindow) {
     auto shot = dir.path / "s.png";
     ASSERT_EQ(runGui(dir, "--module ndotl", shot), 0) << readText(dir.path / "log.txt");
     expectWindowShot(shot);
+    // Still input: the picture was evaluated against the CPU reference (the statistics).
+    EXPECT_NE(readText(dir.path / "log.txt").find("evaluated ndotl against the CPU reference"),
+              std::string::npos);
     // The parameters were remembered under the test's own HOME.
     EXPECT_TRUE(std::filesystem::exists(dir.path / ".config/pbrlab/gui.json"));
 }
@@ -104,4 +107,19 @@ TEST(Gui, RejectsAnUnknownTab) {
     EXPECT_NE(runGui(dir, "--tab nonsense", dir.path / "none.png"), 0);
     EXPECT_NE(readText(dir.path / "log.txt").find("--tab nonsense: unknown tab"),
               std::string::npos);
+}
+
+// Dragging, scripted: every frame turns the camera, so every frame is a live one (the picture
+// drawn and mapped for display on the GPU, nothing read back), and the frame times are printed.
+TEST(Gui, OrbitDrawsLiveFramesAndPrintsTheirTimes) {
+    if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+    test::TempDir dir;
+    auto shot = dir.path / "orbit.png";
+    ASSERT_EQ(runGui(dir, "--module ndf --orbit", shot), 0) << readText(dir.path / "log.txt");
+    expectWindowShot(shot);
+    const std::string log = readText(dir.path / "log.txt");
+    EXPECT_NE(log.find("frame: 1 frames at 1200x760"), std::string::npos) << log;
+    EXPECT_NE(log.find("of which the picture: 1 frames at 512x512"), std::string::npos) << log;
+    // The evaluation against the CPU reference never ran: the input never stopped.
+    EXPECT_EQ(log.find("against the CPU reference"), std::string::npos) << log;
 }

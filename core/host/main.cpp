@@ -501,6 +501,9 @@ int main(int argc, char** argv) {
     guiCmd->add_option("--screenshot", gui.screenshot,
                        "With --frames: save the window to this PNG");
     guiCmd->add_option("--size", guiSize, "Window size WxH (default 1600x960)");
+    guiCmd->add_flag("--orbit", gui.orbit,
+                     "With --frames: orbit the camera a step each frame (as dragging does) and "
+                     "print the frame times, median and 95th percentile");
     std::vector<std::string> permutationIds;
     auto* permutationsCmd = app.add_subcommand(
         "permutations", "List the shader permutations each module compiles for a scene");

@@ -370,7 +370,8 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
         drawGBuffer(scene, d.needs, request.width, request.height);
         for (int i = 0; i < kGBufferTextures; ++i) inputs.push_back(gbuffer_->colorTexture(i));
         result.milliseconds = runView(request, scene, false, inputs, request.width, request.height);
-        result.value = valueTarget_->read(0);
+        result.valueTexture = valueTarget_->colorTexture(0);
+        if (request.readValue) result.value = valueTarget_->read(0);
         if (request.readSurfaces) {
             std::vector<Image> textures;
             for (int i = 0; i < kGBufferTextures; ++i) textures.push_back(gbuffer_->read(i));

@@ -39,8 +39,11 @@ Scene applyParamBindings(Scene scene, const ModuleDesc& module, const ParamValue
 struct RenderResult {
     Image value;                    // the view's output, RGBA float, alpha 1 where evaluated
     std::vector<Surface> surfaces;  // the inputs per pixel (when asked for)
-    double milliseconds = 0;        // view pass, glFinish + steady clock (GPU timer queries
-                                    // are unreliable on llvmpipe)
+    // The value on the GPU (RGBA32F, GL rows bottom-up), valid until the next render: what a
+    // live view draws from without reading `value` back.
+    GLuint valueTexture = 0;
+    double milliseconds = 0;  // view pass, glFinish + steady clock (GPU timer queries
+                              // are unreliable on llvmpipe)
 };
 
 // The probe's inputs, row 0 = top (y = 1 there, so larger values are up in pictures).
@@ -68,6 +71,9 @@ struct RenderRequest {
     const std::vector<Surface>* surfaces = nullptr;
     int width = 0, height = 0;
     bool readSurfaces = false;  // scene: read the G-buffer back into RenderResult::surfaces
+    // Scene: read the value back into RenderResult::value (off: only valueTexture, for a view
+    // drawn straight from the GPU while the input moves).
+    bool readValue = true;
     // GL_TEXTURE_CUBE_MAP_SEAMLESS in the view pass: on for pictures; off for checks, so the
     // GPU reads the texels CubeSampler reads on the CPU.
     bool seamlessCubes = true;

@@ -22,6 +22,7 @@
 #include <set>
 #include <sstream>
 
+#include "display_pass.h"
 #include "evaluate.h"
 #include "gl/context.h"
 #include "grade.h"
@@ -38,6 +39,8 @@ namespace pbrlab {
 namespace {
 
 constexpr int kRenderSize = 512;  // the lab image; scaled to fit the window
+// How long the input must be still before the full evaluation runs (the live view until then).
+constexpr std::chrono::milliseconds kSettleDelay{200};
 
 enum class Status { Unknown, Missing, CompileError, Passes, Fails };
 
@@ -194,6 +197,7 @@ public:
         ImGui_ImplGlfw_InitForOpenGL(context_->window(), true);
         ImGui_ImplOpenGL3_Init("#version 450 core");
         imageTexture_ = gl::makeTexture();
+        displayPass_ = std::make_unique<DisplayPass>(renderer_->programs(), paths_.shaders());
     }
 
     ~GuiApp() {
@@ -205,6 +209,7 @@ public:
         }
         saveState();
         imageTexture_.reset();
+        displayPass_.reset();
         ImGui_ImplOpenGL3_Shutdown();
         ImGui_ImplGlfw_Shutdown();
         ImGui::DestroyContext();
@@ -213,16 +218,21 @@ public:
     int run() {
         GLFWwindow* window = context_->window();
         int frame = 0;
+        std::vector<double> frameTimes, renderTimes;
+        int w = 0, h = 0;
         while (!glfwWindowShouldClose(window)) {
             glfwPollEvents();
             auto start = std::chrono::steady_clock::now();
+            if (options_.orbit) {
+                yaw_ += 0.02;
+                moved();
+            }
             update();
             ImGui_ImplOpenGL3_NewFrame();
             ImGui_ImplGlfw_NewFrame();
             ImGui::NewFrame();
             drawUi();
             ImGui::Render();
-            int w = 0, h = 0;
             glfwGetFramebufferSize(window, &w, &h);
             gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
             gl::Viewport(0, 0, w, h);
@@ -242,12 +252,32 @@ public:
             frameMs_ =
                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                     .count();
+            frameTimes.push_back(frameMs_);
+            renderTimes.push_back(renderMs_);
             if (last) break;
+        }
+        if (options_.orbit) {
+            printFrameTimes("frame", frameTimes, w, h);
+            printFrameTimes("  of which the picture", renderTimes, kRenderSize, kRenderSize);
         }
         return 0;
     }
 
 private:
+    // The first frames compile programs (llvmpipe compiles at first draw): left out.
+    static void printFrameTimes(const char* what, std::vector<double> ms, int w, int h) {
+        const size_t warmup = std::min<size_t>(3, ms.size());
+        ms.erase(ms.begin(), ms.begin() + std::ptrdiff_t(warmup));
+        if (ms.empty()) return;
+        std::sort(ms.begin(), ms.end());
+        const double median = ms[ms.size() / 2];
+        const double p95 = ms[std::min(ms.size() - 1, size_t(0.95 * double(ms.size())))];
+        std::printf(
+            "%s: %zu frames at %dx%d (after %zu warm-up): median %.1f ms, 95th percentile %.1f "
+            "ms\n",
+            what, ms.size(), w, h, warmup, median, p95);
+    }
+
     // ---- state ------------------------------------------------------------------------------
     const LoadedModule& loaded() const { return registry_->modules()[size_t(current_)]; }
     const ModuleDesc& module() const { return *loaded().desc; }
@@ -387,12 +417,53 @@ private:
             return;
         }
         precomputeNoticeShown_ = false;
-        if (dirty_) render();
+        // While the input moves, only the picture is drawn (on the GPU, mapped for display
+        // there, nothing read back): 30 frames a second at least. The evaluation against the
+        // CPU reference, the probes and the statistics follow once it has been still for a
+        // moment (dirty_ stays set until then).
+        const bool moving = std::chrono::steady_clock::now() - lastMove_ < kSettleDelay;
+        if (dirty_ && moving)
+            drawLive();
+        else if (dirty_)
+            render();
         updateOneStatus();
+    }
+
+    // An input changed what is drawn (camera, parameter, light): a live frame now, the full
+    // evaluation when it stops.
+    void moved() {
+        dirty_ = true;
+        lastMove_ = std::chrono::steady_clock::now();
+    }
+
+    // The picture the student is looking at (theirs when their file has compiled, else the
+    // solution's), rendered at the lab image's size and mapped for display on the GPU.
+    void drawLive() {
+        const auto start = std::chrono::steady_clock::now();
+        const Scene scene = currentScene();
+        const bool student = view_ != 1 && !studentValue_.pixels.empty();
+        try {
+            RenderRequest request{
+                &loaded(), &state().params, &scene,     student ? studentSource() : StudentSource{},
+                nullptr,   kRenderSize,     kRenderSize};
+            request.seamlessCubes = false;  // as the settled picture: no jump when it lands
+            request.readValue = false;
+            const RenderResult r = renderer_->render(request);
+            liveTexture_ = displayPass_->run(r.valueTexture, kRenderSize, kRenderSize,
+                                             module().display, module().components);
+            liveWho_ = student ? "your" : "the solution's";
+        } catch (const Error& e) {
+            render();  // a program that does not compile: the full path says why
+            return;
+        }
+        renderMs_ =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
     }
 
     void render() {
         dirty_ = false;
+        liveTexture_ = 0;
         const LoadedModule& m = loaded();
         Scene scene = currentScene();
         ModuleState& st = state();
@@ -465,6 +536,8 @@ private:
         renderMs_ =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count();
+        logLine("gui", "evaluated " + m.desc->id + " against the CPU reference in " +
+                           std::to_string(int(renderMs_)) + " ms");
         compose();
     }
 
@@ -838,9 +911,13 @@ private:
         float legend = (view_ == 3 || d.display.mode == DisplayMode::FalseColor) ? 28 : 0;
         float side = std::max(64.0f, std::min(avail.x - legend, avail.y - 150));
         ImVec2 origin = ImGui::GetCursorScreenPos();
-        ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(imageTexture_.id())),
+        const GLuint shownTexture = liveTexture_ ? liveTexture_ : imageTexture_.id();
+        ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(shownTexture)),
                      ImVec2(side, side));
         handleCamera(origin, side);
+        if (liveTexture_ && view_ > 1)
+            ImGui::TextDisabled("moving: %s picture; the %s view follows when you stop", liveWho_,
+                                kViews[size_t(view_)].c_str());
         if (legend > 0) {
             ImGui::SameLine();
             drawLegend(view_ == 3 ? 0.0 : d.display.lo, view_ == 3 ? diffRange_ : d.display.hi,
@@ -855,17 +932,17 @@ private:
         if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
             yaw_ -= io.MouseDelta.x * 0.01;
             pitch_ = std::clamp(pitch_ + io.MouseDelta.y * 0.01, -1.5, 1.5);
-            dirty_ = true;
+            moved();
         }
         if (io.MouseWheel != 0) {
             distance_ = std::clamp(distance_ * std::pow(0.9, io.MouseWheel), 1.2, 200.0);
-            dirty_ = true;
+            moved();
         }
         // Pixel inspector.
         int x = int((io.MousePos.x - origin.x) / side * imageWidth_);
         int y = int((io.MousePos.y - origin.y) / side * imageHeight_);
         if (x < 0 || y < 0 || x >= imageWidth_ || y >= imageHeight_ ||
-            solutionValue_.pixels.empty())
+            solutionValue_.pixels.empty() || liveTexture_)
             return;
         size_t i = size_t(y) * solutionValue_.width + x;
         if (i >= surfaces_.size() || !surfaces_[i].covered) return;
@@ -916,6 +993,10 @@ private:
                                who, s.worstExcess, s.outside, s.nanCount, s.infCount,
                                s.negativeCount, ok ? "within the band" : "outside the band");
         };
+        if (liveTexture_) {
+            ImGui::TextDisabled("vs the CPU reference: follows when the input stops");
+            return;
+        }
         ImGui::TextDisabled(
             "vs the CPU reference's band on this picture (the badge is the grade):");
         if (!studentValue_.pixels.empty()) row("student", studentStats_);
@@ -1047,7 +1128,7 @@ private:
             }
             if (changed) {
                 st.params.set(p.name, v);
-                dirty_ = true;
+                moved();
             }
             ImGui::TextDisabled("  %s", p.description.c_str());
             ImGui::PopID();
@@ -1113,7 +1194,7 @@ private:
                             float(scene_.lights[0].position.z)};
             if (ImGui::DragFloat3("light 0 position", pos, 0.05f)) {
                 scene_.lights[0].position = glm::dvec3(pos[0], pos[1], pos[2]);
-                dirty_ = true;
+                moved();
             }
             // Colour and intensity apart: light colours are in the hundreds (thousands for a
             // large model), which neither fits nor edits well in a colour widget.
@@ -1127,7 +1208,7 @@ private:
             if (edited) {
                 scene_.lights[0].color =
                     glm::max(glm::dvec3(col[0], col[1], col[2]), 0.0) * double(intensity);
-                dirty_ = true;
+                moved();
             }
         }
         if (module().needs & NeedsEnvironment) {
@@ -1387,6 +1468,11 @@ private:
     Scene scene_;
     double yaw_ = 0, pitch_ = 0, distance_ = 3;
     bool dirty_ = true, hasStudent_ = false, screenshotRequested_ = false;
+    // The live view (drawLive): its texture while the input moves (0: the settled image).
+    std::unique_ptr<DisplayPass> displayPass_;
+    GLuint liveTexture_ = 0;
+    const char* liveWho_ = "";
+    std::chrono::steady_clock::time_point lastMove_{};
     bool precomputeNoticeShown_ = false;
     char environmentInput_[512] = "";
     fs::file_time_type lastStudentStamp_{};

@@ -18,6 +18,9 @@ struct GuiOptions {
     std::vector<std::string> sets;     // name=value for the start module
     int frames = 0;                    // > 0: render this many frames, then exit (scripted runs)
     std::filesystem::path screenshot;  // with frames: save the window here before exiting
+    // With frames: turn the camera a step every frame, as a mouse drag does, and print the
+    // frame times (median, 95th percentile): how interactive the lab is, scripted.
+    bool orbit = false;
     int width = 1600, height = 960;
 };
 
