@@ -41,6 +41,10 @@ namespace {
 constexpr int kRenderSize = 512;  // the lab image; scaled to fit the window
 // How long the input must be still before the full evaluation runs (the live view until then).
 constexpr std::chrono::milliseconds kSettleDelay{200};
+// The live picture's time budget: its side shrinks (to 128 at least) while a frame of it takes
+// longer, and grows back (to kRenderSize) while it takes much less, so that dragging stays at
+// 30 frames a second or more whatever the step costs per pixel. The settled image is full size.
+constexpr double kLiveBudgetMs = 18;
 
 enum class Status { Unknown, Missing, CompileError, Passes, Fails };
 
@@ -258,7 +262,10 @@ public:
         }
         if (options_.orbit) {
             printFrameTimes("frame", frameTimes, w, h);
-            printFrameTimes("  of which the picture", renderTimes, kRenderSize, kRenderSize);
+            std::vector<int> sizes = liveSizes_;
+            std::sort(sizes.begin(), sizes.end());
+            const int side = sizes.empty() ? 0 : sizes[sizes.size() / 2];
+            printFrameTimes("  of which the picture (median side)", renderTimes, side, side);
         }
         return 0;
     }
@@ -437,20 +444,20 @@ private:
     }
 
     // The picture the student is looking at (theirs when their file has compiled, else the
-    // solution's), rendered at the lab image's size and mapped for display on the GPU.
+    // solution's), rendered at the live size (kLiveBudgetMs) and mapped for display on the GPU.
     void drawLive() {
         const auto start = std::chrono::steady_clock::now();
         const Scene scene = currentScene();
         const bool student = view_ != 1 && !studentValue_.pixels.empty();
         try {
             RenderRequest request{
-                &loaded(), &state().params, &scene,     student ? studentSource() : StudentSource{},
-                nullptr,   kRenderSize,     kRenderSize};
+                &loaded(), &state().params, &scene,   student ? studentSource() : StudentSource{},
+                nullptr,   liveSize_,       liveSize_};
             request.seamlessCubes = false;  // as the settled picture: no jump when it lands
             request.readValue = false;
             const RenderResult r = renderer_->render(request);
-            liveTexture_ = displayPass_->run(r.valueTexture, kRenderSize, kRenderSize,
-                                             module().display, module().components);
+            liveTexture_ = displayPass_->run(r.valueTexture, liveSize_, liveSize_, module().display,
+                                             module().components);
             liveWho_ = student ? "your" : "the solution's";
         } catch (const Error& e) {
             render();  // a program that does not compile: the full path says why
@@ -459,6 +466,17 @@ private:
         renderMs_ =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count();
+        liveSizes_.push_back(liveSize_);
+        // Resized at most every 4 frames, from the slowest of them (a new size reallocates
+        // the targets; one slow frame is not a trend), with a gap between shrink and grow.
+        liveWindow_.push_back(renderMs_);
+        if (liveWindow_.size() < 4) return;
+        const double slowest = *std::max_element(liveWindow_.begin(), liveWindow_.end());
+        liveWindow_.clear();
+        if (slowest > kLiveBudgetMs)
+            liveSize_ = std::max(128, int(liveSize_ * 0.8) / 8 * 8);
+        else if (slowest < 0.4 * kLiveBudgetMs)
+            liveSize_ = std::min(kRenderSize, int(liveSize_ * 1.25) / 8 * 8);
     }
 
     void render() {
@@ -1471,6 +1489,9 @@ private:
     // The live view (drawLive): its texture while the input moves (0: the settled image).
     std::unique_ptr<DisplayPass> displayPass_;
     GLuint liveTexture_ = 0;
+    int liveSize_ = kRenderSize;      // the live picture's side (kLiveBudgetMs)
+    std::vector<int> liveSizes_;      // of every live frame, for --orbit's report
+    std::vector<double> liveWindow_;  // the live frames' times since the last resize
     const char* liveWho_ = "";
     std::chrono::steady_clock::time_point lastMove_{};
     bool precomputeNoticeShown_ = false;
