@@ -666,11 +666,17 @@ TEST_F(ImageTest, HdrReaderAgreesWithOpenImageIo) {
     // What OpenImageIO writes (the `environment` command's .hdr files).
     pbrlab::writeImage(dir_ / "oiio.hdr", noiseImage(40, 3), FileDepth::Float32);
     expectBothPathsAgree(dir_ / "oiio.hdr", "written by OpenImageIO");
-    // Variants the in-process reader hands to OpenImageIO: rows bottom to top, a GAMMA line.
+    // Headers as Photoshop writes them (the shipped environments: GAMMA=1, PRIMARIES), and
+    // other GAMMA values, whose colour-space names must be OpenImageIO's.
+    for (const char* gamma : {"GAMMA=1", "GAMMA=2.2", "GAMMA=0.4545", "GAMMA=0.5", "GAMMA=x"}) {
+        const std::string extra =
+            "# Made with Adobe Photoshop\n" + std::string(gamma) + "\nPRIMARIES=0 0 0 0 0 0 0 0\n";
+        writeBytes(dir_ / "gamma.hdr", radianceFile(12, 4, rgbePixels(12, 4), true, "", extra));
+        expectBothPathsAgree(dir_ / "gamma.hdr", gamma);
+    }
+    // A variant the in-process reader hands to OpenImageIO: rows bottom to top.
     writeBytes(dir_ / "bottom-up.hdr", radianceFile(12, 4, rgbePixels(12, 4), false, "+Y 4 +X 12"));
     expectBothPathsAgree(dir_ / "bottom-up.hdr", "bottom-up");
-    writeBytes(dir_ / "gamma.hdr", radianceFile(12, 4, rgbePixels(12, 4), true, "", "GAMMA=2.2\n"));
-    expectBothPathsAgree(dir_ / "gamma.hdr", "GAMMA line");
 }
 
 TEST_F(ImageTest, TruncatedHdrIsAnError) {
@@ -718,7 +724,10 @@ TEST_F(ImageTest, PngAndHdrNeverOpenOpenImageIo) {
     (void)pbrlab::readImage(dir_ / "b.png");
     const auto bytes = readBytes(dir_ / "a.png");
     (void)pbrlab::decodeImage(std::vector<unsigned char>(bytes.begin(), bytes.end()), "x.png");
-    writeBytes(dir_ / "c.hdr", radianceFile(16, 4, rgbePixels(16, 4), true));
+    // The shipped environments' header (Photoshop's).
+    writeBytes(dir_ / "c.hdr", radianceFile(16, 4, rgbePixels(16, 4), true, "",
+                                            "# Made with Adobe Photoshop\nGAMMA=1\n"
+                                            "PRIMARIES=0 0 0 0 0 0 0 0\n"));
     (void)pbrlab::readImage(dir_ / "c.hdr");
     EXPECT_FALSE(pbrlab::openImageIoLoaded());
 }

@@ -173,15 +173,14 @@ const OiioInterface& oiio(const std::string& what) {
 // The whole file, or its first `limit` bytes.
 std::vector<unsigned char> readBytes(const fs::path& path,
                                      std::size_t limit = std::numeric_limits<std::size_t>::max()) {
-    std::ifstream in(path, std::ios::binary);
-    std::vector<unsigned char> bytes;
-    if (limit != std::numeric_limits<std::size_t>::max()) {
-        bytes.resize(limit);
-        in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(limit));
-        bytes.resize(std::size_t(in.gcount()));
-        return bytes;
-    }
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    const std::streamoff size = in.tellg();
+    if (!in || size < 0) return {};
+    std::vector<unsigned char> bytes(std::min(std::size_t(size), limit));
+    in.seekg(0);
+    in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
+    bytes.resize(std::size_t(in.gcount()));
+    return bytes;
 }
 
 bool isPngSignature(const std::vector<unsigned char>& head) {

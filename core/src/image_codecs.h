@@ -60,11 +60,12 @@ std::string encodePng(const Image& image, FileDepth depth, const void* codes, bo
                       std::vector<unsigned char>& file);
 
 // A Radiance file's header: `standard` when it is the variant decodeRadiance takes (RGBE
-// pixels, rows top to bottom, no GAMMA line); other variants go to OpenImageIO.
+// pixels, rows top to bottom); other variants go to OpenImageIO.
 struct RadianceHeader {
     bool standard = false;
     int width = 0, height = 0;
     std::size_t dataStart = 0;  // offset of the first scanline
+    std::string colourSpace;    // from the GAMMA line, in OpenImageIO's names
 };
 // Whether the file starts with a header of that variant.
 bool readRadianceHeader(const unsigned char* bytes, std::size_t size, RadianceHeader& out);

@@ -2,8 +2,10 @@
 // scanlines of 4-byte pixels (three mantissas sharing one exponent), usually run-length encoded
 // one channel at a time. Read here rather than by stb_image from Debian's libstb, which loops
 // forever on a truncated file, or by OpenImageIO, which costs 0.3-0.5 s to load. Variants this
-// reader does not take (other orientations, XYZE, a GAMMA line) go to OpenImageIO.
+// reader does not take (other orientations, XYZE) go to OpenImageIO.
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string_view>
 
@@ -27,13 +29,20 @@ bool readAxis(std::string_view& line, std::string_view axis, int& count) {
     return true;
 }
 
-void toFloat(const unsigned char* rgbe, float* rgb) {
-    if (rgbe[3] == 0) {
-        rgb[0] = rgb[1] = rgb[2] = 0.0f;
-        return;
+// 2^(e - 136) for each exponent byte e (the mantissas are 8-bit fractions), 0 for e = 0 (black).
+// Every entry and every mantissa times it is exact in float (down to 2^-135, a subnormal).
+struct ExponentScales {
+    float scale[256];
+    ExponentScales() {
+        scale[0] = 0.0f;
+        for (int e = 1; e < 256; ++e) scale[e] = std::ldexp(1.0f, e - (128 + 8));
     }
-    const int exponent = int(rgbe[3]) - (128 + 8);  // the mantissas are 8-bit fractions
-    for (int c = 0; c < 3; ++c) rgb[c] = std::ldexp(float(rgbe[c]), exponent);
+};
+const ExponentScales kScales;
+
+void toFloat(const unsigned char* rgbe, float* rgb) {
+    const float scale = kScales.scale[rgbe[3]];
+    for (int c = 0; c < 3; ++c) rgb[c] = float(rgbe[c]) * scale;
 }
 
 }  // namespace
@@ -41,7 +50,8 @@ void toFloat(const unsigned char* rgbe, float* rgb) {
 bool readRadianceHeader(const unsigned char* bytes, std::size_t size, RadianceHeader& out) {
     const std::string_view text(reinterpret_cast<const char*>(bytes), size);
     if (text.substr(0, 2) != "#?") return false;
-    bool rgbe = false, gamma = false;
+    bool rgbe = false, usableGamma = true;
+    double gamma = 0.0;
     std::size_t pos = 0;
     for (;;) {  // header lines up to an empty one
         const std::size_t end = text.find('\n', pos);
@@ -50,7 +60,12 @@ bool readRadianceHeader(const unsigned char* bytes, std::size_t size, RadianceHe
         pos = end + 1;
         if (line.empty()) break;
         if (line.substr(0, 7) == "FORMAT=") rgbe = line.substr(7) == "32-bit_rle_rgbe";
-        if (line.substr(0, 6) == "GAMMA=") gamma = true;
+        if (line.substr(0, 6) == "GAMMA=") {
+            const std::string value(line.substr(6));
+            char* end = nullptr;
+            gamma = std::strtod(value.c_str(), &end);
+            usableGamma = end != value.c_str() && gamma > 0.0 && std::isfinite(gamma);
+        }
     }
     const std::size_t end = text.find('\n', pos);
     if (end == std::string_view::npos) return false;
@@ -58,7 +73,17 @@ bool readRadianceHeader(const unsigned char* bytes, std::size_t size, RadianceHe
     const bool topDown = readAxis(resolution, "-Y ", out.height) &&
                          readAxis(resolution, " +X ", out.width) && resolution.empty();
     out.dataStart = end + 1;
-    out.standard = rgbe && !gamma && topDown;
+    out.standard = rgbe && usableGamma && topDown;
+    // The name OpenImageIO 2.4 gives (it rounds 1 / GAMMA to hundredths); no GAMMA: linear.
+    out.colourSpace = "linear";
+    if (gamma > 0.0) {
+        const float g = std::round(100.0f * float(1.0 / gamma)) / 100.0f;
+        if (g != 1.0f) {
+            char name[32];
+            std::snprintf(name, sizeof name, "Gamma%.2g", double(g));
+            out.colourSpace = name;
+        }
+    }
     return out.standard;
 }
 
@@ -137,7 +162,7 @@ std::string decodeRadiance(const unsigned char* bytes, std::size_t size,
         for (int x = 0; x < width; ++x) toFloat(row.data() + std::size_t(x) * 4, rgb + x * 3);
     }
     out.formatName = "hdr";
-    out.colourSpace = "linear";  // what OpenImageIO reports for a file without GAMMA
+    out.colourSpace = header.colourSpace;
     return {};
 }
 
