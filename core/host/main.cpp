@@ -178,7 +178,7 @@ int runRender(const Options& o, const std::string& id, const std::string& submis
 int runCheck(const Options& o, const std::string& id, const std::string& submission,
              bool cumulative, const std::string& size, std::uint64_t seed,
              const std::string& jsonFile) {
-    Session session(o);
+    Session session(o, true, id);
     const LoadedModule& m = session.modules->find(id);
     Size s = parseSize(size);
     GradeOptions grade;
