@@ -4,9 +4,9 @@
 //   with libpbrlab_oiio.so preloaded, i.e. with OpenImageIO's libraries loaded and initialised
 //   before main as they were when pbrlab linked OpenImageIO (the old executable also paid
 //   OpenImageIO's first-use set-up when it wrote the PNG, which this baseline leaves out);
-// - the in-process codecs against OpenImageIO on the hot formats: writing a 512^2 PNG, reading
-//   the 8- and 16-bit PNG textures, the 2048^2 WaterBottle PNG and the shipped 1k HDRs (the last
-//   two from ../shared/data beside the repository, when present).
+// - the in-process codecs against OpenImageIO on the hot formats: writing a 512^2 PNG and a
+//   512^2 float EXR, reading the 8- and 16-bit PNG textures, the 2048^2 WaterBottle PNG and the
+//   shipped 1k HDRs (the last two from ../shared/data beside the repository, when present).
 #include <benchmark/benchmark.h>
 #include <fcntl.h>
 #include <spawn.h>
@@ -176,6 +176,19 @@ void BM_WritePng512(benchmark::State& state) {
     });
 }
 BENCHMARK(BM_WritePng512)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(15);
+
+// A precomputed map's worth: 512^2 RGB floats (one face of a 512 environment cube).
+void BM_WriteExr512(benchmark::State& state) {
+    Image image = renderLike(512);
+    image.channels = 3;
+    image.pixels.resize(size_t(512) * 512 * 3);
+    for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] *= 1.0f + float(i % 7);
+    const fs::path file = scratch() / "write.exr";
+    codecAgainstOpenImageIo(state, [&](ImageCodecs codecs) {
+        writeImage(file, image, FileDepth::Float32, false, codecs);
+    });
+}
+BENCHMARK(BM_WriteExr512)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(15);
 
 fs::path readFile(int which) {
     const fs::path textures = fs::path(PBRLAB_SOURCE_DIR) / "assets/textures/metal-plates";

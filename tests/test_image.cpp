@@ -321,6 +321,7 @@ TEST_F(ImageTest, FailedWritesThrowAndLeaveNothingBehind) {
         }
     };
     expectWriteError(dir_ / "float.png", FileDepth::Float32);  // PNG holds no floats
+    expectWriteError(dir_ / "bytes.exr", FileDepth::Uint8);    // pbrlab's EXRs are float
     expectWriteError(dir_ / "image.unknownext", FileDepth::Uint8);
     expectWriteError(dir_ / "missing-dir" / "x.png", FileDepth::Uint8);
     Image broken = img;
@@ -644,6 +645,32 @@ TEST_F(ImageTest, PngWritesReadTheSameThroughOpenImageIo) {
     }
 }
 
+TEST_F(ImageTest, ExrWritesReadTheSameAsOpenImageIosOwn) {
+    // EXR is written in-process (OpenEXRCore) and read by OpenImageIO: what it reads must be
+    // what it reads from its own files, bit for bit, with the same channels and tags.
+    const float specials[] = {0.0f, -2.5f, 1.0f / 3.0f, 1e-20f, 65504.0f, 3.4e38f, 1.0f + 1e-7f};
+    for (int channels = 1; channels <= 4; ++channels) {
+        for (bool srgb : {false, true}) {
+            // 40 rows: more than one 16-line ZIP chunk, and a last chunk that is not full.
+            Image img = makeImage(7, 40, channels);
+            for (size_t i = 0; i < img.pixels.size(); ++i)
+                img.pixels[i] = specials[i % 7] * (1.0f + float(i) * 0.01f);
+            const std::string what =
+                std::to_string(channels) + " channels" + (srgb ? ", sRGB" : "");
+            pbrlab::writeImage(dir_ / "ours.exr", img, FileDepth::Float32, srgb,
+                               ImageCodecs::Default);
+            pbrlab::writeImage(dir_ / "theirs.exr", img, FileDepth::Float32, srgb,
+                               ImageCodecs::OpenImageIO);
+            const Image ours = pbrlab::readImage(dir_ / "ours.exr");
+            expectSameImage(ours, pbrlab::readImage(dir_ / "theirs.exr"), what);
+            ASSERT_EQ(ours.pixels.size(), img.pixels.size()) << what;
+            for (size_t i = 0; i < img.pixels.size(); ++i)
+                ASSERT_EQ(ours.pixels[i], img.pixels[i]) << what << " value " << i;
+            EXPECT_FALSE(ours.sourceIsSrgb) << what;  // float data is linear
+        }
+    }
+}
+
 TEST_F(ImageTest, HdrReaderAgreesWithOpenImageIo) {
     struct Case {
         const char* name;
@@ -714,7 +741,7 @@ TEST_F(ImageTest, CorruptHdrRunsAreErrors) {
     expectReadError(dir_ / "huge.hdr", "header claiming 10000 x 10000");
 }
 
-TEST_F(ImageTest, PngAndHdrNeverOpenOpenImageIo) {
+TEST_F(ImageTest, HotFormatsNeverOpenOpenImageIo) {
     if (pbrlab::openImageIoLoaded())
         GTEST_SKIP() << "an earlier test in this process opened it (ctest runs each test alone)";
     const Image img = noiseImage(16, 3);
@@ -729,6 +756,7 @@ TEST_F(ImageTest, PngAndHdrNeverOpenOpenImageIo) {
                                             "# Made with Adobe Photoshop\nGAMMA=1\n"
                                             "PRIMARIES=0 0 0 0 0 0 0 0\n"));
     (void)pbrlab::readImage(dir_ / "c.hdr");
+    pbrlab::writeImage(dir_ / "d.exr", img, FileDepth::Float32);
     EXPECT_FALSE(pbrlab::openImageIoLoaded());
 }
 

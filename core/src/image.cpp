@@ -327,9 +327,13 @@ void writeImage(const fs::path& path, const Image& image, FileDepth depth, bool 
         throw Error(what + "the pixel buffer holds " + std::to_string(image.pixels.size()) +
                     " values, expected " + std::to_string(values));
     }
-    const bool png = codecs == ImageCodecs::Default && lower(path.extension().string()) == ".png";
+    const std::string extension = lower(path.extension().string());
+    const bool png = codecs == ImageCodecs::Default && extension == ".png";
+    const bool exr = codecs == ImageCodecs::Default && extension == ".exr" && image.channels <= 4;
     if (png && depth == FileDepth::Float32)  // refused before anything is made
         throw Error(what + "the png format cannot store 32-bit float data");
+    if (exr && depth != FileDepth::Float32)
+        throw Error(what + "the openexr format cannot store " + fileDepthName(depth) + " data");
     const fs::path parent = path.parent_path().empty() ? fs::path(".") : path.parent_path();
     if (std::error_code ec; !fs::is_directory(parent, ec)) {
         throw Error(what + "the directory '" + parent.string() + "' does not exist");
@@ -362,6 +366,8 @@ void writeImage(const fs::path& path, const Image& image, FileDepth depth, bool 
         std::vector<unsigned char> file;
         problem = encodePng(image, depth, codes, markSrgb, file);
         if (problem.empty()) problem = writeBytes(temp, file);
+    } else if (exr) {
+        problem = writeExr(temp, image);
     } else {
         problem = oiio(what).write(path.string(), temp.string(), image, depth, codes, markSrgb);
     }

@@ -1,8 +1,9 @@
 // The codecs behind pbrlab/image.h. PNG (every render, texture and glTF image) goes through
-// libpng and Radiance HDR (the environments) through a reader of pbrlab's own, both in this
-// process; every other format goes to OpenImageIO, which lives in libpbrlab_oiio.so and is
-// opened on first use, so that no command pays OpenImageIO's start-up (its ~260 shared
-// libraries and their initialisers: 0.3-0.5 s) unless it reads or writes a file that needs it.
+// libpng, Radiance HDR (the environments) through a reader of pbrlab's own, and EXR writing
+// (precomputed maps, --out x.exr) through OpenEXRCore, all in this process; every other format,
+// and reading EXR, goes to OpenImageIO, which lives in libpbrlab_oiio.so and is opened on first
+// use, so that no command pays OpenImageIO's start-up (its ~260 shared libraries and their
+// initialisers: 0.3-0.5 s, and its first use as much again) unless a file needs it.
 // docs/architecture.md ("Start-up") has the measurements behind the choice.
 #pragma once
 
@@ -58,6 +59,9 @@ std::string decodePng(const unsigned char* bytes, std::size_t size, DecodedImage
 // `codes` holds width * height * channels values of the depth's type (uint8_t or uint16_t).
 std::string encodePng(const Image& image, FileDepth depth, const void* codes, bool markSrgb,
                       std::vector<unsigned char>& file);
+
+// 32-bit float OpenEXR (1 to 4 channels), straight to `file`.
+std::string writeExr(const std::filesystem::path& file, const Image& image);
 
 // A Radiance file's header: `standard` when it is the variant decodeRadiance takes (RGBE
 // pixels, rows top to bottom); other variants go to OpenImageIO.
