@@ -1,7 +1,8 @@
-// Images on the CPU: float pixels plus what the file said about them. PNG and Radiance HDR are
-// read and written in-process (libpng, a reader of pbrlab's own); every other format through
-// OpenImageIO, loaded on first use from libpbrlab_oiio.so (core/src/image_codecs.h says why).
-// Errors are thrown as pbrlab::Error naming the file and what is wrong.
+// Images on the CPU: float pixels plus what the file said about them. PNG (read and written,
+// libpng), Radiance HDR (read, pbrlab's own reader) and EXR (written, OpenEXRCore) are handled
+// in-process; everything else through OpenImageIO, loaded on first use from libpbrlab_oiio.so
+// (core/src/image_codecs.h says why). Errors are thrown as pbrlab::Error naming the file and
+// what is wrong.
 #pragma once
 
 #include <cstdint>
