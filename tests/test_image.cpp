@@ -1,5 +1,6 @@
 // Image I/O (core/src/image.cpp) and the procedural metal-plates texture set (texgen).
 #include <gtest/gtest.h>
+#include <png.h>
 
 #include <atomic>
 #include <chrono>
@@ -14,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "image_codecs.h"
 #include "pbrlab/error.h"
 #include "pbrlab/image.h"
 #include "pbrlab/texgen.h"
@@ -21,6 +23,7 @@
 namespace fs = std::filesystem;
 using pbrlab::FileDepth;
 using pbrlab::Image;
+using pbrlab::ImageCodecs;
 
 namespace {
 
@@ -318,6 +321,7 @@ TEST_F(ImageTest, FailedWritesThrowAndLeaveNothingBehind) {
         }
     };
     expectWriteError(dir_ / "float.png", FileDepth::Float32);  // PNG holds no floats
+    expectWriteError(dir_ / "bytes.exr", FileDepth::Uint8);    // pbrlab's EXRs are float
     expectWriteError(dir_ / "image.unknownext", FileDepth::Uint8);
     expectWriteError(dir_ / "missing-dir" / "x.png", FileDepth::Uint8);
     Image broken = img;
@@ -336,6 +340,424 @@ TEST_F(ImageTest, WriteReplacesAnExistingFile) {
     EXPECT_EQ(back.width, 3);
     EXPECT_EQ(back.pixels, b.pixels);
     EXPECT_EQ(countEntries(dir_), 1u);
+}
+
+// ---------------------------------------------------------------- in-process codecs
+
+// PNG and Radiance HDR are read (and PNG written) in-process; OpenImageIO, which read and wrote
+// them before, is the yardstick: both paths must give the same image for every kind of file.
+
+namespace {
+
+void expectSameImage(const Image& a, const Image& b, const std::string& what) {
+    ASSERT_EQ(a.width, b.width) << what;
+    ASSERT_EQ(a.height, b.height) << what;
+    ASSERT_EQ(a.channels, b.channels) << what;
+    EXPECT_EQ(a.sourceBitsPerChannel, b.sourceBitsPerChannel) << what;
+    EXPECT_EQ(a.sourceIsSrgb, b.sourceIsSrgb) << what;
+    ASSERT_EQ(a.pixels.size(), b.pixels.size()) << what;
+    for (size_t i = 0; i < a.pixels.size(); ++i)
+        ASSERT_EQ(a.pixels[i], b.pixels[i]) << what << ": value " << i;
+}
+
+// Reads `file` both ways, from the file and from its bytes in memory, and compares.
+void expectBothPathsAgree(const fs::path& file, const std::string& what) {
+    const Image ours = pbrlab::readImage(file, ImageCodecs::Default);
+    const Image theirs = pbrlab::readImage(file, ImageCodecs::OpenImageIO);
+    expectSameImage(ours, theirs, what);
+    const auto bytes = readBytes(file);
+    const std::vector<unsigned char> encoded(bytes.begin(), bytes.end());
+    const std::string name = "memory" + file.extension().string();
+    expectSameImage(pbrlab::decodeImage(encoded, name, ImageCodecs::Default),
+                    pbrlab::decodeImage(encoded, name, ImageCodecs::OpenImageIO),
+                    what + " (in memory)");
+}
+
+enum class ColourTag { None, Srgb, Gamma1, Gamma22, Gamma18, TextLinear, TextSrgb, SrgbTextLinear };
+
+struct PngVariant {
+    const char* name;
+    int colourType;
+    int bits;
+    bool transparency = false;  // tRNS: palette alphas, or a colour key
+    bool interlaced = false;
+    ColourTag tag = ColourTag::None;
+};
+
+constexpr int kVariantWidth = 13, kVariantHeight = 7;
+
+int channelsOf(int colourType) {
+    switch (colourType) {
+        case PNG_COLOR_TYPE_GRAY_ALPHA:
+            return 2;
+        case PNG_COLOR_TYPE_RGB:
+            return 3;
+        case PNG_COLOR_TYPE_RGB_ALPHA:
+            return 4;
+        default:
+            return 1;  // grey, palette indices
+    }
+}
+
+// Writes the variant with libpng directly, not with pbrlab's writer. libpng reports errors by
+// longjmp: nothing in this frame needs a destructor.
+bool writeWithLibpng(std::FILE* file, const PngVariant& v, png_bytepp rows) {
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    if (!info) {
+        png_destroy_write_struct(&png, nullptr);
+        return false;
+    }
+    png_color palette[256];
+    png_byte alphas[256];
+    png_color_16 key{};
+    png_text text{};
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        return false;
+    }
+    png_init_io(png, file);
+    png_set_IHDR(png, info, kVariantWidth, kVariantHeight, v.bits, v.colourType,
+                 v.interlaced ? PNG_INTERLACE_ADAM7 : PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    if (v.colourType == PNG_COLOR_TYPE_PALETTE) {
+        for (int i = 0; i < 256; ++i) {
+            palette[i] = {png_byte(i * 37), png_byte(i * 91 + 5), png_byte(255 - i)};
+            alphas[i] = png_byte(i * 53);
+        }
+        png_set_PLTE(png, info, palette, 1 << v.bits);
+        if (v.transparency) png_set_tRNS(png, info, alphas, 1 << v.bits, nullptr);
+    } else if (v.transparency) {  // the first pixel's colour is transparent
+        auto sample = [&](int i) {
+            return v.bits == 16 ? png_uint_16((rows[0][2 * i] << 8) | rows[0][2 * i + 1])
+                                : png_uint_16(rows[0][i]);
+        };
+        key.gray = sample(0);
+        key.red = sample(0);
+        key.green = sample(1);
+        key.blue = sample(2);
+        png_set_tRNS(png, info, nullptr, 0, &key);
+    }
+    text.compression = PNG_TEXT_COMPRESSION_NONE;
+    text.key = const_cast<char*>("oiio:ColorSpace");
+    text.text = const_cast<char*>(v.tag == ColourTag::TextSrgb ? "sRGB" : "Linear");
+    switch (v.tag) {
+        case ColourTag::None:
+            break;
+        case ColourTag::Srgb:
+            png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+            break;
+        case ColourTag::Gamma1:
+            png_set_gAMA(png, info, 1.0);
+            break;
+        case ColourTag::Gamma22:
+            png_set_gAMA(png, info, 1.0 / 2.2);
+            break;
+        case ColourTag::Gamma18:
+            png_set_gAMA(png, info, 1.0 / 1.8);
+            break;
+        case ColourTag::SrgbTextLinear:
+            png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+            png_set_text(png, info, &text, 1);
+            break;
+        case ColourTag::TextLinear:
+        case ColourTag::TextSrgb:
+            png_set_text(png, info, &text, 1);
+            break;
+    }
+    png_write_info(png, info);
+    png_write_image(png, rows);
+    png_write_end(png, nullptr);
+    png_destroy_write_struct(&png, &info);
+    return true;
+}
+
+void writeVariant(const fs::path& path, const PngVariant& v) {
+    const size_t rowBytes = (size_t(kVariantWidth) * channelsOf(v.colourType) * v.bits + 7) / 8;
+    std::vector<png_byte> data(rowBytes * kVariantHeight);
+    std::uint32_t state = 99;
+    for (png_byte& b : data) {
+        state = state * 1664525u + 1013904223u;
+        b = png_byte(state >> 24);
+    }
+    // Two pixels equal to the first, so a colour key hits more than one.
+    const size_t pixelBytes = std::max<size_t>(1, size_t(channelsOf(v.colourType) * v.bits / 8));
+    if (v.bits >= 8)
+        for (size_t k = 0; k < pixelBytes; ++k) data[rowBytes + k] = data[k];
+    std::vector<png_bytep> rows(kVariantHeight);
+    for (int y = 0; y < kVariantHeight; ++y) rows[y] = data.data() + rowBytes * y;
+    std::FILE* file = std::fopen(path.c_str(), "wb");
+    ASSERT_NE(file, nullptr) << path;
+    const bool ok = writeWithLibpng(file, v, rows.data());
+    std::fclose(file);
+    ASSERT_TRUE(ok) << v.name;
+}
+
+// A Radiance file made here, independently of pbrlab's reader: the header, then every scanline
+// run-length encoded one channel at a time (runs of 3 or more equal bytes as runs, the rest as
+// literal stretches), or all pixels flat.
+std::vector<char> radianceFile(int width, int height, const std::vector<unsigned char>& rgbe,
+                               bool encodeRuns, const std::string& resolution = "",
+                               const std::string& extraHeader = "") {
+    std::string text =
+        "#?RADIANCE\n" + extraHeader + "FORMAT=32-bit_rle_rgbe\n\n" +
+        (resolution.empty() ? "-Y " + std::to_string(height) + " +X " + std::to_string(width)
+                            : resolution) +
+        "\n";
+    std::vector<char> out(text.begin(), text.end());
+    for (int y = 0; y < height; ++y) {
+        const unsigned char* row = rgbe.data() + size_t(y) * width * 4;
+        if (!encodeRuns) {
+            out.insert(out.end(), row, row + size_t(width) * 4);
+            continue;
+        }
+        out.insert(out.end(), {2, 2, char(width >> 8), char(width & 0xff)});
+        for (int c = 0; c < 4; ++c) {
+            auto at = [&](int x) { return row[size_t(x) * 4 + c]; };
+            auto runAt = [&](int x) {
+                int n = 1;
+                while (x + n < width && n < 127 && at(x + n) == at(x)) ++n;
+                return n;
+            };
+            for (int x = 0; x < width;) {
+                if (runAt(x) >= 3) {
+                    const int n = runAt(x);
+                    out.push_back(char(128 + n));
+                    out.push_back(char(at(x)));
+                    x += n;
+                    continue;
+                }
+                int n = 0;
+                while (x + n < width && n < 128 && runAt(x + n) < 3) ++n;
+                out.push_back(char(n));
+                for (int k = 0; k < n; ++k) out.push_back(char(at(x + k)));
+                x += n;
+            }
+        }
+    }
+    return out;
+}
+
+// RGBE pixels: a constant stretch in each row (runs), noise elsewhere, some zero exponents.
+std::vector<unsigned char> rgbePixels(int width, int height) {
+    std::vector<unsigned char> rgbe(size_t(width) * height * 4);
+    std::uint32_t state = 5;
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            unsigned char* p = &rgbe[(size_t(y) * width + x) * 4];
+            for (int c = 0; c < 4; ++c) {
+                state = state * 1664525u + 1013904223u;
+                p[c] = (x < width / 2) ? (unsigned char)(40 * c + y + 1)
+                                       : (unsigned char)(state >> 24);
+            }
+            p[0] |= 0x80;  // a normalised mantissa (and no scanline looks run-length marked)
+            if (x >= width / 2) p[3] = (unsigned char)(110 + (p[3] & 31));
+            if (x % 11 == 5) p[3] = 0;  // black
+        }
+    }
+    return rgbe;
+}
+
+}  // namespace
+
+TEST_F(ImageTest, PngReaderAgreesWithOpenImageIo) {
+    constexpr int G = PNG_COLOR_TYPE_GRAY, GA = PNG_COLOR_TYPE_GRAY_ALPHA, RGB = PNG_COLOR_TYPE_RGB,
+                  RGBA = PNG_COLOR_TYPE_RGB_ALPHA, P = PNG_COLOR_TYPE_PALETTE;
+    const PngVariant variants[] = {
+        {"gray1", G, 1},
+        {"gray2", G, 2},
+        {"gray4", G, 4},
+        {"gray8", G, 8},
+        {"gray16", G, 16},
+        {"grayalpha8", GA, 8},
+        {"grayalpha16", GA, 16},
+        {"rgb8", RGB, 8},
+        {"rgb16", RGB, 16},
+        {"rgba8", RGBA, 8},
+        {"rgba16", RGBA, 16},
+        {"palette1", P, 1},
+        {"palette2", P, 2},
+        {"palette4", P, 4},
+        {"palette8", P, 8},
+        {"palette8-alpha", P, 8, true},
+        {"palette2-alpha", P, 2, true},
+        {"gray8-key", G, 8, true},
+        {"gray16-key", G, 16, true},
+        {"rgb8-key", RGB, 8, true},
+        {"rgb16-key", RGB, 16, true},
+        {"rgb8-interlaced", RGB, 8, false, true},
+        {"gray16-interlaced", G, 16, false, true},
+        {"rgb8-srgb", RGB, 8, false, false, ColourTag::Srgb},
+        {"rgb8-gamma1", RGB, 8, false, false, ColourTag::Gamma1},
+        {"rgb8-gamma2.2", RGB, 8, false, false, ColourTag::Gamma22},
+        {"rgb8-gamma1.8", RGB, 8, false, false, ColourTag::Gamma18},
+        {"rgb8-text-linear", RGB, 8, false, false, ColourTag::TextLinear},
+        {"rgb8-text-srgb", RGB, 8, false, false, ColourTag::TextSrgb},
+        {"rgb8-srgb-text-linear", RGB, 8, false, false, ColourTag::SrgbTextLinear},
+        {"gray16-srgb", G, 16, false, false, ColourTag::Srgb},
+        {"gray16-gamma1", G, 16, false, false, ColourTag::Gamma1},
+        {"rgba16-gamma2.2", RGBA, 16, false, false, ColourTag::Gamma22},
+    };
+    for (const PngVariant& v : variants) {
+        const fs::path file = dir_ / (std::string(v.name) + ".png");
+        writeVariant(file, v);
+        expectBothPathsAgree(file, v.name);
+    }
+    // What the tags mean (image.h): a gAMA of 2.0-2.6 is display encoding like sRGB; OIIO's
+    // text chunk, when present, is the file's own statement and wins.
+    auto srgb = [&](const char* name) {
+        return pbrlab::readImage(dir_ / (std::string(name) + ".png")).sourceIsSrgb;
+    };
+    EXPECT_TRUE(srgb("rgb8-srgb"));
+    EXPECT_TRUE(srgb("rgb8-gamma2.2"));
+    EXPECT_FALSE(srgb("rgb8-gamma1.8"));
+    EXPECT_FALSE(srgb("rgb8-gamma1"));
+    EXPECT_FALSE(srgb("rgb8-text-linear"));
+    EXPECT_FALSE(srgb("rgb8-srgb-text-linear"));
+    EXPECT_TRUE(srgb("rgb8"));     // untagged 8-bit
+    EXPECT_FALSE(srgb("gray16"));  // untagged 16-bit grey: data
+    EXPECT_TRUE(srgb("rgb16"));    // untagged 16-bit colour
+}
+
+TEST_F(ImageTest, PngWritesReadTheSameThroughOpenImageIo) {
+    // What pbrlab writes, OpenImageIO reads as written (and the other way round).
+    for (int channels = 1; channels <= 4; ++channels) {
+        for (FileDepth depth : {FileDepth::Uint8, FileDepth::Uint16}) {
+            for (bool srgb : {false, true}) {
+                const Image img = noiseImage(9, channels);
+                const std::string what = std::to_string(channels) + " channels, " +
+                                         pbrlab::fileDepthName(depth) + (srgb ? ", sRGB" : "");
+                for (ImageCodecs writer : {ImageCodecs::Default, ImageCodecs::OpenImageIO}) {
+                    const fs::path file = dir_ / "written.png";
+                    pbrlab::writeImage(file, img, depth, srgb, writer);
+                    const Image back = pbrlab::readImage(file, ImageCodecs::OpenImageIO);
+                    EXPECT_EQ(back.sourceIsSrgb, srgb) << what;
+                    EXPECT_EQ(back.sourceBitsPerChannel, depth == FileDepth::Uint8 ? 8 : 16);
+                    const double step = depth == FileDepth::Uint8 ? 255.0 : 65535.0;
+                    ASSERT_EQ(back.pixels.size(), img.pixels.size()) << what;
+                    for (size_t i = 0; i < img.pixels.size(); ++i)
+                        ASSERT_EQ(back.pixels[i], float(std::lround(img.pixels[i] * step) / step))
+                            << what << " value " << i;
+                    expectBothPathsAgree(file, what);
+                }
+            }
+        }
+    }
+}
+
+TEST_F(ImageTest, ExrWritesReadTheSameAsOpenImageIosOwn) {
+    // EXR is written in-process (OpenEXRCore) and read by OpenImageIO: what it reads must be
+    // what it reads from its own files, bit for bit, with the same channels and tags.
+    const float specials[] = {0.0f, -2.5f, 1.0f / 3.0f, 1e-20f, 65504.0f, 3.4e38f, 1.0f + 1e-7f};
+    for (int channels = 1; channels <= 4; ++channels) {
+        for (bool srgb : {false, true}) {
+            // 40 rows: more than one 16-line ZIP chunk, and a last chunk that is not full.
+            Image img = makeImage(7, 40, channels);
+            for (size_t i = 0; i < img.pixels.size(); ++i)
+                img.pixels[i] = specials[i % 7] * (1.0f + float(i) * 0.01f);
+            const std::string what =
+                std::to_string(channels) + " channels" + (srgb ? ", sRGB" : "");
+            pbrlab::writeImage(dir_ / "ours.exr", img, FileDepth::Float32, srgb,
+                               ImageCodecs::Default);
+            pbrlab::writeImage(dir_ / "theirs.exr", img, FileDepth::Float32, srgb,
+                               ImageCodecs::OpenImageIO);
+            const Image ours = pbrlab::readImage(dir_ / "ours.exr");
+            expectSameImage(ours, pbrlab::readImage(dir_ / "theirs.exr"), what);
+            ASSERT_EQ(ours.pixels.size(), img.pixels.size()) << what;
+            for (size_t i = 0; i < img.pixels.size(); ++i)
+                ASSERT_EQ(ours.pixels[i], img.pixels[i]) << what << " value " << i;
+            EXPECT_FALSE(ours.sourceIsSrgb) << what;  // float data is linear
+        }
+    }
+}
+
+TEST_F(ImageTest, HdrReaderAgreesWithOpenImageIo) {
+    struct Case {
+        const char* name;
+        int width, height;
+        bool encodeRuns;
+    };
+    // 300 wide: runs longer than one code can hold (127) and literal stretches of 128; widths
+    // under 8 are always flat; a flat first scanline makes the whole file flat.
+    for (const Case& c : {Case{"rle", 64, 9, true}, Case{"rle-wide", 300, 4, true},
+                          Case{"flat-narrow", 5, 6, false}, Case{"flat", 20, 3, false}}) {
+        const fs::path file = dir_ / (std::string(c.name) + ".hdr");
+        writeBytes(file,
+                   radianceFile(c.width, c.height, rgbePixels(c.width, c.height), c.encodeRuns));
+        expectBothPathsAgree(file, c.name);
+        const Image image = pbrlab::readImage(file);
+        EXPECT_EQ(image.width, c.width);
+        EXPECT_EQ(image.channels, 3);
+        EXPECT_FALSE(image.sourceIsSrgb);
+    }
+    // What OpenImageIO writes (the `environment` command's .hdr files).
+    pbrlab::writeImage(dir_ / "oiio.hdr", noiseImage(40, 3), FileDepth::Float32);
+    expectBothPathsAgree(dir_ / "oiio.hdr", "written by OpenImageIO");
+    // Headers as Photoshop writes them (the shipped environments: GAMMA=1, PRIMARIES), and
+    // other GAMMA values, whose colour-space names must be OpenImageIO's.
+    for (const char* gamma : {"GAMMA=1", "GAMMA=2.2", "GAMMA=0.4545", "GAMMA=0.5", "GAMMA=x"}) {
+        const std::string extra =
+            "# Made with Adobe Photoshop\n" + std::string(gamma) + "\nPRIMARIES=0 0 0 0 0 0 0 0\n";
+        writeBytes(dir_ / "gamma.hdr", radianceFile(12, 4, rgbePixels(12, 4), true, "", extra));
+        expectBothPathsAgree(dir_ / "gamma.hdr", gamma);
+    }
+    // A variant the in-process reader hands to OpenImageIO: rows bottom to top.
+    writeBytes(dir_ / "bottom-up.hdr", radianceFile(12, 4, rgbePixels(12, 4), false, "+Y 4 +X 12"));
+    expectBothPathsAgree(dir_ / "bottom-up.hdr", "bottom-up");
+}
+
+TEST_F(ImageTest, TruncatedHdrIsAnError) {
+    for (bool encodeRuns : {true, false}) {
+        const auto bytes = radianceFile(64, 16, rgbePixels(64, 16), encodeRuns);
+        for (size_t keep :
+             {bytes.size() / 2, bytes.size() * 9 / 10, bytes.size() - 1, bytes.size() / 20}) {
+            const fs::path file = dir_ / ("truncated-" + std::to_string(keep) + ".hdr");
+            writeBytes(file, std::vector<char>(bytes.begin(), bytes.begin() + long(keep)));
+            expectReadError(file, "truncated HDR");
+        }
+    }
+}
+
+TEST_F(ImageTest, CorruptHdrRunsAreErrors) {
+    // stb_image loops forever on a run of length 0 or a truncated file; pbrlab's reader must stop.
+    const auto good = radianceFile(64, 4, rgbePixels(64, 4), true);
+    const std::string text(good.begin(), good.end());
+    const size_t data = text.find("+X 64\n") + 6;  // the first scanline's 2, 2, 0, 64
+    ASSERT_EQ(good[data], 2);
+    auto corrupt = [&](size_t at, char value, const std::string& name) {
+        auto bytes = good;
+        bytes[at] = value;
+        writeBytes(dir_ / name, bytes);
+        expectReadError(dir_ / name, name);
+    };
+    corrupt(data + 4, 0, "zero-run.hdr");                // a literal stretch of 0 bytes
+    corrupt(data + 4, char(128 + 100), "long-run.hdr");  // the first run is 32 long: 100 is not
+    corrupt(data + 3, 63, "short-scanline.hdr");         // the scanline says 63 pixels, not 64
+    // A header claiming far more pixels than the bytes that follow could hold.
+    const std::string huge = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 10000 +X 10000\n";
+    std::vector<char> bytes(huge.begin(), huge.end());
+    bytes.resize(bytes.size() + 100, 2);
+    writeBytes(dir_ / "huge.hdr", bytes);
+    expectReadError(dir_ / "huge.hdr", "header claiming 10000 x 10000");
+}
+
+TEST_F(ImageTest, HotFormatsNeverOpenOpenImageIo) {
+    if (pbrlab::openImageIoLoaded())
+        GTEST_SKIP() << "an earlier test in this process opened it (ctest runs each test alone)";
+    const Image img = noiseImage(16, 3);
+    pbrlab::writeImage(dir_ / "a.png", img, FileDepth::Uint8, true);
+    pbrlab::writeImage(dir_ / "b.png", img, FileDepth::Uint16);
+    (void)pbrlab::readImage(dir_ / "a.png");
+    (void)pbrlab::readImage(dir_ / "b.png");
+    const auto bytes = readBytes(dir_ / "a.png");
+    (void)pbrlab::decodeImage(std::vector<unsigned char>(bytes.begin(), bytes.end()), "x.png");
+    // The shipped environments' header (Photoshop's).
+    writeBytes(dir_ / "c.hdr", radianceFile(16, 4, rgbePixels(16, 4), true, "",
+                                            "# Made with Adobe Photoshop\nGAMMA=1\n"
+                                            "PRIMARIES=0 0 0 0 0 0 0 0\n"));
+    (void)pbrlab::readImage(dir_ / "c.hdr");
+    pbrlab::writeImage(dir_ / "d.exr", img, FileDepth::Float32);
+    EXPECT_FALSE(pbrlab::openImageIoLoaded());
 }
 
 // ---------------------------------------------------------------- texgen

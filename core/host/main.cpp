@@ -64,8 +64,9 @@ struct Session {
     std::unique_ptr<ModuleRegistry> modules;
     std::unique_ptr<LabRenderer> renderer;
 
-    explicit Session(const Options& o, bool needGl = true) {
-        modules = std::make_unique<ModuleRegistry>(modulesDir(o), paths.labs());
+    // `onlyId`: the command is about that one module (see ModuleRegistry).
+    explicit Session(const Options& o, bool needGl = true, const std::string& onlyId = {}) {
+        modules = std::make_unique<ModuleRegistry>(modulesDir(o), paths.labs(), onlyId);
         for (const auto& f : modules->failures())
             std::cerr << "warning: module " << f.library.string() << " not loaded: " << f.reason
                       << "\n";
@@ -155,7 +156,7 @@ int runRender(const Options& o, const std::string& id, const std::string& submis
               bool cumulative, const std::vector<std::string>& sets, const std::string& size,
               const std::string& sceneName, const std::string& model, bool probe,
               const std::string& out) {
-    Session session(o);
+    Session session(o, true, id);
     const LoadedModule& m = session.modules->find(id);
     ParamValues values = parseSets(*m.desc, sets);
     Size s = parseSize(size);
@@ -177,7 +178,7 @@ int runRender(const Options& o, const std::string& id, const std::string& submis
 int runCheck(const Options& o, const std::string& id, const std::string& submission,
              bool cumulative, const std::string& size, std::uint64_t seed,
              const std::string& jsonFile) {
-    Session session(o);
+    Session session(o, true, id);
     const LoadedModule& m = session.modules->find(id);
     Size s = parseSize(size);
     GradeOptions grade;

@@ -1,18 +1,22 @@
 #include "pbrlab/image.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include <dlfcn.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <string_view>
 #include <system_error>
 
+#include "image_codecs.h"
+#include "image_oiio.h"
 #include "pbrlab/error.h"
 
 #ifdef _WIN32
@@ -38,26 +42,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Largest image we agree to hold (floats): 2^30 values = 4 GiB. A corrupt header claiming more
-// is reported instead of ending in std::bad_alloc.
-constexpr std::size_t kMaxValues = std::size_t(1) << 30;
-
 std::string quoted(const fs::path& path) {
     return "'" + path.string() + "'";
-}
-
-// OIIO keeps an error string per thread (and per ImageInput/ImageOutput); take it, so nothing is
-// left pending, and never return an empty reason.
-std::string oiioReason(const std::string& text) {
-    std::string s;
-    for (char c : text) {
-        if (c == '\n')
-            s += "; ";
-        else
-            s += c;
-    }
-    while (!s.empty() && (s.back() == ' ' || s.back() == ';')) s.pop_back();
-    return s.empty() ? std::string("no further detail from OpenImageIO") : s;
 }
 
 std::string lower(std::string s) {
@@ -66,11 +52,11 @@ std::string lower(std::string s) {
     return s;
 }
 
-// What the PNG chunk structure says, beyond what OIIO reports.
+// What the PNG chunk structure says, beyond what the decoders report.
 struct PngScan {
     // A chunk before the pixel data says how to interpret the values: sRGB, gAMA, iCCP, or
-    // OIIO's own "oiio:ColorSpace" text. Needed because OIIO's PNG reader reports "sRGB" both
-    // for an sRGB chunk and for a file without any colour information.
+    // OIIO's own "oiio:ColorSpace" text. Needed because both PNG paths report "sRGB" (OIIO's
+    // name) for an sRGB chunk and for a file without any colour information.
     bool colourTagged = false;
     // Empty when the chunks run intact up to IEND. libpng stops reading after the pixel data,
     // so a file cut after its last IDAT chunk would otherwise pass as complete.
@@ -113,46 +99,151 @@ PngScan scanPng(const unsigned char* bytes, std::size_t size) {
     return scan;
 }
 
-std::vector<unsigned char> readBytes(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::vector<unsigned char>(std::istreambuf_iterator<char>(in),
-                                      std::istreambuf_iterator<char>());
-}
-
 // Whether OIIO's colour-space name means display-encoded (sRGB-like) values.
 bool colourSpaceIsSrgb(const std::string& name) {
     const std::string s = lower(name);
     if (s.rfind("srgb", 0) == 0) return true;  // "sRGB", "srgb_texture", "sRGB - Texture"
-    if (s.rfind("gammacorrected", 0) == 0) {   // "GammaCorrected2.2" from a PNG gAMA chunk
-        const double gamma = std::atof(s.c_str() + std::string_view("gammacorrected").size());
-        return gamma >= 2.0 && gamma <= 2.6;
+    // A PNG gAMA chunk: "Gamma2.2" (OpenImageIO 2.4), "GammaCorrected2.2" (earlier versions).
+    for (const std::string_view prefix : {"gammacorrected", "gamma"}) {
+        if (s.rfind(prefix, 0) == 0) {
+            const double gamma = std::atof(s.c_str() + prefix.size());
+            return gamma >= 2.0 && gamma <= 2.6;
+        }
     }
     return false;  // "Linear", "lin_srgb", "scene_linear", "ACEScg", ...
 }
 
-int bitsFor(OIIO::TypeDesc format) {
-    if (format == OIIO::TypeDesc::UINT8) return 8;
-    if (format == OIIO::TypeDesc::UINT16) return 16;
-    return 32;
-}
+// ---------------------------------------------------------------- libpbrlab_oiio.so
 
-std::string depthName(FileDepth depth) {
-    switch (depth) {
-        case FileDepth::Uint8:
-            return "8-bit";
-        case FileDepth::Uint16:
-            return "16-bit";
-        case FileDepth::Float32:
-            return "32-bit float";
+struct OiioLibrary {
+    const OiioInterface* table = nullptr;
+    std::string problem;  // why it could not be opened
+};
+
+std::atomic<bool> oiioOpened{false};
+
+OiioLibrary openOiioLibrary() {
+    // $PBRLAB_OIIO_LIBRARY when set; otherwise beside the executable (where the build puts it
+    // and an install copies it), then the dynamic linker's own search (the test and benchmark
+    // programs in build/tests carry build/ in their RUNPATH).
+    std::vector<std::string> candidates;
+    if (const char* named = std::getenv("PBRLAB_OIIO_LIBRARY"); named && *named) {
+        candidates.push_back(named);
+    } else {
+        std::error_code ec;
+        const fs::path beside =
+            fs::read_symlink("/proc/self/exe", ec).parent_path() / "libpbrlab_oiio.so";
+        if (!ec && fs::exists(beside, ec)) candidates.push_back(beside.string());
+        candidates.push_back("libpbrlab_oiio.so");
     }
-    return "?";
+    std::string failures;
+    for (const std::string& candidate : candidates) {
+        void* handle = dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (!handle) {
+            failures += std::string(failures.empty() ? "" : "; ") + dlerror();
+            continue;
+        }
+        auto get =
+            reinterpret_cast<const OiioInterface* (*)()>(dlsym(handle, "pbrlab_oiio_interface"));
+        const OiioInterface* table = get ? get() : nullptr;
+        if (table && table->version == OiioInterface::kVersion) {
+            oiioOpened = true;
+            return {table, {}};  // stays loaded: OpenImageIO's threads outlive any one call
+        }
+        failures += std::string(failures.empty() ? "" : "; ") + candidate +
+                    ": not the OpenImageIO library of this pbrlab build";
+        dlclose(handle);
+    }
+    return {nullptr,
+            "this format needs OpenImageIO, which pbrlab loads from its library "
+            "libpbrlab_oiio.so (built and installed beside the pbrlab executable; "
+            "PBRLAB_OIIO_LIBRARY may name another path), and it could not be loaded (" +
+                failures + ")"};
 }
 
-template <typename T>
-void toFloat(const std::vector<T>& in, std::vector<float>& out) {
-    constexpr float scale = float(std::numeric_limits<T>::max());
-    out.resize(in.size());
-    for (std::size_t i = 0; i < in.size(); ++i) out[i] = float(in[i]) / scale;
+// The library's functions, opened on the first call. Throws naming `what` if it cannot be.
+const OiioInterface& oiio(const std::string& what) {
+    static const OiioLibrary library = openOiioLibrary();
+    if (!library.table) throw Error(what + library.problem);
+    return *library.table;
+}
+
+// ---------------------------------------------------------------- reading
+
+// The whole file, or its first `limit` bytes.
+std::vector<unsigned char> readBytes(const fs::path& path,
+                                     std::size_t limit = std::numeric_limits<std::size_t>::max()) {
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    const std::streamoff size = in.tellg();
+    if (!in || size < 0) return {};
+    std::vector<unsigned char> bytes(std::min(std::size_t(size), limit));
+    in.seekg(0);
+    in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
+    bytes.resize(std::size_t(in.gcount()));
+    return bytes;
+}
+
+bool isPngSignature(const std::vector<unsigned char>& head) {
+    const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    return head.size() >= 8 && std::equal(signature, signature + 8, head.begin());
+}
+
+bool isRadianceSignature(const std::vector<unsigned char>& head) {
+    return head.size() >= 2 && head[0] == '#' && head[1] == '?';
+}
+
+// pbrlab's rules for what the values mean: the file's own tag if it has one; otherwise integer
+// 8-bit data is display-encoded (sRGB) as PNG and JPEG files in the wild are, 16-bit grayscale
+// is data (height, roughness, ...), 16-bit colour is sRGB, and float data is linear.
+Image interpret(DecodedImage decoded, const PngScan* png) {
+    Image image = std::move(decoded.image);
+    const bool tagged = png ? png->colourTagged : !decoded.colourSpace.empty();
+    if (tagged) {
+        image.sourceIsSrgb = colourSpaceIsSrgb(decoded.colourSpace);
+    } else if (image.sourceBitsPerChannel == 8) {
+        image.sourceIsSrgb = true;
+    } else if (image.sourceBitsPerChannel == 16) {
+        image.sourceIsSrgb = image.channels >= 3;
+    } else {
+        image.sourceIsSrgb = false;
+    }
+    return image;
+}
+
+// Decodes the file `path`, or `memory` when given (then `path` only names it and picks the
+// format by its extension, for OpenImageIO). The first bytes pick the codec.
+Image decode(const fs::path& path, const std::string& what,
+             const std::vector<unsigned char>* memory, ImageCodecs codecs) {
+    std::vector<unsigned char> fileBytes;
+    if (!memory) fileBytes = readBytes(path, 8);
+    const std::vector<unsigned char>& head = memory ? *memory : fileBytes;
+    const bool pngSignature = isPngSignature(head);
+    const bool inProcess =
+        codecs == ImageCodecs::Default && (pngSignature || isRadianceSignature(head));
+    if (!memory && (inProcess || pngSignature)) fileBytes = readBytes(path);
+    const std::vector<unsigned char>& bytes = memory ? *memory : fileBytes;
+
+    DecodedImage decoded;
+    std::string problem;
+    RadianceHeader radiance;
+    if (inProcess && pngSignature) {
+        const PngScan png = scanPng(bytes.data(), bytes.size());
+        if (!png.problem.empty()) throw Error(what + png.problem);
+        problem = decodePng(bytes.data(), bytes.size(), decoded);
+        if (problem.empty()) return interpret(std::move(decoded), &png);
+    } else if (inProcess && readRadianceHeader(bytes.data(), bytes.size(), radiance)) {
+        problem = decodeRadiance(bytes.data(), bytes.size(), radiance, decoded);
+        if (problem.empty()) return interpret(std::move(decoded), nullptr);
+    } else {
+        problem = oiio(what).decode(path.string(), memory, decoded);
+        if (problem.empty()) {
+            if (decoded.formatName != "png") return interpret(std::move(decoded), nullptr);
+            const PngScan png = scanPng(bytes.data(), bytes.size());
+            if (png.problem.empty()) return interpret(std::move(decoded), &png);
+            problem = png.problem;
+        }
+    }
+    throw Error(what + problem);
 }
 
 template <typename T>
@@ -168,103 +259,24 @@ std::vector<T> toCodes(const std::vector<float>& in) {
     return out;
 }
 
-// Decodes from the file `path`, or from `memory` when given (then `path` only names it and
-// picks the format by its extension).
-Image decode(const fs::path& path, const std::string& what,
-             const std::vector<unsigned char>* memory) {
-    // Keep straight alpha as stored: OIIO would otherwise premultiply PNG/TGA colour by alpha.
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    std::unique_ptr<OIIO::Filesystem::IOMemReader> reader;
-    if (memory) {
-        // OIIO 2.4's readers take the proxy from this attribute (open()'s own proxy
-        // argument is ignored by the PNG reader).
-        reader = std::make_unique<OIIO::Filesystem::IOMemReader>(memory->data(), memory->size());
-        void* proxy = reader.get();
-        config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-    }
-    auto in = OIIO::ImageInput::open(path.string(), &config);
-    if (!in) {
-        throw Error(what + "not a readable image file (" + oiioReason(OIIO::geterror()) + ")");
-    }
-
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
-        throw Error(what + "zero size (" + std::to_string(spec.width) + " x " +
-                    std::to_string(spec.height) + ", " + std::to_string(spec.nchannels) +
-                    " channels)");
-    }
-    if (spec.deep) throw Error(what + "deep images are not supported");
-    if (spec.depth > 1) throw Error(what + "volume images (depth > 1) are not supported");
-    const std::size_t count = std::size_t(spec.width) * std::size_t(spec.height);
-    if (count > kMaxValues / std::size_t(spec.nchannels)) {
-        throw Error(what + "too large (" + std::to_string(spec.width) + " x " +
-                    std::to_string(spec.height) + " x " + std::to_string(spec.nchannels) + ")");
-    }
-
-    const bool isPng = lower(in->format_name()) == "png";
-    PngScan png;
-    if (isPng) {
-        if (memory) {
-            png = scanPng(memory->data(), memory->size());
-        } else {
-            const std::vector<unsigned char> bytes = readBytes(path);
-            png = scanPng(bytes.data(), bytes.size());
-        }
-    }
-    if (!png.problem.empty()) throw Error(what + png.problem);
-
-    Image image;
-    image.width = spec.width;
-    image.height = spec.height;
-    image.channels = spec.nchannels;
-    const std::size_t values = count * std::size_t(spec.nchannels);
-
-    // Integer data is read in its own depth and scaled here, so 16-bit keeps every code value.
-    const bool uniform = spec.channelformats.empty();
-    const OIIO::TypeDesc format = uniform ? spec.format : OIIO::TypeDesc(OIIO::TypeDesc::FLOAT);
-    bool ok = false;
-    if (format == OIIO::TypeDesc::UINT8) {
-        std::vector<std::uint8_t> raw(values);
-        ok = in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, raw.data());
-        if (ok) toFloat(raw, image.pixels);
-    } else if (format == OIIO::TypeDesc::UINT16) {
-        std::vector<std::uint16_t> raw(values);
-        ok = in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT16, raw.data());
-        if (ok) toFloat(raw, image.pixels);
-    } else {
-        image.pixels.resize(values);
-        ok = in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data());
-    }
-    if (!ok || in->has_error()) {
-        const std::string reason = oiioReason(in->geterror());
-        in->close();
-        OIIO::geterror();  // drop anything left at the global level
-        throw Error(what + "truncated or corrupt pixel data (" + reason + ")");
-    }
-    image.sourceBitsPerChannel = uniform ? bitsFor(spec.format) : 32;
-
-    // How to interpret the values: the file's own tag if it has one; otherwise integer 8-bit
-    // data is display-encoded (sRGB) as PNG and JPEG files in the wild are, 16-bit grayscale is
-    // data (height, roughness, ...), 16-bit colour is sRGB, and float data is linear.
-    const std::string colourSpace = spec.get_string_attribute("oiio:ColorSpace");
-    const bool tagged = isPng ? png.colourTagged : !colourSpace.empty();
-    in->close();
-    if (tagged) {
-        image.sourceIsSrgb = colourSpaceIsSrgb(colourSpace);
-    } else if (image.sourceBitsPerChannel == 8) {
-        image.sourceIsSrgb = true;
-    } else if (image.sourceBitsPerChannel == 16) {
-        image.sourceIsSrgb = image.channels >= 3;
-    } else {
-        image.sourceIsSrgb = false;
-    }
-    return image;
+// Empty on success, otherwise why not.
+std::string writeBytes(const fs::path& file, const std::vector<unsigned char>& bytes) {
+    std::FILE* out = std::fopen(file.c_str(), "wb");
+    if (!out) return "cannot create the file (" + std::string(std::strerror(errno)) + ")";
+    const bool written = std::fwrite(bytes.data(), 1, bytes.size(), out) == bytes.size();
+    const int error = errno;
+    if (std::fclose(out) != 0 || !written)
+        return "writing failed (" + std::string(std::strerror(written ? errno : error)) + ")";
+    return {};
 }
 
 }  // namespace
 
-Image readImage(const fs::path& path) {
+bool openImageIoLoaded() {
+    return oiioOpened;
+}
+
+Image readImage(const fs::path& path, ImageCodecs codecs) {
     const std::string what = "cannot read image " + quoted(path) + ": ";
     std::error_code ec;
     const fs::file_status status = fs::status(path, ec);
@@ -272,13 +284,22 @@ Image readImage(const fs::path& path) {
     if (fs::is_directory(status)) throw Error(what + "it is a directory, not a file");
     const auto fileSize = fs::file_size(path, ec);
     if (!ec && fileSize == 0) throw Error(what + "the file is empty (0 bytes)");
-    return decode(path, what, nullptr);
+    return decode(path, what, nullptr, codecs);
+}
+
+Image readImage(const fs::path& path) {
+    return readImage(path, ImageCodecs::Default);
+}
+
+Image decodeImage(const std::vector<unsigned char>& bytes, const std::string& name,
+                  ImageCodecs codecs) {
+    const std::string what = "cannot decode image " + name + ": ";
+    if (bytes.empty()) throw Error(what + "no data (0 bytes)");
+    return decode(name, what, &bytes, codecs);
 }
 
 Image decodeImage(const std::vector<unsigned char>& bytes, const std::string& name) {
-    const std::string what = "cannot decode image " + name + ": ";
-    if (bytes.empty()) throw Error(what + "no data (0 bytes)");
-    return decode(name, what, &bytes);
+    return decodeImage(bytes, name, ImageCodecs::Default);
 }
 
 Image readTexture(const TextureSource& source) {
@@ -292,7 +313,8 @@ FileDepth defaultDepthFor(const fs::path& path) {
     return (ext == ".exr" || ext == ".hdr") ? FileDepth::Float32 : FileDepth::Uint8;
 }
 
-void writeImage(const fs::path& path, const Image& image, FileDepth depth, bool markSrgb) {
+void writeImage(const fs::path& path, const Image& image, FileDepth depth, bool markSrgb,
+                ImageCodecs codecs) {
     const std::string what = "cannot write image " + quoted(path) + ": ";
     if (image.width <= 0 || image.height <= 0 || image.channels <= 0) {
         throw Error(what + "the image has zero size (" + std::to_string(image.width) + " x " +
@@ -305,28 +327,13 @@ void writeImage(const fs::path& path, const Image& image, FileDepth depth, bool 
         throw Error(what + "the pixel buffer holds " + std::to_string(image.pixels.size()) +
                     " values, expected " + std::to_string(values));
     }
-
-    const OIIO::TypeDesc format = depth == FileDepth::Uint8    ? OIIO::TypeDesc::UINT8
-                                  : depth == FileDepth::Uint16 ? OIIO::TypeDesc::UINT16
-                                                               : OIIO::TypeDesc::FLOAT;
-    // The writer is chosen by the final name's extension; the pixels go to a temporary file
-    // beside it (same file system, so the rename below is atomic).
-    auto out = OIIO::ImageOutput::create(path.string());
-    if (!out) {
-        throw Error(what + "no image writer for the extension '" + path.extension().string() +
-                    "' (" + oiioReason(OIIO::geterror()) + ")");
-    }
-    // Formats known not to hold the depth are refused before a file is created (OIIO would
-    // silently convert); for other formats the spec OIIO settles on is checked after open.
-    const std::string formatName = out->format_name();
-    const bool depthKnownBad =
-        (formatName == "png" && depth == FileDepth::Float32) ||
-        (formatName == "jpeg" && depth != FileDepth::Uint8) ||
-        ((formatName == "openexr" || formatName == "hdr") && depth != FileDepth::Float32);
-    if (depthKnownBad) {
-        throw Error(what + "the " + formatName + " format cannot store " + depthName(depth) +
-                    " data");
-    }
+    const std::string extension = lower(path.extension().string());
+    const bool png = codecs == ImageCodecs::Default && extension == ".png";
+    const bool exr = codecs == ImageCodecs::Default && extension == ".exr" && image.channels <= 4;
+    if (png && depth == FileDepth::Float32)  // refused before anything is made
+        throw Error(what + "the png format cannot store 32-bit float data");
+    if (exr && depth != FileDepth::Float32)
+        throw Error(what + "the openexr format cannot store " + fileDepthName(depth) + " data");
     const fs::path parent = path.parent_path().empty() ? fs::path(".") : path.parent_path();
     if (std::error_code ec; !fs::is_directory(parent, ec)) {
         throw Error(what + "the directory '" + parent.string() + "' does not exist");
@@ -335,15 +342,17 @@ void writeImage(const fs::path& path, const Image& image, FileDepth depth, bool 
     // Code values are made before any file exists (clamped, NaN as 0, rounded to nearest).
     std::vector<std::uint8_t> codes8;
     std::vector<std::uint16_t> codes16;
-    const void* data = image.pixels.data();
+    const void* codes = nullptr;
     if (depth == FileDepth::Uint8) {
         codes8 = toCodes<std::uint8_t>(image.pixels);
-        data = codes8.data();
+        codes = codes8.data();
     } else if (depth == FileDepth::Uint16) {
         codes16 = toCodes<std::uint16_t>(image.pixels);
-        data = codes16.data();
+        codes = codes16.data();
     }
 
+    // The pixels go to a temporary file beside the final one (same file system, so the rename
+    // below is atomic): a failed write never leaves a half-written file behind.
     static std::atomic<unsigned> counter{0};
     const fs::path temp =
         path.parent_path() / ("." + path.filename().string() + ".tmp" +
@@ -352,36 +361,20 @@ void writeImage(const fs::path& path, const Image& image, FileDepth depth, bool 
         std::error_code ignored;
         fs::remove(temp, ignored);
     };
-
-    OIIO::ImageSpec spec(image.width, image.height, image.channels, format);
-    spec.attribute("oiio:UnassociatedAlpha", 1);  // store colour as given, never un-premultiply
-    if (markSrgb) {
-        spec.attribute("oiio:ColorSpace", "sRGB");
-    } else if (depth != FileDepth::Float32) {
-        spec.attribute("oiio:ColorSpace", "Linear");  // PNG: a gAMA 1.0 chunk says "data"
+    std::string problem;
+    if (png) {
+        std::vector<unsigned char> file;
+        problem = encodePng(image, depth, codes, markSrgb, file);
+        if (problem.empty()) problem = writeBytes(temp, file);
+    } else if (exr) {
+        problem = writeExr(temp, image);
+    } else {
+        problem = oiio(what).write(path.string(), temp.string(), image, depth, codes, markSrgb);
     }
-    if (!out->open(temp.string(), spec)) {
-        const std::string reason = oiioReason(out->geterror());
+    if (!problem.empty()) {
         discard();
-        throw Error(what + "cannot create the file (" + reason + ")");
+        throw Error(what + problem);
     }
-    const OIIO::ImageSpec& actual = out->spec();
-    if (actual.format != format || actual.nchannels != image.channels) {
-        out->close();
-        out->geterror();
-        discard();
-        throw Error(what + "the " + formatName + " format cannot store " +
-                    std::to_string(image.channels) + " channels of " + depthName(depth) + " data");
-    }
-
-    bool ok = out->write_image(format, data);
-    ok = out->close() && ok;
-    if (!ok) {
-        const std::string reason = oiioReason(out->geterror());
-        discard();
-        throw Error(what + "writing failed (" + reason + ")");
-    }
-    out.reset();
 
     std::error_code ec;
     fs::rename(temp, path, ec);
@@ -389,6 +382,10 @@ void writeImage(const fs::path& path, const Image& image, FileDepth depth, bool 
         discard();
         throw Error(what + "cannot move the finished file into place (" + ec.message() + ")");
     }
+}
+
+void writeImage(const fs::path& path, const Image& image, FileDepth depth, bool markSrgb) {
+    writeImage(path, image, depth, markSrgb, ImageCodecs::Default);
 }
 
 }  // namespace pbrlab

@@ -30,7 +30,8 @@ std::string validate(const ModuleDesc& d, const fs::path& sourceDir) {
 
 }  // namespace
 
-ModuleRegistry::ModuleRegistry(const fs::path& moduleDir, const fs::path& labsRoot) {
+ModuleRegistry::ModuleRegistry(const fs::path& moduleDir, const fs::path& labsRoot,
+                               const std::string& onlyId) {
     std::error_code ec;
     if (!fs::is_directory(moduleDir, ec))
         throw Error("module directory " + moduleDir.string() + " does not exist");
@@ -41,6 +42,15 @@ ModuleRegistry::ModuleRegistry(const fs::path& moduleDir, const fs::path& labsRo
             libraries.push_back(entry.path());
     }
     std::sort(libraries.begin(), libraries.end());
+    if (!onlyId.empty()) {
+        const std::string suffix = "-" + onlyId + ".so";
+        auto named = std::find_if(libraries.begin(), libraries.end(), [&](const fs::path& lib) {
+            const std::string name = lib.filename().string();
+            return name.size() > suffix.size() &&
+                   name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+        });
+        if (named != libraries.end()) libraries = {*named};
+    }
     for (const auto& lib : libraries) {
         void* handle = dlopen(lib.c_str(), RTLD_NOW | RTLD_LOCAL);
         if (!handle) {

@@ -24,8 +24,12 @@ struct ModuleLoadFailure {
 
 class ModuleRegistry {
 public:
-    // `labsRoot` holds the module folders (labs/NN-id) with their GLSL and handouts.
-    ModuleRegistry(const std::filesystem::path& moduleDir, const std::filesystem::path& labsRoot);
+    // `labsRoot` holds the module folders (labs/NN-id) with their GLSL and handouts. When
+    // `onlyId` is given and a library's name ends in -<onlyId>.so, only that library is opened
+    // (a command about one module need not pay ~1 ms per library to open and close them all);
+    // otherwise every library is.
+    ModuleRegistry(const std::filesystem::path& moduleDir, const std::filesystem::path& labsRoot,
+                   const std::string& onlyId = {});
     ModuleRegistry(const ModuleRegistry&) = delete;
     ModuleRegistry& operator=(const ModuleRegistry&) = delete;
     ~ModuleRegistry();

@@ -1,5 +1,8 @@
-// Images on the CPU: float pixels plus what the file said about them, read and written with
-// OpenImageIO. Errors are thrown as pbrlab::Error naming the file and what is wrong.
+// Images on the CPU: float pixels plus what the file said about them. PNG (read and written,
+// libpng), Radiance HDR (read, pbrlab's own reader) and EXR (written, OpenEXRCore) are handled
+// in-process; everything else through OpenImageIO, loaded on first use from libpbrlab_oiio.so
+// (core/src/image_codecs.h says why). Errors are thrown as pbrlab::Error naming the file and
+// what is wrong.
 #pragma once
 
 #include <cstdint>
@@ -28,13 +31,16 @@ struct Image {
 // The same picture with its rows in the other order (GL textures and read-back run bottom-up).
 Image flipRows(const Image& image);
 
-// Reads any file OpenImageIO knows. Values are the stored code values scaled to [0, 1] for
-// integer formats (16-bit stays 16-bit precise: no detour through 8 bits) and unchanged for
-// float formats; no colour conversion is applied (sourceIsSrgb says how to interpret them).
+// Reads any file OpenImageIO knows (PNG and Radiance HDR are told by their first bytes, other
+// formats by OpenImageIO, which tries the extension's format first). Values are the stored code
+// values scaled to [0, 1] for integer formats (16-bit stays 16-bit precise: no detour through 8
+// bits) and unchanged for float formats; no colour conversion is applied (sourceIsSrgb says how
+// to interpret them).
 Image readImage(const std::filesystem::path& path);
 
 // The same from an encoded file held in memory (an image embedded in a glTF binary). `name`
-// picks the format by its extension (e.g. "model.glb#image2.png") and names it in errors.
+// names it in errors and, for OpenImageIO's formats, picks one by its extension (e.g.
+// "model.glb#image2.jpg").
 Image decodeImage(const std::vector<unsigned char>& bytes, const std::string& name);
 
 // Where a material map's pixels come from, read only when a program samples the map: an image

@@ -1,0 +1,101 @@
+// Start-up: no program pays for OpenImageIO unless a file needs it (core/src/image_codecs.h),
+// and a command about one module opens only that module's library.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "plugins.h"
+#include "test_support.h"
+
+using namespace pbrlab;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CommandRun {
+    int status = -1;
+    std::string output;  // stdout and stderr
+};
+
+CommandRun run(const test::TempDir& dir, const std::string& command) {
+    const fs::path log = dir.path / "log.txt";
+    const int status = std::system((command + " > " + log.string() + " 2>&1").c_str());
+    std::ifstream in(log);
+    std::stringstream text;
+    text << in.rdbuf();
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+// The environment of a command that cannot open libpbrlab_oiio.so (so cannot use OpenImageIO).
+std::string withoutOpenImageIo(const test::TempDir& dir) {
+    return "PBRLAB_OIIO_LIBRARY=" + (dir.path / "missing-libpbrlab_oiio.so").string() + " ";
+}
+
+}  // namespace
+
+TEST(Startup, NoProgramLinksOpenImageIo) {
+    // ldd lists every library the dynamic linker loads before main, dependencies included.
+    test::TempDir dir;
+    const std::string tests = fs::read_symlink("/proc/self/exe").string();
+    for (const std::string& program : {std::string(PBRLAB_EXECUTABLE), tests}) {
+        const CommandRun r = run(dir, "ldd " + program);
+        ASSERT_EQ(r.status, 0) << r.output;
+        EXPECT_NE(r.output.find("libstdc++"), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("OpenImageIO"), std::string::npos) << program << "\n" << r.output;
+    }
+    // OpenImageIO went into pbrlab's own library, built where the core looks for it first.
+    const fs::path library = fs::path(PBRLAB_EXECUTABLE).parent_path() / "libpbrlab_oiio.so";
+    const CommandRun r = run(dir, "ldd " + library.string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("OpenImageIO"), std::string::npos) << r.output;
+}
+
+TEST(Startup, PngAndExrOutNeedNoOpenImageIo) {
+    test::TempDir dir;
+    const std::string env = withoutOpenImageIo(dir);
+    for (const char* out : {"n.png", "n.exr"}) {
+        const CommandRun r = run(dir, env + PBRLAB_EXECUTABLE " render ndotl --size 32x32 --out " +
+                                          (dir.path / out).string());
+        EXPECT_EQ(r.status, 0) << r.output;
+        EXPECT_TRUE(fs::exists(dir.path / out)) << out;
+    }
+    // 8- and 16-bit PNGs, sRGB and linear.
+    const CommandRun r = run(dir, env + PBRLAB_EXECUTABLE " textures --size 16 --out " +
+                                      (dir.path / "textures").string());
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(fs::exists(dir.path / "textures" / "roughness.png"));
+}
+
+TEST(Startup, AMissingOpenImageIoLibraryIsAClearError) {
+    // Writing Radiance HDR is OpenImageIO's.
+    test::TempDir dir;
+    const CommandRun r =
+        run(dir, withoutOpenImageIo(dir) + PBRLAB_EXECUTABLE " environment --width 16 --out " +
+                     (dir.path / "sky.hdr").string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find("sky.hdr"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("libpbrlab_oiio.so"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("missing-libpbrlab_oiio.so"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir.path / "sky.hdr"));
+}
+
+TEST(Startup, ACommandAboutOneModuleOpensOnlyItsLibrary) {
+    const fs::path labs = fs::path(PBRLAB_SOURCE_DIR) / "labs";
+    ModuleRegistry one(PBRLAB_MODULE_DIR, labs, "ndotl");
+    ASSERT_EQ(one.modules().size(), 1u);
+    EXPECT_EQ(one.find("ndotl").desc->id, "ndotl");
+    // An id no library is named for opens them all, so the error can list what there is.
+    ModuleRegistry all(PBRLAB_MODULE_DIR, labs);
+    ModuleRegistry unknown(PBRLAB_MODULE_DIR, labs, "no_such_step");
+    EXPECT_GT(all.modules().size(), 1u);
+    EXPECT_EQ(unknown.modules().size(), all.modules().size());
+    try {
+        unknown.find("no_such_step");
+        FAIL() << "found a module that does not exist";
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("ndotl"), std::string::npos) << e.what();
+    }
+}
