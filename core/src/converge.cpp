@@ -162,11 +162,8 @@ std::vector<ConvergeRow> runConverge(LabRenderer& renderer, const DataPaths& pat
             " s");
 
     std::vector<ConvergeRow> rows;
-    auto precomputeMs = [](const IblMaps& maps, const std::string& prefix) {
-        double ms = 0;
-        for (const auto& [pass, t] : maps.milliseconds)
-            if (pass.rfind(prefix, 0) == 0) ms += t;
-        return ms;
+    auto precomputeMs = [](const IblMaps& maps, const std::string& map) {
+        return maps.milliseconds(map);
     };
 
     // Brute force: every frame pays for every sample.
@@ -187,7 +184,7 @@ std::vector<ConvergeRow> runConverge(LabRenderer& renderer, const DataPaths& pat
         ConvergeRow row{
             "specular",     "split_sum",
             setting,        samples,
-            r.milliseconds, precomputeMs(maps, "prefilter") + precomputeMs(maps, "brdf lut")};
+            r.milliseconds, precomputeMs(maps, "prefilter") + precomputeMs(maps, "lut")};
         score(row, r.value, truth, truth.specular);
         rows.push_back(row);
     };
@@ -197,7 +194,7 @@ std::vector<ConvergeRow> runConverge(LabRenderer& renderer, const DataPaths& pat
         for (int samples : prefilterSamples) {
             IblSettings s = defaults;
             s.prefilterSamples = samples;
-            s.filteredSampling = fis;
+            s.prefilter = fis ? PrefilterMethod::Filtered : PrefilterMethod::Plain;
             splitSumRow(s,
                         std::string("prefilter=") + std::to_string(samples) +
                             (fis ? " fis=on" : " fis=off"),
@@ -207,7 +204,7 @@ std::vector<ConvergeRow> runConverge(LabRenderer& renderer, const DataPaths& pat
         o.quick ? std::vector<int>{16, 128} : std::vector<int>{16, 32, 64, 128, 256, 512};
     for (int size : lutSizes) {
         IblSettings s = defaults;
-        s.lutSize = size;
+        s.lutWidth = s.lutHeight = size;
         splitSumRow(s, "lut=" + std::to_string(size), s.lutSamples);
     }
     renderer.setIblSettings(defaults);
@@ -296,6 +293,61 @@ void writeConvergeReport(const std::vector<ConvergeRow>& rows, const fs::path& o
         logLine("converge", "plot: " + (out / "converge.png").string());
     else
         logLine("converge", "gnuplot not available: run converge.gp by hand for the plot");
+}
+
+}  // namespace pbrlab
+
+namespace pbrlab {
+
+IblRun measurePrecompute(IblPrecompute& precompute, const Image& equirect,
+                         const IblSettings& settings, IblTruth& truth, const IblDiskCache* cache) {
+    IblRun run;
+    run.maps = IblPrecompute::makeMaps(settings);
+    gl::Finish();
+    const auto start = std::chrono::steady_clock::now();
+    precompute.buildDerived(*run.maps, equirect, cache);
+    gl::Finish();
+    run.milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    run.errors = measureIblErrors(precompute, *run.maps, truth);
+    return run;
+}
+
+std::vector<IblSettings> iblLadder() {
+    std::vector<IblSettings> ladder;
+    for (int bins : {4, 8, 16}) {
+        IblSettings s;
+        s.bins = bins;
+        ladder.push_back(s);
+    }
+    return ladder;
+}
+
+bool withinBudget(const IblErrors& e, double budget) {
+    return e.irradiance.mean <= budget && e.prefilter.mean <= budget && e.lut.mean <= budget;
+}
+
+IblChoice chooseIblSettings(IblPrecompute& precompute, const Image& equirect, IblTruth& truth,
+                            double budget, const IblDiskCache* cache) {
+    IblChoice choice;
+    for (const IblSettings& s : iblLadder()) {
+        choice.settings = s;
+        choice.run = measurePrecompute(precompute, equirect, s, truth, cache);
+        ++choice.tried;
+        if (withinBudget(choice.run.errors, budget)) {
+            choice.met = true;
+            break;
+        }
+    }
+    return choice;
+}
+
+std::vector<IblRun> measureIblLadder(IblPrecompute& precompute, const Image& equirect,
+                                     IblTruth& truth) {
+    std::vector<IblRun> runs;
+    for (const IblSettings& s : iblLadder())
+        runs.push_back(measurePrecompute(precompute, equirect, s, truth));
+    return runs;
 }
 
 }  // namespace pbrlab
