@@ -63,8 +63,8 @@ bool withinBudget(const IblErrors& errors, double budget);
 struct IblChoice {
     IblSettings settings;
     IblRun run;
-    int tried = 0;      // rungs of the ladder measured
-    bool met = false;   // false: no rung met the budget; the most accurate one is returned
+    int tried = 0;     // rungs of the ladder measured
+    bool met = false;  // false: no rung met the budget; the most accurate one is returned
 };
 // The cheapest rung of the ladder whose maps, computed from this environment, have every mean
 // error within `budget` (measured here, rung by rung from the cheapest). What `pbrlab

@@ -41,20 +41,25 @@ namespace {
 
 std::string irradianceText(const IblSettings& s) {
     switch (s.irradiance) {
-        case IrradianceMethod::Bins: return "bins " + std::to_string(s.bins);
-        case IrradianceMethod::Step18: return "step 18";
-        case IrradianceMethod::Riemann: return "Riemann " + number(s.riemannStep);
+        case IrradianceMethod::Bins:
+            return "bins " + std::to_string(s.bins);
+        case IrradianceMethod::Step18:
+            return "step 18";
+        case IrradianceMethod::Riemann:
+            return "Riemann " + number(s.riemannStep);
     }
     return "";
 }
 
 std::string prefilterText(const IblSettings& s) {
     switch (s.prefilter) {
-        case PrefilterMethod::Bins: return "bins " + std::to_string(s.bins);
+        case PrefilterMethod::Bins:
+            return "bins " + std::to_string(s.bins);
         case PrefilterMethod::Filtered:
             return std::to_string(s.prefilterSamples) + " filtered samples (bias " +
                    number(s.filteredLodBias) + ")";
-        case PrefilterMethod::Plain: return std::to_string(s.prefilterSamples) + " samples";
+        case PrefilterMethod::Plain:
+            return std::to_string(s.prefilterSamples) + " samples";
     }
     return "";
 }
@@ -114,12 +119,24 @@ glm::dvec3 cubeTexelDirection(int face, double x, double y, int size) {
     const double s = (x + 0.5) / size * 2.0 - 1.0, t = (y + 0.5) / size * 2.0 - 1.0;
     glm::dvec3 d;
     switch (face) {
-        case 0: d = {1.0, -t, -s}; break;
-        case 1: d = {-1.0, -t, s}; break;
-        case 2: d = {s, 1.0, t}; break;
-        case 3: d = {s, -1.0, -t}; break;
-        case 4: d = {s, -t, 1.0}; break;
-        default: d = {-s, -t, -1.0}; break;
+        case 0:
+            d = {1.0, -t, -s};
+            break;
+        case 1:
+            d = {-1.0, -t, s};
+            break;
+        case 2:
+            d = {s, 1.0, t};
+            break;
+        case 3:
+            d = {s, -1.0, -t};
+            break;
+        case 4:
+            d = {s, -t, 1.0};
+            break;
+        default:
+            d = {-s, -t, -1.0};
+            break;
     }
     return glm::normalize(d);
 }
@@ -138,7 +155,8 @@ std::vector<std::vector<Image>> equirectToCube(const Image& equirect, int size, 
         const int face = int(row) / size, y = int(row) % size;
         Image& im = out[0][size_t(face)];
         for (int x = 0; x < size; ++x) {
-            const glm::dvec3 L = ref::equirectRadiance(equirect, cubeTexelDirection(face, x, y, size));
+            const glm::dvec3 L =
+                ref::equirectRadiance(equirect, cubeTexelDirection(face, x, y, size));
             for (int c = 0; c < 3; ++c) im.at(x, y, c) = float(L[c]);
         }
     });
@@ -152,8 +170,10 @@ std::vector<std::vector<Image>> equirectToCube(const Image& equirect, int size, 
             for (int y = 0; y < n; ++y)
                 for (int x = 0; x < n; ++x)
                     for (int c = 0; c < 3; ++c) {
-                        const int x0 = std::min(2 * x, fine.width - 1), x1 = std::min(2 * x + 1, fine.width - 1);
-                        const int y0 = std::min(2 * y, fine.height - 1), y1 = std::min(2 * y + 1, fine.height - 1);
+                        const int x0 = std::min(2 * x, fine.width - 1),
+                                  x1 = std::min(2 * x + 1, fine.width - 1);
+                        const int y0 = std::min(2 * y, fine.height - 1),
+                                  y1 = std::min(2 * y + 1, fine.height - 1);
                         im.at(x, y, c) = 0.25f * (fine.at(x0, y0, c) + fine.at(x1, y0, c) +
                                                   fine.at(x0, y1, c) + fine.at(x1, y1, c));
                     }
@@ -165,7 +185,9 @@ std::vector<std::vector<Image>> equirectToCube(const Image& equirect, int size, 
 
 namespace {
 
-int fullMipCount(int size) { return int(std::floor(std::log2(size))) + 1; }
+int fullMipCount(int size) {
+    return int(std::floor(std::log2(size))) + 1;
+}
 
 // A cube map with `levels` mips of immutable storage (allocated once; filled by passes).
 gl::Handle makeCube(int size, int levels) {
@@ -288,8 +310,8 @@ EnvironmentBins binEnvironment(const Image& equirect, int n) {
     std::vector<Sums> bins(static_cast<size_t>(count));
     for (int y = 0; y < H; ++y) {
         const double t = ref::kPi * (y + 0.5) / H, st = std::sin(t), ct = std::cos(t);
-        const double omega = 2.0 * ref::kPi / W *
-                             (std::cos(ref::kPi * y / H) - std::cos(ref::kPi * (y + 1) / H));
+        const double omega =
+            2.0 * ref::kPi / W * (std::cos(ref::kPi * y / H) - std::cos(ref::kPi * (y + 1) / H));
         for (int x = 0; x < W; ++x) {
             const glm::dvec3 d(st * sinPhi[size_t(x)], ct, -st * cosPhi[size_t(x)]);
             Sums& b = bins[size_t(binOf(d, n))];
@@ -324,9 +346,9 @@ EnvironmentBins binEnvironment(const Image& equirect, int n) {
 // series near alpha^2 = 1 where that cancels. pi at alpha = 1 (the cosine).
 double lobeIntegral(double alpha2) {
     const double b = 0.5 * (alpha2 - 1.0), A = 1.0 + b;
-    const double integral =
-        std::abs(b) < 1e-3 ? 0.5 - 5.0 / 3.0 * b + 17.0 / 4.0 * b * b
-                           : (std::log((A + b) / A) + A / (A + b) - 1.0) / (b * b);
+    const double integral = std::abs(b) < 1e-3
+                                ? 0.5 - 5.0 / 3.0 * b + 17.0 / 4.0 * b * b
+                                : (std::log((A + b) / A) + A / (A + b) - 1.0) / (b * b);
     return 2.0 * ref::kPi * integral;
 }
 
@@ -643,10 +665,10 @@ void IblPrecompute::buildDerived(IblMaps& maps, const Image& equirect, const Ibl
             buildPrefilter(maps, inputs);
         }
         {
-            PassTimer timer(maps, "irradiance",
-                            "irradiance " + std::to_string(s.irradianceSize) + " by " +
-                                irradianceText(s),
-                            onPass);
+            PassTimer timer(
+                maps, "irradiance",
+                "irradiance " + std::to_string(s.irradianceSize) + " by " + irradianceText(s),
+                onPass);
             buildIrradiance(maps, inputs);
         }
         if (cache) {
@@ -657,8 +679,7 @@ void IblPrecompute::buildDerived(IblMaps& maps, const Image& equirect, const Ibl
         }
     }
 
-    const fs::path lutFile =
-        cache ? cache->root_ / "ibl-lut" / lutKey(s) / "lut.bin" : fs::path();
+    const fs::path lutFile = cache ? cache->root_ / "ibl-lut" / lutKey(s) / "lut.bin" : fs::path();
     std::vector<std::vector<Image>> lut;
     if (cache && readMaps(lutFile, lut) && lut[0].size() == 1 && lut[0][0].width == s.lutWidth &&
         lut[0][0].height == s.lutHeight) {
@@ -691,8 +712,8 @@ void IblPrecompute::buildPrefilter(IblMaps& maps, Inputs& inputs) {
             }
         }
         if (firstSampled == 0)
-            uploadCube(maps.prefilter.id(),
-                       {equirectToCube(inputs.equirect, s.prefilterSize * k, extra + 1)[size_t(extra)]});
+            uploadCube(maps.prefilter.id(), {equirectToCube(inputs.equirect, s.prefilterSize * k,
+                                                            extra + 1)[size_t(extra)]});
         firstSampled = 1;
     }
     if (firstSampled >= s.prefilterMips) return;
@@ -701,10 +722,10 @@ void IblPrecompute::buildPrefilter(IblMaps& maps, Inputs& inputs) {
     };
     if (s.prefilter == PrefilterMethod::Bins) {
         for (int mip = firstSampled; mip < s.prefilterMips; ++mip)
-            uploadCube(maps.prefilter.id(),
-                       {convolveBins(inputs.bins(), std::max(s.prefilterSize >> mip, 1),
-                                     roughness(mip))},
-                       mip);
+            uploadCube(
+                maps.prefilter.id(),
+                {convolveBins(inputs.bins(), std::max(s.prefilterSize >> mip, 1), roughness(mip))},
+                mip);
         return;
     }
     Defines defines;
@@ -732,7 +753,7 @@ void IblPrecompute::buildIrradiance(IblMaps& maps, Inputs& inputs) {
         return;
     }
     auto p = s.irradiance == IrradianceMethod::Riemann ? program("irradiance_riemann", "")
-                                                      : program("irradiance", "irradiance");
+                                                       : program("irradiance", "irradiance");
     const GLuint source = inputs.sourceCube();
     p->use();
     gl::ActiveTexture(GL_TEXTURE0);
@@ -744,11 +765,12 @@ void IblPrecompute::buildIrradiance(IblMaps& maps, Inputs& inputs) {
 
 void IblPrecompute::buildLut(IblMaps& maps) {
     const IblSettings& s = maps.settings;
-    PassTimer timer(maps, "lut",
-                    "brdf lut " + std::to_string(s.lutWidth) + " x " + std::to_string(s.lutHeight) +
-                        (s.lut == LutMethod::Quadrature ? ", quadrature"
-                                                        : ", " + std::to_string(s.lutSamples) + " samples"),
-                    onPass);
+    PassTimer timer(
+        maps, "lut",
+        "brdf lut " + std::to_string(s.lutWidth) + " x " + std::to_string(s.lutHeight) +
+            (s.lut == LutMethod::Quadrature ? ", quadrature"
+                                            : ", " + std::to_string(s.lutSamples) + " samples"),
+        onPass);
     maps.lut = makeLutTexture(s.lutWidth, s.lutHeight);
     gl::Handle fbo = gl::makeFramebuffer();
     gl::BindFramebuffer(GL_FRAMEBUFFER, fbo.id());

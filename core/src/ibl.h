@@ -55,7 +55,7 @@ struct IblSettings {
     bool prefilterMirrorExact = true;
     int mirrorSupersample = 1;  // mip 0 resampled at this many times its size, then averaged
     PrefilterMethod prefilter = PrefilterMethod::Bins;  // the mips of roughness > 0
-    int prefilterSamples = 64;     // Filtered, Plain: per texel of each mip
+    int prefilterSamples = 64;                          // Filtered, Plain: per texel of each mip
     double filteredLodBias = 1.0;  // Filtered: mips added to the one of the sample's solid angle
     LutMethod lut = LutMethod::Quadrature;
     int lutWidth = 1024;  // N.V: the LUT changes fastest at grazing angles

@@ -113,7 +113,8 @@ IblErrors measureIblErrors(IblPrecompute& precompute, const IblMaps& maps, IblTr
     }
     for (int mip = 0; mip < s.prefilterMips; ++mip) {
         const double roughness = s.prefilterMips > 1 ? double(mip) / (s.prefilterMips - 1) : 0.0;
-        const auto values = precompute.sampleCube(maps.prefilter.id(), float(mip), sample.directions);
+        const auto values =
+            precompute.sampleCube(maps.prefilter.id(), float(mip), sample.directions);
         const auto& reference = truth.prefilter(roughness);
         MapError e;
         for (size_t i = 0; i < values.size(); ++i) {

@@ -34,7 +34,7 @@ double lutError(const glm::dvec2& value, const glm::dvec2& reference);
 // interpolation error of a small map.
 struct IblErrorSample {
     std::vector<glm::dvec3> directions;
-    std::vector<glm::dvec2> lutPoints;  // x = N.V, y = roughness
+    std::vector<glm::dvec2> lutPoints;        // x = N.V, y = roughness
     static const IblErrorSample& standard();  // 128 directions, 128 LUT points
 };
 
@@ -42,7 +42,8 @@ struct IblErrorSample {
 // setting measured against it (hierarchical texel sums, ref::TexelSums).
 class IblTruth {
 public:
-    explicit IblTruth(const Image& equirect, const IblErrorSample& sample = IblErrorSample::standard());
+    explicit IblTruth(const Image& equirect,
+                      const IblErrorSample& sample = IblErrorSample::standard());
     const IblErrorSample& sample() const { return sample_; }
     double floor() const { return floor_; }  // 1% of the mean radiance
     const std::vector<glm::dvec3>& irradiance() const { return irradiance_; }

@@ -136,16 +136,27 @@ dvec3 fresnelSchlickRoughness(double cosTheta, const dvec3& F0, double roughness
 
 // ---- environments ---------------------------------------------------------------------------
 
-EquirectEnvironment::EquirectEnvironment(Image image) : image_(std::move(image)) {
-    if (image_.width <= 0 || image_.height <= 0 || image_.channels <= 0 ||
-        image_.pixels.size() !=
-            size_t(image_.width) * size_t(image_.height) * size_t(image_.channels))
+namespace {
+
+// Throws pbrlab::Error on an empty or inconsistent image (what every equirectangular lookup
+// here needs).
+void validateEquirect(const Image& image) {
+    if (image.width <= 0 || image.height <= 0 || image.channels <= 0 ||
+        image.pixels.size() != size_t(image.width) * size_t(image.height) * size_t(image.channels))
         throw Error("equirectangular environment: empty or inconsistent image (" +
-                    std::to_string(image_.width) + " x " + std::to_string(image_.height) + ", " +
-                    std::to_string(image_.channels) + " channels)");
+                    std::to_string(image.width) + " x " + std::to_string(image.height) + ", " +
+                    std::to_string(image.channels) + " channels)");
 }
 
-dvec3 EquirectEnvironment::texel(int x, int y) const { return equirectTexel(image_, x, y); }
+}  // namespace
+
+EquirectEnvironment::EquirectEnvironment(Image image) : image_(std::move(image)) {
+    validateEquirect(image_);
+}
+
+dvec3 EquirectEnvironment::texel(int x, int y) const {
+    return equirectTexel(image_, x, y);
+}
 
 dvec3 EquirectEnvironment::radiance(const dvec3& dir) const {
     return equirectRadiance(image_, dir);
@@ -404,7 +415,7 @@ dvec3 irradianceAt(const Environment& env, const dvec3& N, int thetaSteps) {
 }
 
 dvec3 irradianceAt(const Image& equirect, const dvec3& N) {
-    const EquirectEnvironment env(equirect);  // validates the image
+    validateEquirect(equirect);
     const int W = equirect.width, H = equirect.height;
     dvec3 E(0.0);
     for (int y = 0; y < H; ++y) {
@@ -412,7 +423,7 @@ dvec3 irradianceAt(const Image& equirect, const dvec3& N) {
             (kTwoPi / W) * (std::cos(kPi * y / H) - std::cos(kPi * (y + 1) / H));
         for (int x = 0; x < W; ++x) {
             const double c = glm::dot(N, equirectDirection({(x + 0.5) / W, (y + 0.5) / H}));
-            if (c > 0.0) E += env.texel(x, y) * (c * solidAngle);
+            if (c > 0.0) E += equirectTexel(equirect, x, y) * (c * solidAngle);
         }
     }
     return E / kPi;
@@ -456,17 +467,25 @@ SH9 projectSH9(const Environment& env, int thetaSteps) {
 }
 
 SH9 projectSH9(const Image& equirect) {
-    const EquirectEnvironment env(equirect);  // validates the image
+    validateEquirect(equirect);
     SH9 sh;
     const int W = equirect.width, H = equirect.height;
+    // equirectDirection at texel centres, from per-column sines and cosines of phi.
+    std::vector<double> sinPhi(static_cast<size_t>(W)), cosPhi(static_cast<size_t>(W));
+    for (int x = 0; x < W; ++x) {
+        const double phi = ((x + 0.5) / W - 0.5) * kTwoPi;
+        sinPhi[size_t(x)] = std::sin(phi);
+        cosPhi[size_t(x)] = std::cos(phi);
+    }
     for (int y = 0; y < H; ++y) {
         const double solidAngle =
             (kTwoPi / W) * (std::cos(kPi * y / H) - std::cos(kPi * (y + 1) / H));
+        const double theta = kPi * (y + 0.5) / H, st = std::sin(theta), ct = std::cos(theta);
         for (int x = 0; x < W; ++x) {
-            const dvec3 d = equirectDirection({(x + 0.5) / W, (y + 0.5) / H});
+            const dvec3 d(st * sinPhi[size_t(x)], ct, -st * cosPhi[size_t(x)]);
             const auto Y = shBasis9(d);
-            const dvec3 L = env.texel(x, y);
-            for (int k = 0; k < 9; ++k) sh.c[k] += L * (Y[k] * solidAngle);
+            const dvec3 L = equirectTexel(equirect, x, y) * solidAngle;
+            for (int k = 0; k < 9; ++k) sh.c[k] += L * Y[k];
         }
     }
     return sh;
@@ -563,7 +582,9 @@ void TexelSums::Moments::normalise() {
 }
 
 TexelSums::TexelSums(const Image& equirect, double opening)
-    : image_(equirect), blockSize_(finestBlockSize(equirect.width, equirect.height)), opening_(opening) {
+    : image_(equirect),
+      blockSize_(finestBlockSize(equirect.width, equirect.height)),
+      opening_(opening) {
     const int W = image_.width, H = image_.height;
     if (W <= 0 || H <= 0 || image_.channels <= 0 ||
         image_.pixels.size() != size_t(W) * size_t(H) * size_t(image_.channels))
@@ -571,7 +592,8 @@ TexelSums::TexelSums(const Image& equirect, double opening)
                     std::to_string(H) + ", " + std::to_string(image_.channels) + " channels)");
     for (int y = 0; y < H; ++y) {
         const double t = kPi * (y + 0.5) / H;
-        rowSolidAngle_.push_back((kTwoPi / W) * (std::cos(kPi * y / H) - std::cos(kPi * (y + 1) / H)));
+        rowSolidAngle_.push_back((kTwoPi / W) *
+                                 (std::cos(kPi * y / H) - std::cos(kPi * (y + 1) / H)));
         rowSin_.push_back(std::sin(t));
         rowCos_.push_back(std::cos(t));
     }
@@ -649,8 +671,8 @@ TexelSums::TexelSums(const Image& equirect, double opening)
 }
 
 template <class Kernel>
-void TexelSums::accumulate(const dvec3& N, double lobeWidth, const Kernel& kernel,
-                           dvec3& weighted, double& weight) const {
+void TexelSums::accumulate(const dvec3& N, double lobeWidth, const Kernel& kernel, dvec3& weighted,
+                           double& weight) const {
     const double fineEnough = opening_ * lobeWidth;
     // N.l for texel (x, y) is N.y cos(theta_y) + sin(theta_y) (N.x sin(phi_x) - N.z cos(phi_x)).
     std::vector<double> across(colSin_.size());
@@ -658,10 +680,9 @@ void TexelSums::accumulate(const dvec3& N, double lobeWidth, const Kernel& kerne
     // The kernel's sum over directions with these moments, to second order.
     auto moments = [&](const Moments& m) {
         const double c = glm::dot(N, m.mean);
-        const double nSn = N.x * N.x * m.second[0] + N.y * N.y * m.second[1] +
-                           N.z * N.z * m.second[2] +
-                           2.0 * (N.x * N.y * m.second[3] + N.y * N.z * m.second[4] +
-                                  N.x * N.z * m.second[5]);
+        const double nSn =
+            N.x * N.x * m.second[0] + N.y * N.y * m.second[1] + N.z * N.z * m.second[2] +
+            2.0 * (N.x * N.y * m.second[3] + N.y * N.z * m.second[4] + N.x * N.z * m.second[5]);
         return m.weight * (kernel(c) + 0.5 * kernel.second(c) * std::max(nSn - c * c, 0.0));
     };
     std::vector<std::pair<int, int>> stack;  // (level, block)

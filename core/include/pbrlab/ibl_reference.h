@@ -110,7 +110,7 @@ private:
 dvec2 equirectUv(const dvec3& dir);        // the mapping above, u in [0, 1], v in [0, 1]
 dvec3 equirectDirection(const dvec2& uv);  // its inverse
 // EquirectEnvironment's lookups on an image it does not own (no copy; not validated).
-dvec3 equirectTexel(const Image& image, int x, int y);  // x wraps, y clamps
+dvec3 equirectTexel(const Image& image, int x, int y);         // x wraps, y clamps
 dvec3 equirectRadiance(const Image& image, const dvec3& dir);  // bilinear
 
 // ---- 17 mc_specular -------------------------------------------------------------------------
@@ -229,8 +229,9 @@ private:
     void accumulate(const dvec3& N, double lobeWidth, const Kernel& kernel, dvec3& weighted,
                     double& weight) const;
     dvec3 texel(int x, int y) const {
-        const float* p = &image_.pixels[(size_t(y) * size_t(image_.width) + size_t(x)) *
-                                        size_t(image_.channels)];
+        const float* p =
+            &image_
+                 .pixels[(size_t(y) * size_t(image_.width) + size_t(x)) * size_t(image_.channels)];
         return image_.channels < 3 ? dvec3(p[0]) : dvec3(p[0], p[1], p[2]);
     }
     const Image& image_;
