@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <future>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -282,211 +281,38 @@ struct PrecomputeOptions {
     bool bench = false;      // compare with LearnOpenGL's sizes (--bench)
     int runs = 3;            // --bench: timed runs of each configuration
     bool noCache = false;
-    bool baseline = false;   // LearnOpenGL's sizes and sample counts
+    bool baseline = false;  // LearnOpenGL's sizes and sample counts
 };
 
-Image readEquirect(const std::string& file) {
-    Image equirect = readImage(file);
-    if (equirect.width != 2 * equirect.height)
-        throw Error(file + ": expected an equirectangular image (width = 2 x height), got " +
-                    std::to_string(equirect.width) + "x" + std::to_string(equirect.height));
-    return equirect;
-}
-
-void printErrorRow(const char* what, const MapError& e) {
-    std::printf("  %-52s %10s %11.4f %11.4f\n", what, "", e.mean, e.max);
-}
-
-// `pbrlab precompute --bench`: LearnOpenGL's sizes and sample counts against the default,
-// both through pbrlab's passes, in the same run, on each environment.
-int runPrecomputeBench(const PrecomputeOptions& p, const DataPaths& paths) {
-    std::vector<std::pair<std::string, Image>> environments;
-    environments.emplace_back("sky (pbrlab environment)", generateSkyEnvironment());
-    std::vector<std::string> files = p.envFiles;
-    if (files.empty()) {
-        const fs::path shared = paths.root / ".." / "shared" / "data" / "hdr";
-        for (const char* name : {"venice_sunset_1k.hdr", "studio_small_03_1k.hdr"}) {
-            if (fs::exists(shared / name))
-                files.push_back((shared / name).string());
-            else
-                std::cout << "skipped " << name << ": " << shared.string()
-                          << " is absent (optional real-world HDRs)\n";
-        }
-    }
-    for (const std::string& f : files) environments.emplace_back(f, readEquirect(f));
-    const IblSettings configs[2] = {IblSettings::learnOpenGl(), IblSettings()};
-    const char* names[2] = {"LearnOpenGL sizes", "pbrlab default"};
-    std::cout << "baseline: " << configs[0].describe() << "\ndefault:  " << configs[1].describe()
-              << "\ntimes: median of " << p.runs << " cold precomputes (no disk cache, "
-              << "programs compiled in each), glFinish + steady clock\n";
-    std::ofstream csv;
-    if (!p.outDir.empty()) {
-        fs::create_directories(p.outDir);
-        csv.open(fs::path(p.outDir) / "bench.csv");
-        csv << "environment,config,ms,irradiance_mean,irradiance_max,prefilter_mean,"
-               "prefilter_max,lut_mean,lut_max\n";
-    }
-    bool allBetter = true;
-    double worstRatio = 1e300;
-    for (const auto& [name, equirect] : environments) {
-        IblTruth truth(equirect);
-        double ms[2];
-        IblErrors errors[2];
-        std::vector<double> times[2];
-        for (int run = 0; run < p.runs; ++run)
-            for (int c = 0; c < 2; ++c) {
-                // A fresh program cache: every run pays for its own compiles.
-                ProgramCache fresh(ShaderPreprocessor({paths.shaders(), paths.labs()}));
-                IblPrecompute precompute(fresh, paths.shaders(), paths.labs());
-                IblRun r = measurePrecompute(precompute, equirect, configs[c], truth);
-                times[c].push_back(r.milliseconds);
-                errors[c] = r.errors;
-            }
-        for (int c = 0; c < 2; ++c) {
-            std::sort(times[c].begin(), times[c].end());
-            ms[c] = times[c][times[c].size() / 2];
-        }
-        std::printf("\n%s\n  %-18s %10s %19s %19s %21s\n", name.c_str(), "", "time",
-                    "irradiance mean/max", "prefilter mean/max", "LUT mean/max");
-        for (int c = 0; c < 2; ++c) {
-            const IblErrors& e = errors[c];
-            std::printf("  %-18s %8.0f ms %9.4f / %-7.3f %9.4f / %-7.3f %10.5f / %-7.4f\n",
-                        names[c], ms[c], e.irradiance.mean, e.irradiance.max, e.prefilter.mean,
-                        e.prefilter.max, e.lut.mean, e.lut.max);
-            if (csv)
-                csv << "\"" << name << "\"," << names[c] << "," << ms[c] << ","
-                    << e.irradiance.mean << "," << e.irradiance.max << "," << e.prefilter.mean
-                    << "," << e.prefilter.max << "," << e.lut.mean << "," << e.lut.max << "\n";
-        }
-        const IblErrors &b = errors[0], &d = errors[1];
-        const bool better = d.irradiance.mean <= b.irradiance.mean &&
-                            d.irradiance.max <= b.irradiance.max &&
-                            d.prefilter.mean <= b.prefilter.mean &&
-                            d.prefilter.max <= b.prefilter.max && d.lut.mean <= b.lut.mean &&
-                            d.lut.max <= b.lut.max;
-        std::printf("  default: %.1fx faster; every error (mean and max) at or below the "
-                    "baseline's: %s\n",
-                    ms[0] / ms[1], better ? "yes" : "NO");
-        allBetter = allBetter && better;
-        worstRatio = std::min(worstRatio, ms[0] / ms[1]);
-    }
-    std::printf("\nsmallest speed-up %.1fx; every error at or below the baseline's everywhere: %s\n",
-                worstRatio, allBetter ? "yes" : "NO");
-    return allBetter && worstRatio >= 10 ? 0 : 1;
-}
-
-int runPrecompute(const Options& o, const PrecomputeOptions& p, IblSettings settings) {
-    (void)o;
+int runPrecompute(const PrecomputeOptions& p, IblSettings settings) {
     auto context = createHeadlessContext();
     logLine("gl", context->description());
     const DataPaths paths = DataPaths::locate();
-    ProgramCache programs(ShaderPreprocessor({paths.shaders(), paths.labs()}));
-    if (p.bench) return runPrecomputeBench(p, paths);
+    if (p.bench) return benchPrecompute(paths, {p.envFiles, p.runs, p.outDir}) ? 0 : 1;
     if (p.envFiles.size() != 1 || p.outDir.empty())
         throw Error("precompute: give one --env FILE and --out DIR (or --bench)");
-    const std::string& envFile = p.envFiles[0];
-    const Image equirect = readEquirect(envFile);
+    const Image equirect = loadEnvironmentImage(p.envFiles[0]);
     if (p.baseline) settings = IblSettings::learnOpenGl();
+    ProgramCache programs(ShaderPreprocessor({paths.shaders(), paths.labs()}));
     IblPrecompute precompute(programs, paths.shaders(), paths.labs());
     precompute.onPass = [](const std::string& pass) { logLine("precompute", pass); };
     const IblDiskCache cache(IblDiskCache::defaultRoot());
-    const IblDiskCache* useCache = p.noCache ? nullptr : &cache;
-
-    // The CPU truth of the error measurement, in a thread of its own while the maps are built.
-    std::unique_ptr<IblTruth> truth;
     IblRun run;
     if (p.errorBudget > 0) {
-        truth = std::make_unique<IblTruth>(equirect);
-        IblChoice choice = chooseIblSettings(precompute, equirect, *truth, p.errorBudget, useCache);
-        std::printf("error budget %g (every map's mean error): %s after %d of %zu settings\n",
-                    p.errorBudget, choice.met ? "met" : "NOT met, the most accurate settings",
-                    choice.tried, iblLadder().size());
-        settings = choice.settings;
+        IblTruth truth(equirect);
+        IblChoice choice = chooseIblSettings(precompute, equirect, truth, p.errorBudget,
+                                             p.noCache ? nullptr : &cache);
+        std::printf(
+            "error budget %g (every map's mean error): %s after measuring %d of %zu "
+            "settings\n",
+            p.errorBudget, choice.met ? "met" : "NOT met, the most accurate settings", choice.tried,
+            iblLadder().size());
         run = std::move(choice.run);
     } else {
-        auto truthReady = std::async(std::launch::async, [&] {
-            auto t = std::make_unique<IblTruth>(equirect);
-            t->prepare(settings);
-            return t;
-        });
-        run.maps = IblPrecompute::makeMaps(settings);
-        const auto start = std::chrono::steady_clock::now();
-        precompute.buildDerived(*run.maps, equirect, useCache);
-        run.milliseconds = std::chrono::duration<double, std::milli>(
-                               std::chrono::steady_clock::now() - start)
-                               .count();
-        truth = truthReady.get();
-        run.errors = measureIblErrors(precompute, *run.maps, *truth);
+        run = precomputeWithErrors(precompute, equirect, settings, p.noCache ? nullptr : &cache);
     }
-    const IblMaps& maps = *run.maps;
-    std::cout << "precomputed " << envFile << ": " << settings.describe() << "\n";
-
-    fs::path out(p.outDir);
-    auto writeCube = [&](const fs::path& dir, GLuint cube, int size, int mip) {
-        fs::create_directories(dir);
-        for (int face = 0; face < 6; ++face)
-            writeImage(dir / (std::string(kCubeFaceNames[face]) + ".exr"),
-                       IblPrecompute::readCubeFace(cube, face, mip, size), FileDepth::Float32);
-    };
-    writeCube(out / "irradiance", maps.irradiance.id(), settings.irradianceSize, 0);
-    for (int mip = 0; mip < settings.prefilterMips; ++mip)
-        writeCube(out / "prefilter" / ("mip" + std::to_string(mip)), maps.prefilter.id(),
-                  settings.prefilterSize, mip);
-    writeImage(out / "brdf_lut.exr", IblPrecompute::readLut(maps), FileDepth::Float32);
-    double shMs = 0;
-    {
-        // The 9 spherical-harmonic coefficients of the radiance (real SH, index l(l+1)+m),
-        // the fast alternative to the irradiance cube: E(N)/pi = shIrradiance(sh, N).
-        auto start = std::chrono::steady_clock::now();
-        ref::SH9 sh = ref::projectSH9(equirect);
-        shMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                   .count();
-        std::ofstream json(out / "sh.json");
-        json << "{\n  \"basis\": \"real SH, bands 0-2, index l(l+1)+m, radiance\",\n  "
-                "\"coefficients\": [\n";
-        for (int i = 0; i < 9; ++i)
-            json << "    [" << sh.c[size_t(i)].x << ", " << sh.c[size_t(i)].y << ", "
-                 << sh.c[size_t(i)].z << "]" << (i < 8 ? ",\n" : "\n");
-        json << "  ]\n}\n";
-    }
-
-    // Each pass's time next to its map's error, on the screen and in errors.csv.
-    const IblErrors& e = run.errors;
-    std::printf("  %-52s %10s %11s %11s\n", "pass", "time", "mean error", "max error");
-    std::ofstream csv(out / "errors.csv");
-    csv << "map,pass,ms,cached,mean_error,max_error,samples\n";
-    for (const IblPass& pass : maps.passes) {
-        const MapError* m = pass.map == "irradiance" ? &e.irradiance
-                            : pass.map == "prefilter" ? &e.prefilter
-                            : pass.map == "lut"       ? &e.lut
-                                                      : nullptr;
-        std::printf("  %-52s %7.1f ms %11.4f %11.4f\n", pass.label.c_str(), pass.milliseconds,
-                    m ? m->mean : 0.0, m ? m->max : 0.0);
-        if (pass.map == "prefilter")
-            for (size_t mip = 0; mip < e.prefilterMips.size(); ++mip) {
-                const std::string what =
-                    "  mip " + std::to_string(mip) + " (roughness " +
-                    std::to_string(double(mip) / std::max(settings.prefilterMips - 1, 1))
-                        .substr(0, 4) +
-                    ")";
-                printErrorRow(what.c_str(), e.prefilterMips[mip]);
-                csv << "prefilter mip " << mip << ",,,," << e.prefilterMips[mip].mean << ","
-                    << e.prefilterMips[mip].max << "," << e.prefilterMips[mip].samples << "\n";
-            }
-        if (m)
-            csv << pass.map << ",\"" << pass.label << "\"," << pass.milliseconds << ","
-                << (pass.cached ? 1 : 0) << "," << m->mean << "," << m->max << "," << m->samples
-                << "\n";
-    }
-    std::printf("  %-52s %7.1f ms\n", "spherical harmonics (CPU)", shMs);
-    std::printf("  %-52s %7.1f ms\n", "all passes", run.milliseconds);
-    std::printf("errors: against the CPU reference in double precision at %zu directions and %zu "
-                "LUT points, relative to the local mean radiance (LUT: absolute); "
-                "docs/ibl.md\n",
-                truth->sample().directions.size(), truth->sample().lutPoints.size());
-    std::cout << "wrote " << out.string()
-              << "/{irradiance,prefilter/mip*}/{+x,-x,+y,-y,+z,-z}.exr, brdf_lut.exr, sh.json, "
-                 "errors.csv\n";
+    std::cout << "precomputed " << p.envFiles[0] << ": " << run.maps->settings.describe() << "\n";
+    writePrecompute(run, equirect, p.outDir);
     return 0;
 }
 
@@ -928,7 +754,7 @@ int main(int argc, char** argv) {
         }
         if (*precompute) {
             if (filteredSampling) ibl.prefilter = PrefilterMethod::Filtered;
-            return runPrecompute(o, precomputeOptions, ibl);
+            return runPrecompute(precomputeOptions, ibl);
         }
         if (*guiCmd) {
             Size s = parseSize(guiSize);

@@ -72,6 +72,26 @@ struct IblChoice {
 IblChoice chooseIblSettings(IblPrecompute& precompute, const Image& equirect, IblTruth& truth,
                             double budget, const IblDiskCache* cache = nullptr);
 
+// Builds the maps while the truth is computed in a thread of its own, then measures them:
+// what `pbrlab precompute` does.
+IblRun precomputeWithErrors(IblPrecompute& precompute, const Image& equirect,
+                            const IblSettings& settings, const IblDiskCache* cache);
+// Writes the maps (EXR cube faces, LUT, sh.json) and errors.csv into `out`, and prints each
+// pass's time next to its map's error.
+void writePrecompute(const IblRun& run, const Image& equirect, const std::filesystem::path& out);
+
+// `pbrlab precompute --bench`: LearnOpenGL's sizes and sample counts against the default, both
+// through pbrlab's passes, in the same run, on the project's sky and the given files (none:
+// ../shared/data/hdr/*.hdr beside the sources when present). Prints times (median of `runs`)
+// and errors; true when the default is at least 10x faster with every error at or below the
+// baseline's on every environment.
+struct PrecomputeBenchOptions {
+    std::vector<std::string> files;
+    int runs = 3;
+    std::filesystem::path out;  // bench.csv when not empty
+};
+bool benchPrecompute(const DataPaths& paths, const PrecomputeBenchOptions& options);
+
 // Measures the whole ladder (the error-against-time front) on one environment.
 std::vector<IblRun> measureIblLadder(IblPrecompute& precompute, const Image& equirect,
                                      IblTruth& truth);

@@ -450,12 +450,19 @@ fs::path IblDiskCache::defaultRoot() {
 
 namespace {
 
-// FNV-1a, 64 bits: stable across runs and compilers (std::hash is not promised to be).
+// FNV-1a, 64 bits, taken 8 bytes at a time (an environment is megabytes): stable across runs
+// and compilers (std::hash is not promised to be).
 struct Fnv {
     std::uint64_t h = 1469598103934665603ull;
     void add(const void* data, size_t n) {
         auto p = static_cast<const unsigned char*>(data);
-        for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
+        size_t i = 0;
+        for (; i + 8 <= n; i += 8) {
+            std::uint64_t word;
+            std::memcpy(&word, p + i, 8);
+            h = (h ^ word) * 1099511628211ull;
+        }
+        for (; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
     }
     void add(const std::string& s) { add(s.data(), s.size()); }
     std::string hex() const {
