@@ -1,11 +1,11 @@
 // Image-based lighting maps: an equirectangular environment becomes a cube map with mips
 // (uEnvironment), then the split-sum precompute builds the irradiance cube, the prefiltered
 // mip chain and the BRDF LUT. The default passes are the host's own, chosen by their measured
-// error against run time (docs/ibl.md): cube maps resampled on the CPU, irradiance from the
-// environment's power binned per cube texel, the rough mips by filtered importance sampling
-// on the GPU, the LUT by quadrature on the GPU, computed once whatever the environment. Steps
-// 18-20's reference solutions, and LearnOpenGL's Riemann sum, remain selectable (the baseline
-// of `pbrlab bench precompute`). Runs under OSMesa too. Every pass is counted
+// error against run time (docs/ibl.md): cube maps resampled on the CPU, the irradiance and the
+// rough mips convolved on the CPU from the environment's power binned per cube texel, the LUT
+// by quadrature on the GPU, computed once whatever the environment. Steps 18-20's reference
+// solutions, filtered importance sampling and LearnOpenGL's Riemann sum remain selectable (the
+// baseline of `pbrlab precompute --bench`). Runs under OSMesa too. Every pass is counted
 // (Counter::PrecomputePasses) and timed, so "no environment, no precompute" is observable.
 #pragma once
 
@@ -23,7 +23,7 @@ namespace pbrlab {
 // How the irradiance map and the rough prefiltered mips are computed (docs/ibl.md).
 enum class IrradianceMethod {
     Bins,     // the environment binned per texel of a small cube (power, mean direction and
-              // spread of each bin), convolved with the cosine (shaders/ibl/convolve_bins.frag)
+              // spread of each bin), convolved with the cosine (ibl.cpp, convolveBins)
     Step18,   // the step 18 reference solution (texel sum over a 32 x 32 mip)
     Riemann,  // LearnOpenGL's Riemann sum over the hemisphere
 };

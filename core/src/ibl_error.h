@@ -1,6 +1,6 @@
 // The error of the precomputed IBL maps against the CPU references in double precision, on a
 // fixed deterministic sample (docs/ibl.md, "Error of the maps"): what `pbrlab precompute`
-// prints next to each pass, what `pbrlab bench precompute` compares and what
+// prints next to each pass, what `pbrlab precompute --bench` compares and what
 // `--error-budget` chooses by.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Precompute, the baseline of `pbrlab bench precompute`: irradiance as LearnOpenGL's
+// Precompute, the baseline of `pbrlab precompute --bench`: irradiance as LearnOpenGL's
 // "Diffuse irradiance" chapter computes it, a Riemann sum over the hemisphere in spherical
 // coordinates with one step uStep in theta and phi (their sampleDelta, 0.025 rad), starting
 // at 0, each sample read with texture() so that the GPU picks the mip from the derivatives
