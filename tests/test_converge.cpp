@@ -6,6 +6,8 @@
 
 #include "converge.h"
 #include "gl/context.h"
+#include "ibl_error.h"
+#include "pbrlab/envgen.h"
 #include "test_support.h"
 
 using namespace pbrlab;
@@ -45,4 +47,86 @@ TEST(Converge, BruteForceErrorFallsWithSamplesAndTheReportIsWritten) {
     EXPECT_LT(splitSum, bruteForce[2]);
     EXPECT_TRUE(std::filesystem::exists(dir.path / "converge.csv"));
     EXPECT_TRUE(std::filesystem::exists(dir.path / "converge.gp"));
+}
+
+// ---- the precomputed maps' errors ---------------------------------------------------------------
+
+TEST(MapErrors, TheMetricIsRelativeToTheReferencesGreyLevelAboveTheFloor) {
+    // Written out from docs/ibl.md: the largest channel difference over the reference's grey
+    // level, the grey level floored; the LUT's largest absolute difference.
+    EXPECT_NEAR(radianceError({1.1, 2.0, 3.0}, {1.0, 2.0, 3.0}, 0.01), 0.1 / 2.0, 1e-12);
+    EXPECT_NEAR(radianceError({0.0, 0.0, 0.3}, {0.0, 0.0, 0.0}, 0.1), 3.0, 1e-12);
+    EXPECT_NEAR(lutError({0.5, 0.1}, {0.45, 0.12}), 0.05, 1e-12);
+}
+
+namespace {
+
+// The project's sky at a small size: every map of the default is measured against its truth.
+struct SmallSky {
+    std::unique_ptr<GlContext> context = createHeadlessContext();
+    DataPaths paths{PBRLAB_SOURCE_DIR};
+    ProgramCache programs{ShaderPreprocessor({paths.shaders(), paths.labs()})};
+    IblPrecompute precompute{programs, paths.shaders(), paths.labs()};
+    Image sky = generateSkyEnvironment(256);
+    IblTruth truth{sky};
+};
+
+}  // namespace
+
+TEST(MapErrors, DefaultMapsStayWithinTheirMeasuredErrors) {
+    // Measured on this 256 x 128 sky (llvmpipe): irradiance 0.0011 mean / 0.013 max,
+    // prefilter 0.0077 / 0.345 (mip 0, the mirror, dominates: the environment resampled at
+    // 128^2), LUT 0.0008 / 0.0196 (the largest at N.V = 0, roughness 0, where the truth turns
+    // within 1e-4 of the edge). Bounds: about twice the measured mean, 1.3 times the max;
+    // LearnOpenGL's sizes measure 0.0083-0.026 / 0.11-0.42 (irradiance), 0.063-0.26 / 2.8-30
+    // (prefilter) and 0.0024 / 0.070 (LUT) on the three environments of docs/ibl.md.
+    SmallSky s;
+    IblRun run = measurePrecompute(s.precompute, s.sky, IblSettings(), s.truth);
+    const IblErrors& e = run.errors;
+    std::printf("[ measured ] irradiance %.5f / %.4f, prefilter %.5f / %.4f, lut %.5f / %.4f\n",
+                e.irradiance.mean, e.irradiance.max, e.prefilter.mean, e.prefilter.max, e.lut.mean,
+                e.lut.max);
+    EXPECT_EQ(e.irradiance.samples, 128);
+    EXPECT_EQ(e.prefilter.samples, 5 * 128);
+    EXPECT_LT(e.irradiance.mean, 0.0025);
+    EXPECT_LT(e.irradiance.max, 0.017);
+    EXPECT_LT(e.prefilter.mean, 0.016);
+    EXPECT_LT(e.prefilter.max, 0.45);
+    EXPECT_LT(e.lut.mean, 0.0016);
+    EXPECT_LT(e.lut.max, 0.026);
+}
+
+TEST(MapErrors, AMapThatIsOffIsMeasuredAsOff) {
+    // The measurement reads the GPU's maps: the maps of a sky 10% brighter are 10% off the
+    // truth of the sky in every channel, so the metric (largest channel over the grey level)
+    // reads at least 0.1 less the maps' own error (0.0011 irradiance, 0.0077 prefilter) and
+    // at most 0.1 times the sky's largest channel over its grey level (measured 0.105).
+    SmallSky s;
+    Image brighter = s.sky;
+    for (float& v : brighter.pixels) v *= 1.1f;
+    IblRun run = measurePrecompute(s.precompute, brighter, IblSettings(), s.truth);
+    EXPECT_GT(run.errors.irradiance.mean, 0.1 - 0.0011);
+    EXPECT_LT(run.errors.irradiance.mean, 0.15);
+    EXPECT_GT(run.errors.prefilter.mean, 0.1 - 0.0077);
+    EXPECT_LT(run.errors.prefilter.mean, 0.15);
+}
+
+TEST(MapErrors, TheErrorBudgetChoosesTheCheapestRungThatMeetsIt) {
+    SmallSky s;
+    const double budget = 0.03;
+    IblChoice choice = chooseIblSettings(s.precompute, s.sky, s.truth, budget);
+    ASSERT_TRUE(choice.met);
+    EXPECT_TRUE(withinBudget(choice.run.errors, budget));
+    // Every cheaper rung was measured and missed it.
+    const auto ladder = iblLadder();
+    ASSERT_GE(choice.tried, 1);
+    EXPECT_EQ(choice.settings.key(), ladder[size_t(choice.tried) - 1].key());
+    for (int i = 0; i + 1 < choice.tried; ++i)
+        EXPECT_FALSE(withinBudget(
+            measurePrecompute(s.precompute, s.sky, ladder[size_t(i)], s.truth).errors, budget))
+            << ladder[size_t(i)].describe();
+    // An impossible budget: not met, the most accurate rung returned.
+    IblChoice none = chooseIblSettings(s.precompute, s.sky, s.truth, 1e-6);
+    EXPECT_FALSE(none.met);
+    EXPECT_EQ(none.settings.key(), ladder.back().key());
 }

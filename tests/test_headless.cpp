@@ -131,7 +131,7 @@ TEST(Headless, PrecomputedMapsAreCachedOnDiskAndReusedExactly) {
     small.prefilterSize = 16;
     small.prefilterMips = 3;
     small.prefilterSamples = 16;
-    small.lutSize = 16;
+    small.lutWidth = small.lutHeight = 16;
     small.lutSamples = 32;
     const LoadedModule& m = h.modules.find("split_sum");
     Scene scene = loadScene(h.paths.scene(m.desc->scene));
@@ -148,12 +148,18 @@ TEST(Headless, PrecomputedMapsAreCachedOnDiskAndReusedExactly) {
     Image again = render(second);
     EXPECT_EQ(eventCount(Counter::PrecomputePasses), 1);  // only the environment cube
     EXPECT_EQ(again.pixels, first.pixels);
-    // Another setting is another key: computed again.
-    small.lutSize = 32;
+    // Another setting is another key: computed again, the LUT apart from the maps that depend
+    // on the environment (each is cached under what it depends on).
+    small.lutWidth = small.lutHeight = 32;
     LabRenderer third{h.paths};
     resetCounters();
     render(third);
-    EXPECT_EQ(eventCount(Counter::PrecomputePasses), 4);
+    EXPECT_EQ(eventCount(Counter::PrecomputePasses), 2);  // the environment cube, the LUT
+    small.bins = 8;
+    LabRenderer fourth{h.paths};
+    resetCounters();
+    render(fourth);
+    EXPECT_EQ(eventCount(Counter::PrecomputePasses), 3);  // cube, irradiance, prefilter
 }
 
 TEST(Headless, StudentFilesCannotIncludeTheReferenceSolutions) {

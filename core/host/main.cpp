@@ -274,52 +274,46 @@ int runPermutations(const Options& o, std::vector<std::string> ids, const std::s
     return 0;
 }
 
-int runPrecompute(const Options& o, const std::string& envFile, const IblSettings& settings,
-                  const std::string& outDir) {
-    Session session(o);
-    Image equirect = readImage(envFile);
-    if (equirect.width != 2 * equirect.height)
-        throw Error(envFile + ": expected an equirectangular image (width = 2 x height), got " +
-                    std::to_string(equirect.width) + "x" + std::to_string(equirect.height));
-    IblPrecompute precompute(session.renderer->programs(), session.paths.shaders(),
-                             session.paths.labs());
-    std::cout << "precomputing " << envFile << " (" << settings.key() << ")\n" << std::flush;
-    auto maps = precompute.build(equirect, settings);
-    fs::path out(outDir);
-    auto writeCube = [&](const fs::path& dir, GLuint cube, int size, int mip) {
-        fs::create_directories(dir);
-        for (int face = 0; face < 6; ++face)
-            writeImage(dir / (std::string(kCubeFaceNames[face]) + ".exr"),
-                       IblPrecompute::readCubeFace(cube, face, mip, size), FileDepth::Float32);
-    };
-    writeCube(out / "irradiance", maps->irradiance.id(), settings.irradianceSize, 0);
-    for (int mip = 0; mip < settings.prefilterMips; ++mip)
-        writeCube(out / "prefilter" / ("mip" + std::to_string(mip)), maps->prefilter.id(),
-                  settings.prefilterSize, mip);
-    writeImage(out / "brdf_lut.exr",
-               IblPrecompute::readTexture(maps->lut.id(), settings.lutSize, settings.lutSize),
-               FileDepth::Float32);
-    {
-        // The 9 spherical-harmonic coefficients of the radiance (real SH, index l(l+1)+m),
-        // the fast alternative to the irradiance cube: E(N)/pi = shIrradiance(sh, N).
-        auto start = std::chrono::steady_clock::now();
-        ref::SH9 sh = ref::projectSH9(equirect);
-        double ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                .count();
-        std::ofstream json(out / "sh.json");
-        json << "{\n  \"basis\": \"real SH, bands 0-2, index l(l+1)+m, radiance\",\n  "
-                "\"coefficients\": [\n";
-        for (int i = 0; i < 9; ++i)
-            json << "    [" << sh.c[size_t(i)].x << ", " << sh.c[size_t(i)].y << ", "
-                 << sh.c[size_t(i)].z << "]" << (i < 8 ? ",\n" : "\n");
-        json << "  ]\n}\n";
-        maps->milliseconds["spherical harmonics (CPU)"] = ms;
+// What `pbrlab precompute` was asked (besides the settings).
+struct PrecomputeOptions {
+    std::vector<std::string> envFiles;
+    std::string outDir;
+    double errorBudget = 0;  // > 0: choose the settings (--error-budget)
+    bool bench = false;      // compare with LearnOpenGL's sizes (--bench)
+    int runs = 3;            // --bench: timed runs of each configuration
+    bool noCache = false;
+    bool baseline = false;  // LearnOpenGL's sizes and sample counts
+};
+
+int runPrecompute(const PrecomputeOptions& p, IblSettings settings) {
+    auto context = createHeadlessContext();
+    logLine("gl", context->description());
+    const DataPaths paths = DataPaths::locate();
+    if (p.bench) return benchPrecompute(paths, {p.envFiles, p.runs, p.outDir}) ? 0 : 1;
+    if (p.envFiles.size() != 1 || p.outDir.empty())
+        throw Error("precompute: give one --env FILE and --out DIR (or --bench)");
+    const Image equirect = loadEnvironmentImage(p.envFiles[0]);
+    if (p.baseline) settings = IblSettings::learnOpenGl();
+    ProgramCache programs(ShaderPreprocessor({paths.shaders(), paths.labs()}));
+    IblPrecompute precompute(programs, paths.shaders(), paths.labs());
+    precompute.onPass = [](const std::string& pass) { logLine("precompute", pass); };
+    const IblDiskCache cache(IblDiskCache::defaultRoot());
+    IblRun run;
+    if (p.errorBudget > 0) {
+        IblTruth truth(equirect);
+        IblChoice choice = chooseIblSettings(precompute, equirect, truth, p.errorBudget,
+                                             p.noCache ? nullptr : &cache);
+        std::printf(
+            "error budget %g (every map's mean error): %s after measuring %d of %zu "
+            "settings\n",
+            p.errorBudget, choice.met ? "met" : "NOT met, the most accurate settings", choice.tried,
+            iblLadder().size());
+        run = std::move(choice.run);
+    } else {
+        run = precomputeWithErrors(precompute, equirect, settings, p.noCache ? nullptr : &cache);
     }
-    for (const auto& [pass, ms] : maps->milliseconds)
-        std::printf("  %-50s %10.1f ms\n", pass.c_str(), ms);
-    std::cout << "wrote " << out.string()
-              << "/{irradiance,prefilter/mip*}/{+x,-x,+y,-y,+z,-z}.exr, brdf_lut.exr, sh.json\n";
+    std::cout << "precomputed " << p.envFiles[0] << ": " << run.maps->settings.describe() << "\n";
+    writePrecompute(run, equirect, p.outDir);
     return 0;
 }
 
@@ -565,21 +559,41 @@ int main(int argc, char** argv) {
     kitCmd->add_option("--release-through", kit.releaseThrough,
                        "Give the solutions of the steps up to this id (after due dates)");
     kitCmd->add_flag("--force", kit.force, "Write into a non-empty folder");
-    std::string envFile, precomputeDir;
+    PrecomputeOptions precomputeOptions;
     IblSettings ibl;
+    bool filteredSampling = false;
     auto* precompute = app.add_subcommand(
-        "precompute", "Split-sum maps of an environment: irradiance and prefiltered cubes (EXR)");
-    precompute->add_option("--env", envFile, "Equirectangular .hdr or .exr")->required();
-    precompute->add_option("--out", precomputeDir, "Output folder")->required();
-    precompute->add_option("--env-size", ibl.environmentSize, "Environment cube face size");
+        "precompute",
+        "Split-sum maps of an environment (EXR), each pass's time and its map's error against "
+        "the CPU reference (errors.csv); --bench compares with LearnOpenGL's sizes");
+    precompute->add_option("--env", precomputeOptions.envFiles,
+                           "Equirectangular .hdr or .exr (--bench: one or more; default the "
+                           "project's sky and ../shared/data/hdr when present)");
+    precompute->add_option("--out", precomputeOptions.outDir, "Output folder");
+    precompute->add_option("--error-budget", precomputeOptions.errorBudget,
+                           "Choose the cheapest settings whose maps' mean errors stay within "
+                           "this (e.g. 0.02)");
+    precompute->add_flag("--bench", precomputeOptions.bench,
+                         "Time LearnOpenGL's sizes and sample counts against the default, both "
+                         "through pbrlab's passes, and compare their maps' errors");
+    precompute->add_option("--runs", precomputeOptions.runs, "--bench: runs of each (default 3)");
+    precompute->add_flag("--learnopengl", precomputeOptions.baseline,
+                         "LearnOpenGL's sizes and sample counts (the --bench baseline)");
+    precompute->add_flag("--no-cache", precomputeOptions.noCache,
+                         "Compute every map (no disk cache)");
+    precompute->add_option("--env-size", ibl.sourceSize,
+                           "Size of the cube the GPU passes read (default: the prefilter's)");
+    precompute->add_option("--bins", ibl.bins,
+                           "Bins per cube face side for irradiance and prefilter (default 16)");
     precompute->add_option("--irradiance-size", ibl.irradianceSize, "Irradiance cube face size");
     precompute->add_option("--prefilter-size", ibl.prefilterSize, "Prefiltered cube mip 0 size");
     precompute->add_option("--prefilter-mips", ibl.prefilterMips, "Prefiltered mip count");
-    precompute->add_option("--prefilter-samples", ibl.prefilterSamples, "Samples per texel");
-    precompute->add_option("--lut-size", ibl.lutSize, "BRDF LUT size");
-    precompute->add_option("--lut-samples", ibl.lutSamples, "BRDF LUT samples per texel");
-    precompute->add_option("--filtered-sampling", ibl.filteredSampling,
-                           "Prefilter with filtered importance sampling (default true)");
+    precompute->add_option("--prefilter-samples", ibl.prefilterSamples,
+                           "Samples per texel (with --filtered-sampling)");
+    precompute->add_option("--lut-size", ibl.lutWidth, "BRDF LUT width (N.V)");
+    precompute->add_option("--lut-height", ibl.lutHeight, "BRDF LUT height (roughness)");
+    precompute->add_option("--filtered-sampling", filteredSampling,
+                           "Prefilter by filtered importance sampling instead of bins");
     std::vector<std::string> stabilityIds;
     auto* stability = app.add_subcommand(
         "stability",
@@ -742,7 +756,10 @@ int main(int argc, char** argv) {
                       << "\n";
             return 0;
         }
-        if (*precompute) return runPrecompute(o, envFile, ibl, precomputeDir);
+        if (*precompute) {
+            if (filteredSampling) ibl.prefilter = PrefilterMethod::Filtered;
+            return runPrecompute(precomputeOptions, ibl);
+        }
         if (*guiCmd) {
             Size s = parseSize(guiSize);
             gui.width = s.width;

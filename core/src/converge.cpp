@@ -1,12 +1,17 @@
 #include "converge.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <future>
+#include <iostream>
 #include <thread>
 
 #include "parallel.h"
 #include "pbrlab/contract.h"
+#include "pbrlab/envgen.h"
 #include "pbrlab/error.h"
 #include "pbrlab/ibl_reference.h"
 #include "pbrlab/log.h"
@@ -162,11 +167,8 @@ std::vector<ConvergeRow> runConverge(LabRenderer& renderer, const DataPaths& pat
             " s");
 
     std::vector<ConvergeRow> rows;
-    auto precomputeMs = [](const IblMaps& maps, const std::string& prefix) {
-        double ms = 0;
-        for (const auto& [pass, t] : maps.milliseconds)
-            if (pass.rfind(prefix, 0) == 0) ms += t;
-        return ms;
+    auto precomputeMs = [](const IblMaps& maps, const std::string& map) {
+        return maps.milliseconds(map);
     };
 
     // Brute force: every frame pays for every sample.
@@ -187,7 +189,7 @@ std::vector<ConvergeRow> runConverge(LabRenderer& renderer, const DataPaths& pat
         ConvergeRow row{
             "specular",     "split_sum",
             setting,        samples,
-            r.milliseconds, precomputeMs(maps, "prefilter") + precomputeMs(maps, "brdf lut")};
+            r.milliseconds, precomputeMs(maps, "prefilter") + precomputeMs(maps, "lut")};
         score(row, r.value, truth, truth.specular);
         rows.push_back(row);
     };
@@ -197,7 +199,7 @@ std::vector<ConvergeRow> runConverge(LabRenderer& renderer, const DataPaths& pat
         for (int samples : prefilterSamples) {
             IblSettings s = defaults;
             s.prefilterSamples = samples;
-            s.filteredSampling = fis;
+            s.prefilter = fis ? PrefilterMethod::Filtered : PrefilterMethod::Plain;
             splitSumRow(s,
                         std::string("prefilter=") + std::to_string(samples) +
                             (fis ? " fis=on" : " fis=off"),
@@ -207,7 +209,7 @@ std::vector<ConvergeRow> runConverge(LabRenderer& renderer, const DataPaths& pat
         o.quick ? std::vector<int>{16, 128} : std::vector<int>{16, 32, 64, 128, 256, 512};
     for (int size : lutSizes) {
         IblSettings s = defaults;
-        s.lutSize = size;
+        s.lutWidth = s.lutHeight = size;
         splitSumRow(s, "lut=" + std::to_string(size), s.lutSamples);
     }
     renderer.setIblSettings(defaults);
@@ -296,6 +298,243 @@ void writeConvergeReport(const std::vector<ConvergeRow>& rows, const fs::path& o
         logLine("converge", "plot: " + (out / "converge.png").string());
     else
         logLine("converge", "gnuplot not available: run converge.gp by hand for the plot");
+}
+
+}  // namespace pbrlab
+
+namespace pbrlab {
+
+IblRun measurePrecompute(IblPrecompute& precompute, const Image& equirect,
+                         const IblSettings& settings, IblTruth& truth, const IblDiskCache* cache) {
+    IblRun run;
+    run.maps = IblPrecompute::makeMaps(settings);
+    gl::Finish();
+    const auto start = std::chrono::steady_clock::now();
+    precompute.buildDerived(*run.maps, equirect, cache);
+    gl::Finish();
+    run.milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    run.errors = measureIblErrors(precompute, *run.maps, truth);
+    return run;
+}
+
+std::vector<IblSettings> iblLadder() {
+    // Each rung costs more than the one below. What limits each map (docs/ibl.md): the bins
+    // limit the irradiance and the rough mips (error ~ 1 / bins^2), the prefilter's size limits
+    // mip 0 (the mirror: the environment resampled, error ~ 1 / size), the irradiance map's
+    // size its interpolation. The LUT (computed once, whatever the environment) stays the
+    // default's: its mean error, ~1e-3, is below every rung's other maps.
+    struct Rung {
+        int bins, prefilterSize, irradianceSize;
+    };
+    const Rung rungs[] = {{4, 32, 8},   {4, 64, 16},   {8, 64, 16},
+                          {8, 128, 32}, {16, 128, 32}, {16, 256, 32}};
+    std::vector<IblSettings> ladder;
+    for (const Rung& r : rungs) {
+        IblSettings s;
+        s.bins = r.bins;
+        s.prefilterSize = r.prefilterSize;
+        s.prefilterMips = std::min(5, int(std::log2(r.prefilterSize)) + 1);
+        s.irradianceSize = r.irradianceSize;
+        ladder.push_back(s);
+    }
+    return ladder;
+}
+
+bool withinBudget(const IblErrors& e, double budget) {
+    return e.irradiance.mean <= budget && e.prefilter.mean <= budget && e.lut.mean <= budget;
+}
+
+IblChoice chooseIblSettings(IblPrecompute& precompute, const Image& equirect, IblTruth& truth,
+                            double budget, const IblDiskCache* cache) {
+    IblChoice choice;
+    for (const IblSettings& s : iblLadder()) {
+        choice.settings = s;
+        choice.run = measurePrecompute(precompute, equirect, s, truth, cache);
+        ++choice.tried;
+        if (withinBudget(choice.run.errors, budget)) {
+            choice.met = true;
+            break;
+        }
+    }
+    return choice;
+}
+
+std::vector<IblRun> measureIblLadder(IblPrecompute& precompute, const Image& equirect,
+                                     IblTruth& truth) {
+    std::vector<IblRun> runs;
+    for (const IblSettings& s : iblLadder())
+        runs.push_back(measurePrecompute(precompute, equirect, s, truth));
+    return runs;
+}
+
+IblRun precomputeWithErrors(IblPrecompute& precompute, const Image& equirect,
+                            const IblSettings& settings, const IblDiskCache* cache) {
+    // The CPU truth in a thread of its own while the maps are built (the GPU compiles and the
+    // single-threaded steps leave a core free).
+    auto truthReady = std::async(std::launch::async, [&] {
+        auto truth = std::make_unique<IblTruth>(equirect);
+        truth->prepare(settings);
+        return truth;
+    });
+    IblRun run;
+    run.maps = IblPrecompute::makeMaps(settings);
+    const auto start = std::chrono::steady_clock::now();
+    precompute.buildDerived(*run.maps, equirect, cache);
+    gl::Finish();
+    run.milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const auto truth = truthReady.get();
+    run.errors = measureIblErrors(precompute, *run.maps, *truth);
+    return run;
+}
+
+void writePrecompute(const IblRun& run, const Image& equirect, const fs::path& out) {
+    const IblMaps& maps = *run.maps;
+    const IblSettings& settings = maps.settings;
+    auto writeCube = [&](const fs::path& dir, GLuint cube, int size, int mip) {
+        fs::create_directories(dir);
+        for (int face = 0; face < 6; ++face)
+            writeImage(dir / (std::string(kCubeFaceNames[face]) + ".exr"),
+                       IblPrecompute::readCubeFace(cube, face, mip, size), FileDepth::Float32);
+    };
+    writeCube(out / "irradiance", maps.irradiance.id(), settings.irradianceSize, 0);
+    for (int mip = 0; mip < settings.prefilterMips; ++mip)
+        writeCube(out / "prefilter" / ("mip" + std::to_string(mip)), maps.prefilter.id(),
+                  settings.prefilterSize, mip);
+    writeImage(out / "brdf_lut.exr", IblPrecompute::readLut(maps), FileDepth::Float32);
+    double shMs = 0;
+    {
+        // The 9 spherical-harmonic coefficients of the radiance (real SH, index l(l+1)+m),
+        // the fast alternative to the irradiance cube: E(N)/pi = shIrradiance(sh, N).
+        const auto start = std::chrono::steady_clock::now();
+        const ref::SH9 sh = ref::projectSH9(equirect);
+        shMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                   .count();
+        std::ofstream json(out / "sh.json");
+        json << "{\n  \"basis\": \"real SH, bands 0-2, index l(l+1)+m, radiance\",\n  "
+                "\"coefficients\": [\n";
+        for (int i = 0; i < 9; ++i)
+            json << "    [" << sh.c[size_t(i)].x << ", " << sh.c[size_t(i)].y << ", "
+                 << sh.c[size_t(i)].z << "]" << (i < 8 ? ",\n" : "\n");
+        json << "  ]\n}\n";
+    }
+    // Each pass's time next to its map's error, on the screen and in errors.csv.
+    const IblErrors& e = run.errors;
+    std::printf("  %-52s %10s %11s %11s\n", "pass", "time", "mean error", "max error");
+    std::ofstream csv(out / "errors.csv");
+    csv << "map,pass,ms,cached,mean_error,max_error,samples\n";
+    for (const IblPass& pass : maps.passes) {
+        const MapError* m = pass.map == "irradiance"  ? &e.irradiance
+                            : pass.map == "prefilter" ? &e.prefilter
+                            : pass.map == "lut"       ? &e.lut
+                                                      : nullptr;
+        if (!m) continue;
+        std::printf("  %-52s %7.1f ms %11.4f %11.4f\n", pass.label.c_str(), pass.milliseconds,
+                    m->mean, m->max);
+        csv << pass.map << ",\"" << pass.label << "\"," << pass.milliseconds << ","
+            << (pass.cached ? 1 : 0) << "," << m->mean << "," << m->max << "," << m->samples
+            << "\n";
+        if (pass.map != "prefilter") continue;
+        for (size_t mip = 0; mip < e.prefilterMips.size(); ++mip) {
+            char what[64];
+            std::snprintf(what, sizeof what, "  mip %zu (roughness %.2f)", mip,
+                          double(mip) / std::max(settings.prefilterMips - 1, 1));
+            std::printf("  %-52s %10s %11.4f %11.4f\n", what, "", e.prefilterMips[mip].mean,
+                        e.prefilterMips[mip].max);
+            csv << "prefilter mip " << mip << ",,,," << e.prefilterMips[mip].mean << ","
+                << e.prefilterMips[mip].max << "," << e.prefilterMips[mip].samples << "\n";
+        }
+    }
+    std::printf("  %-52s %7.1f ms\n", "spherical harmonics (CPU)", shMs);
+    std::printf("  %-52s %7.1f ms\n", "all passes", run.milliseconds);
+    const IblErrorSample& sample = IblErrorSample::standard();
+    std::printf(
+        "errors: against the CPU reference in double precision at %zu directions and %zu "
+        "LUT points, relative to the local mean radiance (LUT: absolute); "
+        "docs/ibl.md\n",
+        sample.directions.size(), sample.lutPoints.size());
+    std::cout << "wrote " << out.string()
+              << "/{irradiance,prefilter/mip*}/{+x,-x,+y,-y,+z,-z}.exr, brdf_lut.exr, sh.json, "
+                 "errors.csv\n";
+}
+
+bool benchPrecompute(const DataPaths& paths, const PrecomputeBenchOptions& options) {
+    std::vector<std::pair<std::string, Image>> environments;
+    environments.emplace_back("sky (pbrlab environment)", loadEnvironmentImage("sky"));
+    std::vector<std::string> files = options.files;
+    if (files.empty()) {
+        const fs::path shared = paths.root / ".." / "shared" / "data" / "hdr";
+        for (const char* name : {"venice_sunset_1k.hdr", "studio_small_03_1k.hdr"}) {
+            if (fs::exists(shared / name))
+                files.push_back((shared / name).string());
+            else
+                std::cout << "skipped " << name << ": not in " << shared.string()
+                          << " (optional real-world HDRs)\n";
+        }
+    }
+    for (const std::string& f : files) environments.emplace_back(f, loadEnvironmentImage(f));
+    const IblSettings configs[2] = {IblSettings::learnOpenGl(), IblSettings()};
+    const char* names[2] = {"LearnOpenGL sizes", "pbrlab default"};
+    std::cout << "baseline: " << configs[0].describe() << "\ndefault:  " << configs[1].describe()
+              << "\ntimes: median of " << options.runs
+              << " cold precomputes (no disk cache, programs compiled in each), glFinish + "
+                 "steady clock\n";
+    std::ofstream csv;
+    if (!options.out.empty()) {
+        fs::create_directories(options.out);
+        csv.open(options.out / "bench.csv");
+        csv << "environment,config,ms,irradiance_mean,irradiance_max,prefilter_mean,"
+               "prefilter_max,lut_mean,lut_max\n";
+    }
+    bool allBetter = true;
+    double smallestRatio = 1e300;
+    for (const auto& [name, equirect] : environments) {
+        IblTruth truth(equirect);
+        std::vector<double> times[2];
+        IblErrors errors[2];
+        for (int run = 0; run < std::max(options.runs, 1); ++run)
+            for (int c = 0; c < 2; ++c) {
+                // A fresh program cache: every run pays for its own compiles.
+                ProgramCache programs(ShaderPreprocessor({paths.shaders(), paths.labs()}));
+                IblPrecompute precompute(programs, paths.shaders(), paths.labs());
+                IblRun r = measurePrecompute(precompute, equirect, configs[c], truth);
+                times[c].push_back(r.milliseconds);
+                errors[c] = r.errors;
+            }
+        double ms[2];
+        for (int c = 0; c < 2; ++c) {
+            std::sort(times[c].begin(), times[c].end());
+            ms[c] = times[c][times[c].size() / 2];
+        }
+        std::printf("\n%s\n  %-18s %10s %19s %19s %21s\n", name.c_str(), "", "time",
+                    "irradiance mean/max", "prefilter mean/max", "LUT mean/max");
+        for (int c = 0; c < 2; ++c) {
+            const IblErrors& e = errors[c];
+            std::printf("  %-18s %8.0f ms %9.4f / %-7.3f %9.4f / %-7.3f %10.5f / %-7.4f\n",
+                        names[c], ms[c], e.irradiance.mean, e.irradiance.max, e.prefilter.mean,
+                        e.prefilter.max, e.lut.mean, e.lut.max);
+            if (csv)
+                csv << "\"" << name << "\"," << names[c] << "," << ms[c] << "," << e.irradiance.mean
+                    << "," << e.irradiance.max << "," << e.prefilter.mean << "," << e.prefilter.max
+                    << "," << e.lut.mean << "," << e.lut.max << "\n";
+        }
+        const IblErrors &b = errors[0], &d = errors[1];
+        const bool better =
+            d.irradiance.mean <= b.irradiance.mean && d.irradiance.max <= b.irradiance.max &&
+            d.prefilter.mean <= b.prefilter.mean && d.prefilter.max <= b.prefilter.max &&
+            d.lut.mean <= b.lut.mean && d.lut.max <= b.lut.max;
+        std::printf(
+            "  default: %.1fx faster; every error (mean and max) at or below the "
+            "baseline's: %s\n",
+            ms[0] / ms[1], better ? "yes" : "NO");
+        allBetter = allBetter && better;
+        smallestRatio = std::min(smallestRatio, ms[0] / ms[1]);
+    }
+    std::printf(
+        "\nsmallest speed-up %.1fx; every error at or below the baseline's everywhere: %s\n",
+        smallestRatio, allBetter ? "yes" : "NO");
+    return allBetter && smallestRatio >= 10;
 }
 
 }  // namespace pbrlab

@@ -1,14 +1,18 @@
-// Image-based lighting on the GPU: an equirectangular environment becomes a cube map with
-// mips, then the split-sum precompute passes (irradiance, prefiltered mip chain, BRDF LUT)
-// run with the reference solutions of steps 18-20. Runs under OSMesa too. Every pass is
-// counted (Counter::PrecomputePasses) and timed, so "no environment, no precompute" is
-// observable.
+// Image-based lighting maps: an equirectangular environment becomes a cube map with mips
+// (uEnvironment), then the split-sum precompute builds the irradiance cube, the prefiltered
+// mip chain and the BRDF LUT. The default passes are the host's own, chosen by their measured
+// error against run time (docs/ibl.md): cube maps resampled on the CPU, the irradiance and the
+// rough mips convolved on the CPU from the environment's power binned per cube texel, the LUT
+// by quadrature on the GPU, computed once whatever the environment. Steps 18-20's reference
+// solutions, filtered importance sampling and LearnOpenGL's Riemann sum remain selectable (the
+// baseline of `pbrlab precompute --bench`). Runs under OSMesa too. Every pass is counted
+// (Counter::PrecomputePasses) and timed, so "no environment, no precompute" is observable.
 #pragma once
 
 #include <functional>
-#include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "gl/objects.h"
 #include "pbrlab/image.h"
@@ -16,18 +20,65 @@
 
 namespace pbrlab {
 
+// How the irradiance map and the rough prefiltered mips are computed (docs/ibl.md).
+enum class IrradianceMethod {
+    Bins,     // the environment binned per texel of a small cube (power, mean direction and
+              // spread of each bin), convolved with the cosine (ibl.cpp, convolveBins)
+    Step18,   // the step 18 reference solution (texel sum over a 32 x 32 mip)
+    Riemann,  // LearnOpenGL's Riemann sum over the hemisphere
+};
+
+enum class PrefilterMethod {
+    Bins,      // the same bins convolved with the prefilter's lobe
+    Filtered,  // filtered importance sampling (each sample reads the mip of its solid angle)
+    Plain,     // the step 19 reference solution (GGX importance sampling)
+};
+
+enum class LutMethod {
+    Quadrature,  // Gauss-Legendre over the half vector, the exact range where N.L > 0 (GPU)
+    Step20,      // the step 20 reference solution (Hammersley Monte Carlo), on the GPU
+};
+
 struct IblSettings {
-    int environmentSize = 256;  // cube face size of the radiance map (mips to 1x1)
+    int environmentSize = 256;  // uEnvironment: the sky behind, what steps 17-19 read
+    // The cube the GPU passes read (mips to 1x1): the prefilter's source, and uEnvironment for
+    // the step 18 and Riemann irradiance. 0: prefilterSize.
+    int sourceSize = 0;
+    int bins = 16;  // Bins: a cube of bins x bins per face
+    IrradianceMethod irradiance = IrradianceMethod::Bins;
     int irradianceSize = 32;
-    int prefilterSize = 128;  // mip 0 of the prefiltered map
-    int prefilterMips = 5;    // roughness 0, 0.25, ... 1
-    int prefilterSamples = 256;
-    int lutSize = 128;
-    int lutSamples = 512;
-    // Prefilter with filtered importance sampling (source mip from the pdf) instead of the
-    // step 19 function: the default for pictures, off to study the plain estimator.
-    bool filteredSampling = true;
-    std::string key() const;  // all of the above, for caches
+    double riemannStep = 0.025;  // Riemann: radians in theta and phi (LearnOpenGL's sampleDelta)
+    int prefilterSize = 128;     // mip 0 of the prefiltered map
+    int prefilterMips = 5;       // roughness 0, 0.25, ... 1
+    // Mip 0 (roughness 0, a mirror) is the environment itself, resampled; false: sampled like
+    // the other mips.
+    bool prefilterMirrorExact = true;
+    int mirrorSupersample = 1;  // mip 0 resampled at this many times its size, then averaged
+    PrefilterMethod prefilter = PrefilterMethod::Bins;  // the mips of roughness > 0
+    int prefilterSamples = 64;                          // Filtered, Plain: per texel of each mip
+    double filteredLodBias = 1.0;  // Filtered: mips added to the one of the sample's solid angle
+    LutMethod lut = LutMethod::Quadrature;
+    int lutWidth = 1024;  // N.V: the LUT changes fastest at grazing angles
+    int lutHeight = 32;   // roughness
+    int lutSamples = 64;  // Step20: Monte Carlo samples (Quadrature: fixed, 64 nodes)
+
+    int source() const { return sourceSize > 0 ? sourceSize : prefilterSize; }
+    std::string key() const;     // what the environment's maps depend on, for caches
+    std::string lutKey() const;  // what the LUT depends on
+    // One line for people: "irradiance bins 16 -> 32, prefilter 128 x5 64 samples FIS ...".
+    std::string describe() const;
+    // LearnOpenGL's sizes and sample counts through pbrlab's passes: 512 environment,
+    // irradiance by a Riemann sum with step 0.025, 128 x 5 mips prefiltered with 1024 plain
+    // GGX importance samples each, a 512 x 512 LUT with 1024 samples.
+    static IblSettings learnOpenGl();
+};
+
+// One precompute pass as it ran: which map, what it did, how long (glFinish + steady clock).
+struct IblPass {
+    std::string map;    // "environment", "irradiance", "prefilter", "lut"
+    std::string label;  // "irradiance bins 16 -> 32"
+    double milliseconds = 0;
+    bool cached = false;  // read from the disk cache, not computed
 };
 
 struct IblMaps {
@@ -35,12 +86,14 @@ struct IblMaps {
     gl::Handle environment, irradiance, prefilter, lut;
     bool derived = false;  // irradiance, prefilter and lut are built (buildDerived)
     float prefilterMaxLod = 0;
-    std::map<std::string, double> milliseconds;  // per pass: glFinish + steady clock
+    std::vector<IblPass> passes;
+    double milliseconds(const std::string& map) const;  // the passes of that map, summed
 };
 
-// The precomputed maps on disk (irradiance cube, prefiltered mips, LUT), keyed by the
-// environment's pixels, the settings and every GLSL file that computes them, so that an edit
-// to a solution or a shader never reads stale maps.
+// The precomputed maps on disk: the irradiance cube and prefiltered mips keyed by the
+// environment's pixels, the settings and every GLSL file and CPU algorithm that computes them;
+// the LUT keyed by its own settings and files only (it does not depend on the environment).
+// An edit to a solution or a shader never reads stale maps.
 class IblDiskCache {
 public:
     explicit IblDiskCache(std::filesystem::path root) : root_(std::move(root)) {}
@@ -62,11 +115,12 @@ public:
     std::unique_ptr<IblMaps> build(const Image& equirect, const IblSettings& settings,
                                    const IblDiskCache* cache = nullptr);
     // The two halves of build(): the environment cube with its mips (what steps 17-19 read),
-    // then the maps that steps 18-20's reference solutions compute from it (what step 21
-    // reads), only when something samples them.
+    // then the maps derived from the environment (what step 21 reads), only when something
+    // samples them. `maps` may come from makeMaps() instead, without an environment cube.
     std::unique_ptr<IblMaps> buildEnvironment(const Image& equirect, const IblSettings& settings);
     void buildDerived(IblMaps& maps, const Image& equirect, const IblDiskCache* cache = nullptr);
-    // Called as each pass starts ("[2/4] irradiance 32"): progress for people waiting.
+    static std::unique_ptr<IblMaps> makeMaps(const IblSettings& settings);
+    // Called as each pass starts ("[2/4] irradiance bins 16 -> 32"): progress for people.
     std::function<void(const std::string&)> onPass;
 
     // Read-back for files and tests: one face (0..5 = +x -x +y -y +z -z) of a cube mip.
@@ -75,30 +129,49 @@ public:
     static std::vector<std::vector<Image>> readCube(GLuint cube, int size, int levels);
     // A 2D texture's level 0, row 0 = t = 0 (as stored, not flipped).
     static Image readTexture(GLuint texture, int width, int height);
+    static Image readLut(const IblMaps& maps);
+    // A cube map read at these directions, mip `lod`, as a view's textureLod reads it
+    // (bilinear, seamless): for measuring the maps at points independent of their size.
+    std::vector<glm::dvec3> sampleCube(GLuint cube, float lod,
+                                       const std::vector<glm::dvec3>& directions);
 
 private:
     std::shared_ptr<Program> program(const std::string& pass, const std::string& contractId,
                                      const Defines& extra = {});
     void renderCube(GLuint cube, int size, int mip, const Program& program,
                     const std::string& pass);
-    std::string cacheKey(const Image& equirect, const IblSettings& settings) const;
-    bool loadCached(const std::filesystem::path& dir, IblMaps& maps) const;
-    void storeCached(const std::filesystem::path& dir, const IblMaps& maps) const;
+    struct Inputs;
+    void buildIrradiance(IblMaps& maps, Inputs& inputs);
+    void buildPrefilter(IblMaps& maps, Inputs& inputs);
+    void buildLut(IblMaps& maps);
+    std::vector<std::filesystem::path> sources(const std::vector<std::string>& shaders,
+                                               const std::string& contractId) const;
+    std::string mapsKey(const Image& equirect, const IblSettings& settings) const;
+    std::string lutKey(const IblSettings& settings) const;
     ProgramCache& programs_;
     std::filesystem::path shaders_, labs_;
     gl::FullscreenTriangle fullscreen_;
 };
 
-// The maps the precompute derives from the environment, each computed with the reference
-// solution of one contract step: a view may read a map only when that step comes before its
-// own (no step sees what its own or a later step's reference computed).
+// The maps the precompute derives from the environment, and the contract step each stands
+// in for: a view may read a map only when that step comes before its own (no step sees what
+// its own or a later step computes).
 struct DerivedMap {
     const char* sampler;   // the contract's uniform name
-    const char* producer;  // the contract step whose reference solution computes it
+    const char* producer;  // the contract step whose quantity the map holds
 };
 extern const DerivedMap kDerivedMaps[3];
 
 // Six faces named +x -x +y -y +z -z, as cmgen-like tools expect.
 extern const char* const kCubeFaceNames[6];
+
+// The unit direction through the centre of texel (x, y) of a cube face (OpenGL's convention,
+// as shaders/ibl/cube_face.glsl; row y = 0 has t = 0).
+glm::dvec3 cubeTexelDirection(int face, double x, double y, int size);
+
+// An equirectangular image resampled into a cube map's level 0 (bilinear, as a GPU sampler
+// with GL_REPEAT in u and GL_CLAMP_TO_EDGE in v), and the box-filtered mips below it (as
+// glGenerateMipmap): levels[mip][face], RGBA.
+std::vector<std::vector<Image>> equirectToCube(const Image& equirect, int size, int levels);
 
 }  // namespace pbrlab

@@ -518,7 +518,7 @@ const IblInputs& LabRenderer::environmentInputs(const Scene& scene, bool derived
         env.cpu->irradiance = cube(maps.irradiance.id(), s.irradianceSize, 1);
         env.cpu->prefilter = cube(maps.prefilter.id(), s.prefilterSize, s.prefilterMips);
         env.cpu->prefilterMaxLod = maps.prefilterMaxLod;
-        env.cpu->lut = IblPrecompute::readTexture(maps.lut.id(), s.lutSize, s.lutSize);
+        env.cpu->lut = IblPrecompute::readLut(maps);
         env.cpuDerived = true;
     }
     return *env.cpu;

@@ -1,6 +1,6 @@
-// Precompute: the split-sum BRDF LUT with the step 20 function; texel centres map to
-// x = N.V and y = roughness.
-uniform float uSize;
+// Precompute: the split-sum BRDF LUT with the step 20 function (Monte Carlo); texel centres map
+// to x = N.V and y = roughness.
+uniform vec2 uSize;
 uniform uint uSampleCount;
 layout(location = 0) out vec4 outColor;
 

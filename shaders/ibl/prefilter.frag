@@ -1,14 +1,16 @@
-// Precompute: one mip of the prefiltered environment. By default with the step 19 function;
-// with PBRLAB_FILTERED_IS, filtered importance sampling (Krivanek and Colbert, GPU Gems 3,
-// ch. 20): each sample reads the environment mip whose texel covers about the solid angle the
-// sample stands for, 1 / (n pdf), so a small bright sun is averaged instead of hit or missed
-// (no fireflies on rough surfaces at modest sample counts).
+// Precompute: one mip of the prefiltered environment, from the source cube bound as
+// uEnvironment. By default with the step 19 function; with PBRLAB_FILTERED_IS, filtered
+// importance sampling (Krivanek and Colbert, GPU Gems 3, ch. 20): each sample reads the source
+// mip whose texel covers about the solid angle the sample stands for, 1 / (n pdf), plus
+// uLodBias mips, so a small bright sun is averaged instead of hit or missed (no fireflies on
+// rough surfaces at modest sample counts). The bias is chosen by measured error (docs/ibl.md).
 #include "ibl/cube_face.glsl"
 
 uniform int uFace;
 uniform float uSize;
 uniform float uRoughness;
 uniform uint uSampleCount;
+uniform float uLodBias;
 layout(location = 0) out vec4 outColor;
 
 #ifdef PBRLAB_FILTERED_IS
@@ -28,7 +30,7 @@ vec3 pbrlab_prefilterFiltered(vec3 R, float roughness, uint sampleCount)
             // With N = V the pdf of L is D (N.H) / (4 V.H) = D / 4.
             float pdf = max(distributionGGX(N, H, roughness) * 0.25, 1e-8);
             float sampleSolidAngle = 1.0 / (float(n) * pdf);
-            float lod = roughness == 0.0 ? 0.0 : max(0.5 * log2(sampleSolidAngle / texelSolidAngle) + 1.0, 0.0);
+            float lod = max(0.5 * log2(sampleSolidAngle / texelSolidAngle) + uLodBias, 0.0);
             sum += textureLod(uEnvironment, L, lod).rgb * NdotL;
             weight += NdotL;
         }

@@ -51,6 +51,7 @@
     X(PFNGLGENBUFFERSPROC, GenBuffers)                           \
     X(PFNGLBINDBUFFERPROC, BindBuffer)                           \
     X(PFNGLBUFFERDATAPROC, BufferData)                           \
+    X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                   \
     X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                     \
     X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)         \
     X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray) \
@@ -60,6 +61,8 @@
     X(PFNGLBINDTEXTUREPROC, BindTexture)                         \
     X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                     \
     X(PFNGLTEXIMAGE2DPROC, TexImage2D)                           \
+    X(PFNGLTEXSTORAGE2DPROC, TexStorage2D)                       \
+    X(PFNGLTEXSUBIMAGE2DPROC, TexSubImage2D)                     \
     X(PFNGLTEXPARAMETERIPROC, TexParameteri)                     \
     X(PFNGLGENERATEMIPMAPPROC, GenerateMipmap)                   \
     X(PFNGLDELETETEXTURESPROC, DeleteTextures)                   \
