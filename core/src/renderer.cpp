@@ -3,12 +3,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "digest.h"
 #include "pbrlab/contract.h"
 #include "pbrlab/envgen.h"
 #include "pbrlab/error.h"
@@ -354,6 +356,27 @@ double LabRenderer::runView(const RenderRequest& request, const Scene& scene, bo
 
 namespace {
 
+// Each texel of a packed input as a q x q block (q = 2: the isolated points' quads; packing is
+// per point, so this equals packing every point q x q times), rows bottom-up as GL texture rows
+// run, like gl_FragCoord: one pass, whatever the number of points.
+Image quadsBottomUp(const Image& image, int q) {
+    Image out;
+    out.width = image.width * q;
+    out.height = image.height * q;
+    out.channels = image.channels;
+    out.pixels.resize(size_t(out.width) * size_t(out.height) * size_t(out.channels));
+    const size_t c = size_t(image.channels), row = size_t(out.width) * c;
+    for (int y = 0; y < image.height; ++y) {
+        const float* in = image.pixels.data() + size_t(y) * size_t(image.width) * c;
+        float* first = out.pixels.data() + size_t(out.height - 1 - q * y) * row;
+        for (int x = 0; x < image.width; ++x)
+            for (int k = 0; k < q; ++k)
+                std::copy_n(in + size_t(x) * c, c, first + (size_t(x) * size_t(q) + size_t(k)) * c);
+        for (int k = 1; k < q; ++k) std::copy_n(first, row, first - size_t(k) * row);
+    }
+    return out;
+}
+
 // The scene's float-rounded camera and first light: what the shader saw.
 glm::dvec3 asFloat(const glm::dvec3& v) {
     return glm::dvec3(glm::vec3(v));
@@ -384,21 +407,9 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
     const std::vector<Image> packed =
         packSurfaces(*request.surfaces, request.width, request.height);
     const int q = request.isolatePoints ? 2 : 1;  // quad side per point
-    std::vector<Surface> quads;
-    if (q > 1) {
-        quads.resize(request.surfaces->size() * 4);
-        const size_t w = size_t(request.width);
-        for (size_t y = 0; y < size_t(request.height); ++y)
-            for (size_t x = 0; x < w; ++x)
-                for (size_t k = 0; k < 4; ++k)
-                    quads[(2 * y + k / 2) * 2 * w + 2 * x + k % 2] = (*request.surfaces)[y * w + x];
-    }
-    const std::vector<Image> uploaded =
-        q > 1 ? packSurfaces(quads, 2 * request.width, 2 * request.height) : packed;
     probeInputs_.clear();
-    for (const Image& image : uploaded) {
-        // GL texture rows run bottom-up, like gl_FragCoord.
-        probeInputs_.push_back(gl::uploadTexture(flipRows(image), false, GL_RGBA32F));
+    for (const Image& image : packed) {
+        probeInputs_.push_back(gl::uploadTexture(quadsBottomUp(image, q), false, GL_RGBA32F));
         inputs.push_back(probeInputs_.back().id());
     }
     result.milliseconds =
@@ -506,22 +517,44 @@ const IblInputs& LabRenderer::environmentInputs(const Scene& scene, bool derived
     const IblMaps& maps = environment(scene, derived);
     Environment& env = environments_[scene.environment + "|" + iblSettings_.key()];
     const IblSettings& s = maps.settings;
-    auto cube = [](GLuint texture, int size, int levels) {
-        return CubeSampler(IblPrecompute::readCube(texture, size, levels));
+    auto add = [](Digest& digest, const Image& image) {
+        digest.add(std::array<int, 3>{image.width, image.height, image.channels});
+        digest.add(image.pixels.data(), image.pixels.size() * sizeof(float));
+    };
+    auto cube = [&](GLuint texture, int size, int levels, Digest& digest) {
+        std::vector<std::vector<Image>> mips = IblPrecompute::readCube(texture, size, levels);
+        for (const auto& faces : mips)
+            for (const Image& face : faces) add(digest, face);
+        return CubeSampler(std::move(mips));
     };
     if (!env.cpu) {
         env.cpu = std::make_unique<IblInputs>();
+        Digest digest;
         env.cpu->environment = cube(maps.environment.id(), s.environmentSize,
-                                    int(std::floor(std::log2(s.environmentSize))) + 1);
+                                    int(std::floor(std::log2(s.environmentSize))) + 1, digest);
+        env.cubeDigest = digest.h;
     }
     if (derived && !env.cpuDerived) {
-        env.cpu->irradiance = cube(maps.irradiance.id(), s.irradianceSize, 1);
-        env.cpu->prefilter = cube(maps.prefilter.id(), s.prefilterSize, s.prefilterMips);
+        Digest digest;
+        env.cpu->irradiance = cube(maps.irradiance.id(), s.irradianceSize, 1, digest);
+        env.cpu->prefilter = cube(maps.prefilter.id(), s.prefilterSize, s.prefilterMips, digest);
         env.cpu->prefilterMaxLod = maps.prefilterMaxLod;
+        digest.add(env.cpu->prefilterMaxLod);
         env.cpu->lut = IblPrecompute::readTexture(maps.lut.id(), s.lutSize, s.lutSize);
+        add(digest, env.cpu->lut);
+        env.derivedDigest = digest.h;
         env.cpuDerived = true;
     }
     return *env.cpu;
+}
+
+std::uint64_t LabRenderer::environmentDigest(const Scene& scene, bool derived) {
+    environmentInputs(scene, derived);
+    const Environment& env = environments_[scene.environment + "|" + iblSettings_.key()];
+    Digest digest;
+    digest.add(env.cubeDigest);
+    if (derived) digest.add(env.derivedDigest);
+    return digest.h;
 }
 
 std::vector<Surface> probeSurfaces(const Probe& probe) {

@@ -114,6 +114,9 @@ public:
     // CPU copies of the same maps, for references (read back on first use). `derived`: also
     // the irradiance, prefiltered and LUT maps (otherwise only the environment cube).
     const IblInputs& environmentInputs(const Scene& scene, bool derived = true);
+    // A hash of every texel environmentInputs(scene, derived) holds (the data, not its name):
+    // what a cached value computed from those maps is keyed by.
+    std::uint64_t environmentDigest(const Scene& scene, bool derived = true);
     void setIblSettings(const IblSettings& settings) { iblSettings_ = settings; }
     // True when the scene's environment maps are ready (no precompute on the next render).
     bool hasEnvironmentMaps(const Scene& scene) const {
@@ -124,8 +127,10 @@ public:
     void setPrecomputeProgress(std::function<void(const std::string&)> f) {
         precomputeProgress_ = std::move(f);
     }
-    // Where precomputed maps are kept between runs (empty: no disk cache).
+    // Where precomputed maps are kept between runs (empty: no disk cache). Grading keeps its
+    // converged integrals there too.
     void setIblCache(std::filesystem::path root) { iblCache_ = std::move(root); }
+    const std::filesystem::path& cacheRoot() const { return iblCache_; }
     // Sets uniforms a host-made view declares beyond the module's parameters (converge).
     void setExtraUniforms(std::function<void(const Program&)> f) { extraUniforms_ = std::move(f); }
     const IblSettings& iblSettings() const { return iblSettings_; }
@@ -176,7 +181,8 @@ private:
         std::unique_ptr<IblMaps> maps;
         std::unique_ptr<IblInputs> cpu;
         bool cpuDerived = false;
-        Image equirect;  // kept for the derived maps' first use
+        std::uint64_t cubeDigest = 0, derivedDigest = 0;  // of the CPU copies' texels
+        Image equirect;                                   // kept for the derived maps' first use
     };
     IblSettings iblSettings_;
     std::filesystem::path iblCache_ = IblDiskCache::defaultRoot();
