@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -35,6 +36,12 @@ glm::dvec3 srgbEncode(const glm::dvec3& linear) {
         e[c] = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
     }
     return e;
+}
+
+// The built-in unit sphere of JSON scenes (DrawItem::mesh == nullptr).
+const MeshData& unitSphere() {
+    static const MeshData sphere = makeUvSphere(96, 48);
+    return sphere;
 }
 
 GLint glWrap(TextureSource::Wrap wrap) {
@@ -132,7 +139,7 @@ GLuint LabRenderer::texture(const TextureSource& source) {
 
 const gl::GpuMesh& LabRenderer::mesh(const MeshData* data) {
     auto& slot = meshes_[data];
-    if (!slot) slot = std::make_unique<gl::GpuMesh>(data ? *data : makeUvSphere(96, 48));
+    if (!slot) slot = std::make_unique<gl::GpuMesh>(data ? *data : unitSphere());
     return *slot;
 }
 
@@ -158,15 +165,10 @@ std::vector<LabRenderer::MaterialMap> LabRenderer::materialMaps(const MaterialDe
 }
 
 void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int height) {
-    if (!gbuffer_ || gbuffer_->width() != width || gbuffer_->height() != height)
+    if (!gbuffer_ || gbuffer_->width() != width || gbuffer_->height() != height) {
         gbuffer_ = std::make_unique<gl::RenderTarget>(width, height, kGBufferTextures);
-    gbuffer_->bind();
-    const float zero[4] = {0, 0, 0, 0};
-    for (int i = 0; i < kGBufferTextures; ++i) gl::ClearBufferfv(GL_COLOR, i, zero);
-    gl::Clear(GL_DEPTH_BUFFER_BIT);
-    gl::Enable(GL_DEPTH_TEST);
-    gl::DepthFunc(GL_LESS);
-
+        gbufferHolds_.clear();
+    }
     const Camera& cam = scene.camera;
     // Near and far planes from the camera's distance, so models of any size keep depth
     // precision (a unit sphere at distance 3: 0.05 .. 200, as before).
@@ -178,7 +180,21 @@ void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int
     viewProjection_ = proj * view;
     for (const SceneModel& model : scene.models) keepModels_.insert(model.data);
 
-    for (const DrawItem& item : drawItems(scene)) {
+    const std::vector<DrawItem> items = drawItems(scene);
+    const fs::path cached = gbufferCacheFile(scene, items, needs);
+    if (!cached.empty() && (cached == gbufferHolds_ || readGBuffer(cached))) {
+        gbufferHolds_ = cached;
+        // Compiled all the same: what a scene compiles stays observable (--stats, the GUI).
+        programs_.get(gbufferRecipe(scene.materials.at(size_t(items[0].material)), needs));
+        return;
+    }
+    gbuffer_->bind();
+    const float zero[4] = {0, 0, 0, 0};
+    for (int i = 0; i < kGBufferTextures; ++i) gl::ClearBufferfv(GL_COLOR, i, zero);
+    gl::Clear(GL_DEPTH_BUFFER_BIT);
+    gl::Enable(GL_DEPTH_TEST);
+    gl::DepthFunc(GL_LESS);
+    for (const DrawItem& item : items) {
         const MaterialDesc& m = scene.materials.at(size_t(item.material));
         auto program = programs_.get(gbufferRecipe(m, needs));
         program->use();
@@ -209,6 +225,117 @@ void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int
     }
     gl::Disable(GL_DEPTH_TEST);
     gl::checkError("G-buffer pass");
+    if (!cached.empty()) writeGBuffer(cached);
+    gbufferHolds_ = cached;
+}
+
+// The G-buffer is a pure function of the program's source, the meshes, each item's transform
+// and material factors, the camera, the size, the code that turns them into draws (the
+// executable's build ID) and the GL driver; all of them are the key. Only draws that read no
+// image: a map would bring the image decoder into the key.
+fs::path LabRenderer::gbufferCacheFile(const Scene& scene, const std::vector<DrawItem>& items,
+                                       unsigned needs) {
+    if (iblCache_.empty() || items.empty()) return {};
+    const ProgramRecipe recipe =
+        gbufferRecipe(scene.materials.at(size_t(items[0].material)), needs);
+    for (const DrawItem& item : items)
+        if (!gbufferRecipe(scene.materials.at(size_t(item.material)), needs).defines.empty())
+            return {};  // a map is read
+    static const std::string code = buildIds({""});
+    if (code.empty()) return {};
+    Digest key;
+    key.add(std::string("G-buffer v1"));
+    key.add(code);
+    for (GLenum name : {GL_VENDOR, GL_RENDERER, GL_VERSION})
+        key.add(std::string(reinterpret_cast<const char*>(gl::GetString(name))));
+    key.add(std::array<int, 2>{gbuffer_->width(), gbuffer_->height()});
+    key.add(viewProjection_);
+    key.add(programs_.preprocessor().expand(recipe.vertex, recipe.defines).text);
+    key.add(programs_.preprocessor().expand(recipe.fragment, recipe.defines).text);
+    for (const DrawItem& item : items) {
+        const MaterialDesc& m = scene.materials.at(size_t(item.material));
+        key.add(item.transform);
+        key.add(m.albedo), key.add(m.metallic), key.add(m.roughness), key.add(m.ao);
+        key.add(m.occlusionStrength), key.add(m.normalScale), key.add(m.emissive);
+        auto [digest, missing] = meshDigests_.try_emplace(item.mesh, 0);
+        if (missing) {
+            const MeshData& mesh = item.mesh ? *item.mesh : unitSphere();
+            Digest d;
+            d.add(mesh.vertices.data(), mesh.vertices.size() * sizeof(Vertex));
+            d.add(mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t));
+            digest->second = d.h;
+        }
+        key.add(digest->second);
+    }
+    return iblCache_ / "gbuffer" / (key.hex() + ".bin");
+}
+
+namespace {
+
+// Cached G-buffers on disk: "PBRLGBF1", width, height, attachment count, the attachments' RGBA
+// floats (row 0 at the top, as read back) and a digest of them (a torn file is drawn again).
+constexpr char kGBufferMagic[8] = {'P', 'B', 'R', 'L', 'G', 'B', 'F', '1'};
+
+}  // namespace
+
+bool LabRenderer::readGBuffer(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    char magic[8] = {};
+    std::int32_t size[3] = {0, 0, 0};
+    if (!in.read(magic, 8) || std::memcmp(magic, kGBufferMagic, 8) != 0 ||
+        !in.read(reinterpret_cast<char*>(size), sizeof size) || size[0] != gbuffer_->width() ||
+        size[1] != gbuffer_->height() || size[2] != kGBufferTextures)
+        return false;
+    std::vector<Image> images(kGBufferTextures);
+    Digest digest;
+    for (Image& image : images) {
+        image.width = size[0];
+        image.height = size[1];
+        image.channels = 4;
+        image.pixels.resize(size_t(size[0]) * size_t(size[1]) * 4);
+        const auto bytes = std::streamsize(image.pixels.size() * sizeof(float));
+        if (!in.read(reinterpret_cast<char*>(image.pixels.data()), bytes)) return false;
+        digest.add(image.pixels.data(), size_t(bytes));
+    }
+    std::uint64_t stored = 0;
+    if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored) || stored != digest.h ||
+        in.peek() != std::ifstream::traits_type::eof())
+        return false;
+    for (int i = 0; i < kGBufferTextures; ++i) {
+        // The attachments' storage is respecified with the same size and format.
+        gl::BindTexture(GL_TEXTURE_2D, gbuffer_->colorTexture(i));
+        gl::TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, size[0], size[1], 0, GL_RGBA, GL_FLOAT,
+                       flipRows(images[size_t(i)]).pixels.data());
+    }
+    gl::checkError("G-buffer from the cache");
+    logLine("gbuffer", "from " + file.string());
+    return true;
+}
+
+void LabRenderer::writeGBuffer(const fs::path& file) const {
+    std::error_code ec;
+    fs::create_directories(file.parent_path(), ec);
+    const fs::path tmp = file.string() + ".tmp" + std::to_string(::getpid());
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        out.write(kGBufferMagic, 8);
+        const std::int32_t size[3] = {gbuffer_->width(), gbuffer_->height(), kGBufferTextures};
+        out.write(reinterpret_cast<const char*>(size), sizeof size);
+        Digest digest;
+        for (int i = 0; i < kGBufferTextures; ++i) {
+            const Image image = gbuffer_->read(i);
+            const size_t bytes = image.pixels.size() * sizeof(float);
+            digest.add(image.pixels.data(), bytes);
+            out.write(reinterpret_cast<const char*>(image.pixels.data()), std::streamsize(bytes));
+        }
+        out.write(reinterpret_cast<const char*>(&digest.h), sizeof digest.h);
+        if (!out) {
+            fs::remove(tmp, ec);
+            return;  // no cache: fine
+        }
+    }
+    fs::rename(tmp, file, ec);  // atomic: a reader sees the whole file or none
+    if (ec) fs::remove(tmp, ec);
 }
 
 bool LabRenderer::mayRead(const ModuleDesc& d, const std::string& sampler) {

@@ -157,6 +157,13 @@ private:
     static std::vector<MaterialMap> materialMaps(const MaterialDesc& m);
     const gl::GpuMesh& mesh(const MeshData* data);  // nullptr: the unit sphere
     void drawGBuffer(const Scene& scene, unsigned needs, int width, int height);
+    // drawGBuffer's disk cache, for the lesson's sphere grid above all (49 spheres of 9216
+    // triangles: half a second of llvmpipe in every grading process). The file for these draws
+    // (empty: not cached), and the attachments read from it or written to it.
+    std::filesystem::path gbufferCacheFile(const Scene& scene, const std::vector<DrawItem>& items,
+                                           unsigned needs);
+    bool readGBuffer(const std::filesystem::path& file);
+    void writeGBuffer(const std::filesystem::path& file) const;
     double runView(const RenderRequest& request, const Scene& scene, bool probe,
                    const std::vector<GLuint>& inputs, int width, int height);
     GLuint texture(const TextureSource& source);  // read and uploaded on first use
@@ -172,7 +179,9 @@ private:
     // address is reused for another mesh.
     std::map<const MeshData*, std::unique_ptr<gl::GpuMesh>> meshes_;
     std::set<std::shared_ptr<const ModelData>> keepModels_;
-    std::map<std::string, gl::Handle> textures_;  // by TextureSource::key
+    std::map<std::string, gl::Handle> textures_;            // by TextureSource::key
+    std::map<const MeshData*, std::uint64_t> meshDigests_;  // for the G-buffer cache's key
+    std::filesystem::path gbufferHolds_;  // the cached G-buffer gbuffer_ holds, if any
     std::vector<gl::Handle> probeInputs_;
     gl::Handle blackCube_, black2d_;
     glm::mat4 viewProjection_{1};
