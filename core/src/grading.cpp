@@ -302,6 +302,7 @@ private:
         request.render = {&m_, &params, &scene, source_, surfaces, width, height};
         request.render.seamlessCubes = false;
         request.render.isolatePoints = surfaces != nullptr;
+        request.render.cacheGBuffer = true;
         Evaluation e = evaluate(renderer_, request);
         ValuesRun run;
         run.report = reportFor(name, d_, e.comparison, e.render.surfaces,
@@ -548,6 +549,7 @@ private:
             RenderRequest request{&m_, &params, &scene, source_, nullptr, 64, 64};
             request.seamlessCubes = false;
             request.readSurfaces = true;
+            request.cacheGBuffer = true;
             const RenderResult r = renderer_.render(request);
             CheckReport finite;
             finite.name = "finite values on the scene " + scene.file.stem().string() + " with " +
@@ -723,9 +725,18 @@ private:
         Evaluator evaluator;
         evaluator.run = [&](const std::vector<Surface>& surfaces, const std::string& view,
                             const std::vector<std::string>& set) {
-            const Grid g = grid(surfaces);
+            // Rows of kRowWidth points; a copy only when the last row needs padding (the
+            // chi-square test's 131072 samples do not).
+            const bool whole = !surfaces.empty() && surfaces.size() % kRowWidth == 0;
+            const Grid g = whole ? Grid() : grid(surfaces);
             const ParamValues params = withSets(d_, set);
-            RenderRequest request{&m_, &params, &scene, source_, &g.surfaces, g.width, g.height};
+            RenderRequest request{&m_,
+                                  &params,
+                                  &scene,
+                                  source_,
+                                  whole ? &surfaces : &g.surfaces,
+                                  kRowWidth,
+                                  whole ? int(surfaces.size() / kRowWidth) : g.height};
             request.seamlessCubes = false;
             request.isolatePoints = true;
             request.view = view;

@@ -164,7 +164,8 @@ std::vector<LabRenderer::MaterialMap> LabRenderer::materialMaps(const MaterialDe
             {NeedsEmissive, &m.emissiveMap, "HAS_EMISSIVE_MAP", "uEmissiveMap"}};
 }
 
-void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int height) {
+void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int height,
+                              bool cache) {
     if (!gbuffer_ || gbuffer_->width() != width || gbuffer_->height() != height) {
         gbuffer_ = std::make_unique<gl::RenderTarget>(width, height, kGBufferTextures);
         gbufferHolds_.clear();
@@ -181,7 +182,7 @@ void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int
     for (const SceneModel& model : scene.models) keepModels_.insert(model.data);
 
     const std::vector<DrawItem> items = drawItems(scene);
-    const fs::path cached = gbufferCacheFile(scene, items, needs);
+    const fs::path cached = cache ? gbufferCacheFile(scene, items, needs) : fs::path();
     if (!cached.empty() && (cached == gbufferHolds_ || readGBuffer(cached))) {
         gbufferHolds_ = cached;
         // Compiled all the same: what a scene compiles stays observable (--stats, the GUI).
@@ -517,7 +518,7 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
     RenderResult result;
     std::vector<GLuint> inputs;
     if (!request.surfaces) {
-        drawGBuffer(scene, d.needs, request.width, request.height);
+        drawGBuffer(scene, d.needs, request.width, request.height, request.cacheGBuffer);
         for (int i = 0; i < kGBufferTextures; ++i) inputs.push_back(gbuffer_->colorTexture(i));
         result.milliseconds = runView(request, scene, false, inputs, request.width, request.height);
         result.valueTexture = valueTarget_->colorTexture(0);
@@ -552,7 +553,7 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
                 for (int c = 0; c < 4; ++c) value.at(x, y, c) = result.value.at(2 * x, 2 * y, c);
         result.value = std::move(value);
     }
-    result.surfaces = unpackSurfaces(packed, {}, {});
+    if (request.readSurfaces) result.surfaces = unpackSurfaces(packed, {}, {});
     return result;
 }
 
@@ -705,6 +706,7 @@ RenderResult LabRenderer::renderSurfaces(const LoadedModule& module, const Param
                                          const std::vector<Surface>& surfaces, int width,
                                          int height) {
     RenderRequest r{&module, &params, &scene, source, &surfaces, width, height};
+    r.readSurfaces = true;
     return render(r);
 }
 

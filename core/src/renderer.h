@@ -70,7 +70,12 @@ struct RenderRequest {
     // row 0 = top), uploaded as textures.
     const std::vector<Surface>* surfaces = nullptr;
     int width = 0, height = 0;
-    bool readSurfaces = false;  // scene: read the G-buffer back into RenderResult::surfaces
+    // The inputs the view saw into RenderResult::surfaces: the scene's G-buffer read back, or
+    // the given surfaces as the packed floats have them.
+    bool readSurfaces = false;
+    // Scene: keep the G-buffer on disk when its draws read no image, and read it from there
+    // (grading draws the same few scenes, small, in every process; see drawGBuffer).
+    bool cacheGBuffer = false;
     // Scene: read the value back into RenderResult::value (off: only valueTexture, for a view
     // drawn straight from the GPU while the input moves).
     bool readValue = true;
@@ -156,10 +161,10 @@ private:
     };
     static std::vector<MaterialMap> materialMaps(const MaterialDesc& m);
     const gl::GpuMesh& mesh(const MeshData* data);  // nullptr: the unit sphere
-    void drawGBuffer(const Scene& scene, unsigned needs, int width, int height);
+    void drawGBuffer(const Scene& scene, unsigned needs, int width, int height, bool cache);
     // drawGBuffer's disk cache, for the lesson's sphere grid above all (49 spheres of 9216
     // triangles: half a second of llvmpipe in every grading process). The file for these draws
-    // (empty: not cached), and the attachments read from it or written to it.
+    // (empty: not cacheable), and the attachments read from it or written to it.
     std::filesystem::path gbufferCacheFile(const Scene& scene, const std::vector<DrawItem>& items,
                                            unsigned needs);
     bool readGBuffer(const std::filesystem::path& file);
