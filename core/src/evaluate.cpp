@@ -19,8 +19,9 @@ Evaluation evaluate(LabRenderer& renderer, const EvalRequest& request) {
     const ModuleDesc& d = *r.module->desc;
     Evaluation e;
     RenderRequest render = r;
-    // The band reads the surfaces the view saw: the G-buffer comes back with the value.
-    render.readSurfaces = render.readSurfaces || (request.band && !r.surfaces);
+    // The band reads the surfaces the view saw (the G-buffer read back, or the given surfaces
+    // as floats).
+    render.readSurfaces = render.readSurfaces || request.band;
     e.render = renderer.render(render);
     if (!request.band) return e;
     const Scene scene = applyParamBindings(*r.scene, d, *r.params);

@@ -121,6 +121,10 @@ Child startChild(const LoadedModule& m, const DataPaths& paths, const GradeOptio
                 send("stage " + validUtf8(what) + "\n");
             };
             out = dumpJson(sanitized(gradeJson(gradeModule(renderer, m, paths, options))));
+            // Out now, without tearing down the renderer and the GL context (llvmpipe's threads
+            // joined one by one): the kernel frees it all at once.
+            send("result\n" + out + "\n");
+            _exit(0);
         } catch (const std::exception& e) {
             ModuleGrade failed;
             failed.id = m.desc->id;
@@ -198,6 +202,7 @@ ModuleGrade finishChild(Child& c, const GradeOptions& o) {
 // Grades the jobs in children, at most `o.jobs` at a time, each within its time limit.
 void gradeInChildren(const std::vector<GradeJob>& work, const DataPaths& paths,
                      const GradeOptions& o, std::vector<ModuleGrade>& grades) {
+    if (!work.empty()) preloadHeadlessLibrary();  // inherited by every child
     const size_t jobs = size_t(std::max(1, o.jobs));
     std::vector<Child> running;
     size_t next = 0;

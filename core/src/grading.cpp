@@ -5,15 +5,19 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
+#include <ctime>
 #include <fstream>
 #include <map>
 #include <sstream>
 
+#include "digest.h"
 #include "feedback.h"
 #include "mutants.h"
 #include "parallel.h"
 #include "pbrlab/contract.h"
 #include "pbrlab/error.h"
+#include "pbrlab/log.h"
 #include "stability.h"
 
 namespace fs = std::filesystem;
@@ -66,6 +70,67 @@ Scene colouredLights(Scene scene) {
                     {c + r * glm::dvec3(-2.5, 0.4, 0.8), {2, 18, 60}},
                     {c + r * glm::dvec3(0.3, -1.0, 0.9), {0.9, 0.9, 0.9}}};
     return scene;
+}
+
+void addSurface(Digest& d, const Surface& s) {
+    d.add(s.covered);
+    if (!s.covered) return;
+    d.add(s.position), d.add(s.normal), d.add(s.tangent), d.add(s.uv), d.add(s.view);
+    d.add(s.light), d.add(s.lightPosition), d.add(s.lightColor), d.add(s.albedoTexel);
+    d.add(s.albedo), d.add(s.metallic), d.add(s.roughness), d.add(s.ao), d.add(s.normalTexel);
+    d.add(s.emissive), d.add(s.extra);
+}
+
+// Converged integrals on disk: "PBRLCNV1", their count, (mean, sigma) per point as doubles,
+// and a digest of those bytes (a torn or damaged file is computed again, never read).
+constexpr char kConvergedMagic[8] = {'P', 'B', 'R', 'L', 'C', 'N', 'V', '1'};
+
+bool readConverged(const fs::path& file, std::vector<Estimate>& truth) {
+    std::ifstream in(file, std::ios::binary);
+    char magic[8] = {};
+    std::uint64_t count = 0, stored = 0;
+    if (!in.read(magic, 8) || std::memcmp(magic, kConvergedMagic, 8) != 0 ||
+        !in.read(reinterpret_cast<char*>(&count), sizeof count) || count != truth.size())
+        return false;
+    std::vector<Estimate> values(truth.size());
+    Digest digest;
+    for (Estimate& e : values) {
+        double v[6];
+        if (!in.read(reinterpret_cast<char*>(v), sizeof v)) return false;
+        digest.add(v);
+        e.mean = {v[0], v[1], v[2]};
+        e.sigma = {v[3], v[4], v[5]};
+    }
+    if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored) || stored != digest.h ||
+        in.peek() != std::ifstream::traits_type::eof())
+        return false;
+    truth = std::move(values);
+    return true;
+}
+
+void writeConverged(const fs::path& file, const std::vector<Estimate>& truth) {
+    std::error_code ec;
+    fs::create_directories(file.parent_path(), ec);
+    const fs::path tmp = file.string() + ".tmp" + std::to_string(::getpid());
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        out.write(kConvergedMagic, 8);
+        const std::uint64_t count = truth.size();
+        out.write(reinterpret_cast<const char*>(&count), sizeof count);
+        Digest digest;
+        for (const Estimate& e : truth) {
+            const double v[6] = {e.mean.x, e.mean.y, e.mean.z, e.sigma.x, e.sigma.y, e.sigma.z};
+            digest.add(v);
+            out.write(reinterpret_cast<const char*>(v), sizeof v);
+        }
+        out.write(reinterpret_cast<const char*>(&digest.h), sizeof digest.h);
+        if (!out) {
+            fs::remove(tmp, ec);
+            return;  // no cache: fine
+        }
+    }
+    fs::rename(tmp, file, ec);  // atomic: a reader sees the whole file or none
+    if (ec) fs::remove(tmp, ec);
 }
 
 // A check of values against a band, with what feedback needs if it fails.
@@ -165,6 +230,7 @@ public:
         for (const CheckReport& c : result_.checks)
             if (c.deducted && !c.passed) result_.passed = false;
         if (!result_.passed) explain();
+        stage("");  // the last stage's time
         result_.seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return std::move(result_);
@@ -179,8 +245,25 @@ private:
         if (settings_.stopAtFirstFailure && c.deducted && !c.passed) throw Stopped{};
     }
 
+    // Each stage is also a journal line (`--verbose`) with the time the previous one took: wall
+    // clock and the CPU time of every thread of the process (the GL driver's and the CPU
+    // references' included), which a busy machine does not inflate.
+    // "" ends the last stage.
     void stage(const std::string& what) {
-        if (settings_.stage) settings_.stage(d_.id + ": " + what);
+        const auto now = std::chrono::steady_clock::now();
+        timespec cpu{};
+        clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &cpu);
+        const double cpuMs = double(cpu.tv_sec) * 1e3 + double(cpu.tv_nsec) * 1e-6;
+        if (!stageName_.empty())
+            logLine("grade",
+                    d_.id + ": " + stageName_ + " " +
+                        number(std::chrono::duration<double, std::milli>(now - stageStart_).count(),
+                               4) +
+                        " ms (cpu " + number(cpuMs - stageCpuMs_, 4) + " ms)");
+        stageName_ = what;
+        stageStart_ = now;
+        stageCpuMs_ = cpuMs;
+        if (settings_.stage && !what.empty()) settings_.stage(d_.id + ": " + what);
     }
 
     // No step may read what its own or a later step's reference solution computed (the
@@ -219,6 +302,7 @@ private:
         request.render = {&m_, &params, &scene, source_, surfaces, width, height};
         request.render.seamlessCubes = false;
         request.render.isolatePoints = surfaces != nullptr;
+        request.render.cacheGBuffer = true;
         Evaluation e = evaluate(renderer_, request);
         ValuesRun run;
         run.report = reportFor(name, d_, e.comparison, e.render.surfaces,
@@ -332,13 +416,51 @@ private:
                 {"random inputs", std::move(g.surfaces), g.width, g.height, nullptr, {}, {}});
         }
         stage("converged integrals");
-        for (PointSet& set : sets) {
-            set.truth.resize(set.surfaces.size());
+        std::vector<const Surface*> points;
+        for (const PointSet& set : sets)
+            for (const Surface& surface : set.surfaces) points.push_back(&surface);
+        std::vector<Estimate> truth(points.size());
+        // Seconds of work per step, and a pure function of the reference's code, the
+        // environment's texels, the points and the sample count: kept on disk, keyed by all of
+        // them (a rebuild, another seed or other maps is another file).
+        fs::path cached;
+        // The code: the module's library (its CPU reference, linked in whole: it calls nothing
+        // of pbrlab's executable) and the maths libraries it calls.
+        if (const std::string code =
+                buildIds({m_.library.filename().string(), "libm.so.6", "libstdc++.so.6"});
+            !code.empty() && !renderer_.cacheRoot().empty()) {
+            Digest key;
+            key.add(std::string("converged integrals v1"));
+            key.add(code);
+            key.add(d_.id);
+            key.add(e.truthSamples);
+            if (d_.needs & NeedsEnvironment)
+                key.add(renderer_.environmentDigest(judged, d_.needs & NeedsPrecomputedMaps));
+            for (const ParamDecl& p : d_.params) {
+                key.add(p.name);
+                key.add(context.params.vector(p.name));
+            }
+            for (const ref::PointLight& l : context.lights) key.add(l.position), key.add(l.color);
+            key.add(context.cameraPosition);
+            key.add(points.size());
+            for (const Surface* surface : points) addSurface(key, *surface);
+            cached = renderer_.cacheRoot() / "converged" / (d_.id + "-" + key.hex() + ".bin");
+        }
+        const bool fromCache = !cached.empty() && readConverged(cached, truth);
+        if (!fromCache) {
             // Thousands of samples per point, on every core (the references are pure).
-            parallelFor(set.surfaces.size(), [&](size_t i) {
-                if (set.surfaces[i].covered)
-                    set.truth[i] = e.converged(set.surfaces[i], context, e.truthSamples);
+            parallelFor(points.size(), [&](size_t i) {
+                if (points[i]->covered) truth[i] = e.converged(*points[i], context, e.truthSamples);
             });
+            if (!cached.empty()) writeConverged(cached, truth);
+        }
+        logLine("grade", d_.id + ": converged integrals " +
+                             (fromCache ? "read from " : "computed, kept in ") +
+                             (cached.empty() ? std::string("no cache") : cached.string()));
+        for (size_t k = 0; PointSet & set : sets) {
+            set.truth.assign(truth.begin() + long(k),
+                             truth.begin() + long(k + set.surfaces.size()));
+            k += set.surfaces.size();
         }
         const std::vector<int> counts =
             e.sampleCounts.empty() ? std::vector<int>{0} : e.sampleCounts;
@@ -427,6 +549,7 @@ private:
             RenderRequest request{&m_, &params, &scene, source_, nullptr, 64, 64};
             request.seamlessCubes = false;
             request.readSurfaces = true;
+            request.cacheGBuffer = true;
             const RenderResult r = renderer_.render(request);
             CheckReport finite;
             finite.name = "finite values on the scene " + scene.file.stem().string() + " with " +
@@ -602,9 +725,18 @@ private:
         Evaluator evaluator;
         evaluator.run = [&](const std::vector<Surface>& surfaces, const std::string& view,
                             const std::vector<std::string>& set) {
-            const Grid g = grid(surfaces);
+            // Rows of kRowWidth points; a copy only when the last row needs padding (the
+            // chi-square test's 131072 samples do not).
+            const bool whole = !surfaces.empty() && surfaces.size() % kRowWidth == 0;
+            const Grid g = whole ? Grid() : grid(surfaces);
             const ParamValues params = withSets(d_, set);
-            RenderRequest request{&m_, &params, &scene, source_, &g.surfaces, g.width, g.height};
+            RenderRequest request{&m_,
+                                  &params,
+                                  &scene,
+                                  source_,
+                                  whole ? &surfaces : &g.surfaces,
+                                  kRowWidth,
+                                  whole ? int(surfaces.size() / kRowWidth) : g.height};
             request.seamlessCubes = false;
             request.isolatePoints = true;
             request.view = view;
@@ -702,8 +834,10 @@ private:
             bool exact = false;
             result_.mistake = classifyError(in, &exact);
             if (!result_.mistake.empty()) result_.namedBy = "pattern";
-            const std::string typical =
-                settings_.typicalMistakes ? typicalMistake(f, in.values) : "";
+            // The candidates below are compared on a sample of the failed check's points.
+            Sample points;
+            if (settings_.typicalMistakes || settings_.mutantCatalogue) points = sample(f);
+            const std::string typical = settings_.typicalMistakes ? typicalMistake(f, points) : "";
             if (!typical.empty()) {
                 result_.mistake += (result_.mistake.empty() ? "" : " ") +
                                    std::string("It matches a typical mistake: ") + typical;
@@ -713,7 +847,7 @@ private:
             // the one change the student's values equal.
             if (!exact && typical.empty() && settings_.mutantCatalogue) {
                 stage("feedback: one change from the reference");
-                const std::string change = mutantMatch(f);
+                const std::string change = mutantMatch(f, points);
                 if (!change.empty()) {
                     result_.mistake += (result_.mistake.empty() ? "" : " ") + change;
                     result_.namedBy = "mutant";
@@ -728,13 +862,72 @@ private:
                               : result_.mistake + " " + message;
     }
 
-    // The step's typical mistakes (labs/NN-id/mistakes/*.glsl) on the failed check's inputs:
-    // the one the student's values equal (within the band's width, at 95% of the points)
-    // names the mistake outright.
-    std::string typicalMistake(const ValuesRun& f, const std::vector<glm::dvec3>& student) {
+    // What the typical mistakes and the mutants are compared with: up to 96 points of the failed
+    // check (evenly spread, its worst among them) and the student's values there, rendered
+    // once. Every candidate is then one small render on the same points.
+    struct Sample {
+        std::vector<size_t> picked;   // indices into the failed check's points
+        std::vector<Surface> points;  // those points, in rows of kRowWidth (padded)
+        int height = 0;
+        Image student;
+    };
+
+    Sample sample(const ValuesRun& f) {
+        Sample out;
+        std::vector<size_t> covered;
+        for (size_t i = 0; i < f.surfaces.size(); ++i)
+            if (f.surfaces[i].covered) covered.push_back(i);
+        if (covered.empty()) return out;
+        const size_t step = std::max<size_t>(1, covered.size() / 95);
+        for (size_t k = 0; k < covered.size() && out.picked.size() < 95; k += step)
+            out.picked.push_back(covered[k]);
+        if (f.worstIndex >= 0 && f.surfaces[size_t(f.worstIndex)].covered)
+            out.picked.push_back(size_t(f.worstIndex));
+        for (size_t i : out.picked) out.points.push_back(f.surfaces[i]);
+        out.points.resize((out.points.size() + kRowWidth - 1) / kRowWidth * kRowWidth);
+        out.height = int(out.points.size() / kRowWidth);
+        out.student = valuesOn(f, out, source_);
+        return out;
+    }
+
+    Image valuesOn(const ValuesRun& f, const Sample& sample, const StudentSource& source) {
+        RenderRequest request{&m_,       &f.params,    &f.scene, source, &sample.points,
+                              kRowWidth, sample.height};
+        request.seamlessCubes = false;
+        request.isolatePoints = true;
+        return renderer_.render(request).value;
+    }
+
+    // At how many of the sampled points a candidate's values equal the student's (within twice
+    // the band's width), and how far apart they are over all of them (0: equal everywhere).
+    struct Agreement {
+        int same = 0;
+        double distance = 0;
+    };
+
+    Agreement agreement(const ValuesRun& f, const Sample& sample, const Image& candidate) const {
+        Agreement a;
+        for (size_t p = 0; p < sample.picked.size(); ++p) {
+            bool equal = true;
+            for (int c = 0; c < d_.components; ++c) {
+                const double v = sample.student.pixels[p * 4 + size_t(c)],
+                             m = candidate.pixels[p * 4 + size_t(c)];
+                const double slack = 2 * f.band.slack[sample.picked[p]][c] + 1e-6 * std::abs(m);
+                const double e = v == m ? 0 : std::abs(v - m) / std::max(slack, 1e-300);
+                equal = equal && e <= 1;
+                a.distance += std::isfinite(e) ? std::min(e, 1e6) : 1e6;
+            }
+            a.same += equal;
+        }
+        return a;
+    }
+
+    // The step's typical mistakes (labs/NN-id/mistakes/*.glsl): the one the student's values
+    // equal at 95% of the sampled points names the mistake outright.
+    std::string typicalMistake(const ValuesRun& f, const Sample& sample) {
         const fs::path dir = m_.sourceDir / "mistakes";
         std::error_code ec;
-        if (!fs::is_directory(dir, ec)) return "";
+        if (sample.picked.empty() || !fs::is_directory(dir, ec)) return "";
         std::vector<fs::path> files;
         for (const auto& e : fs::directory_iterator(dir, ec))
             if (e.path().extension() == ".glsl") files.push_back(e.path());
@@ -747,30 +940,8 @@ private:
             fs::create_directories(tmp, ec);
             fs::copy_file(file, tmp / (d_.id + ".glsl"), fs::copy_options::overwrite_existing, ec);
             try {
-                RenderRequest request{&m_,
-                                      &f.params,
-                                      &f.scene,
-                                      StudentSource{tmp, false},
-                                      f.fromScene ? nullptr : &f.surfaces,
-                                      f.width,
-                                      f.height};
-                request.seamlessCubes = false;
-                request.isolatePoints = !f.fromScene;
-                const RenderResult r = renderer_.render(request);
-                int covered = 0, same = 0;
-                for (size_t i = 0, k = 0; i < f.surfaces.size(); ++i) {
-                    if (!f.surfaces[i].covered) continue;
-                    bool equal = true;
-                    for (int c = 0; c < d_.components; ++c) {
-                        const double m = r.value.pixels[i * 4 + size_t(c)], v = student[k][c];
-                        equal = equal && (m == v || std::abs(m - v) <= 2 * f.band.slack[i][c] +
-                                                                           1e-6 * std::abs(m));
-                    }
-                    ++covered;
-                    same += equal;
-                    ++k;
-                }
-                const double share = covered ? double(same) / covered : 0;
+                const Agreement a = agreement(f, sample, valuesOn(f, sample, {tmp, false}));
+                const double share = double(a.same) / double(sample.picked.size());
                 if (share >= bestShare) bestShare = share, best = mistakeName(file);
             } catch (const Error&) {
             }
@@ -779,31 +950,11 @@ private:
         return best;
     }
 
-    // The student's values and each mutant's (mutants.h) on up to 96 points of the failed
-    // check (evenly spread, its worst among them): a mutant they equal, within twice the band's
-    // width at 95% of the points, is the mistake, said by its family and its change.
-    std::string mutantMatch(const ValuesRun& f) {
-        std::vector<size_t> covered;
-        for (size_t i = 0; i < f.surfaces.size(); ++i)
-            if (f.surfaces[i].covered) covered.push_back(i);
-        if (covered.empty()) return "";
-        std::vector<size_t> picked;
-        const size_t step = std::max<size_t>(1, covered.size() / 95);
-        for (size_t k = 0; k < covered.size() && picked.size() < 95; k += step)
-            picked.push_back(covered[k]);
-        if (f.worstIndex >= 0 && f.surfaces[size_t(f.worstIndex)].covered)
-            picked.push_back(size_t(f.worstIndex));
-        std::vector<Surface> points;
-        for (size_t i : picked) points.push_back(f.surfaces[i]);
-        points.resize((points.size() + kRowWidth - 1) / kRowWidth * kRowWidth);
-        const int height = int(points.size() / kRowWidth);
-        auto values = [&](const StudentSource& source) {
-            RenderRequest request{&m_, &f.params, &f.scene, source, &points, kRowWidth, height};
-            request.seamlessCubes = false;
-            request.isolatePoints = true;
-            return renderer_.render(request).value;
-        };
-        const Image student = values(source_);
+    // Each mutant of the reference solution (mutants.h) on the sampled points: one the student's
+    // values equal (at 95% of them, the closest overall) is the mistake, said by its family and
+    // its change. One equal everywhere cannot be beaten: the search stops there.
+    std::string mutantMatch(const ValuesRun& f, const Sample& sample) {
+        if (sample.picked.empty()) return "";
         std::ifstream in(m_.sourceDir / "solution.glsl", std::ios::binary);
         std::stringstream text;
         text << in.rdbuf();
@@ -814,32 +965,19 @@ private:
         fs::create_directories(tmp, ec);
         std::string best;
         double bestDistance = 1e300;
-        for (size_t k = 0; k < mutants.size(); ++k) {
+        for (size_t k = 0; k < mutants.size() && bestDistance > 0; ++k) {
             const fs::path dir = tmp / std::to_string(k);
             fs::create_directories(dir, ec);
             std::ofstream(dir / (d_.id + ".glsl"), std::ios::binary) << mutants[k].text;
             Image mutant;
             try {
-                mutant = values(StudentSource{dir, false});
+                mutant = valuesOn(f, sample, {dir, false});
             } catch (const Error&) {
                 continue;  // does not compile
             }
-            int same = 0;
-            double distance = 0;
-            for (size_t p = 0; p < picked.size(); ++p) {
-                bool equal = true;
-                for (int c = 0; c < d_.components; ++c) {
-                    const double a = student.pixels[p * 4 + size_t(c)],
-                                 b = mutant.pixels[p * 4 + size_t(c)];
-                    const double slack = 2 * f.band.slack[picked[p]][c] + 1e-6 * std::abs(b);
-                    const double e = a == b ? 0 : std::abs(a - b) / std::max(slack, 1e-300);
-                    equal = equal && e <= 1;
-                    distance += std::isfinite(e) ? std::min(e, 1e6) : 1e6;
-                }
-                same += equal;
-            }
-            if (same >= 0.95 * double(picked.size()) && distance < bestDistance) {
-                bestDistance = distance;
+            const Agreement a = agreement(f, sample, mutant);
+            if (a.same >= 0.95 * double(sample.picked.size()) && a.distance < bestDistance) {
+                bestDistance = a.distance;
                 std::string mistake = mutants[k].family;
                 for (const MutantFamily& family : mutantFamilies())
                     if (mutants[k].family == family.name) mistake = family.mistake;
@@ -860,6 +998,9 @@ private:
     StepResult result_;
     std::unique_ptr<ValuesRun> failed_;  // the values check that failed worst
     Probe probe_;                        // the estimator's subsampled probe
+    std::string stageName_;              // the stage running, and since when
+    std::chrono::steady_clock::time_point stageStart_;
+    double stageCpuMs_ = 0;
 };
 
 }  // namespace

@@ -84,6 +84,7 @@ Difference compareRenders(LabRenderer& renderer, const LoadedModule& m, const Sc
     RenderRequest request{&m, &params, &scene, {}, surfaces, width, height};
     request.seamlessCubes = false;  // both sides under the same conditions: no quads needed
     request.readSurfaces = true;
+    request.cacheGBuffer = true;
     const RenderResult solution = renderer.render(request);
     request.source = {mutantDir, false};
     const RenderResult mutant = renderer.render(request);

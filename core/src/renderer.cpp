@@ -3,12 +3,15 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "digest.h"
 #include "pbrlab/contract.h"
 #include "pbrlab/envgen.h"
 #include "pbrlab/error.h"
@@ -33,6 +36,12 @@ glm::dvec3 srgbEncode(const glm::dvec3& linear) {
         e[c] = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
     }
     return e;
+}
+
+// The built-in unit sphere of JSON scenes (DrawItem::mesh == nullptr).
+const MeshData& unitSphere() {
+    static const MeshData sphere = makeUvSphere(96, 48);
+    return sphere;
 }
 
 GLint glWrap(TextureSource::Wrap wrap) {
@@ -130,7 +139,7 @@ GLuint LabRenderer::texture(const TextureSource& source) {
 
 const gl::GpuMesh& LabRenderer::mesh(const MeshData* data) {
     auto& slot = meshes_[data];
-    if (!slot) slot = std::make_unique<gl::GpuMesh>(data ? *data : makeUvSphere(96, 48));
+    if (!slot) slot = std::make_unique<gl::GpuMesh>(data ? *data : unitSphere());
     return *slot;
 }
 
@@ -155,16 +164,12 @@ std::vector<LabRenderer::MaterialMap> LabRenderer::materialMaps(const MaterialDe
             {NeedsEmissive, &m.emissiveMap, "HAS_EMISSIVE_MAP", "uEmissiveMap"}};
 }
 
-void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int height) {
-    if (!gbuffer_ || gbuffer_->width() != width || gbuffer_->height() != height)
+void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int height,
+                              bool cache) {
+    if (!gbuffer_ || gbuffer_->width() != width || gbuffer_->height() != height) {
         gbuffer_ = std::make_unique<gl::RenderTarget>(width, height, kGBufferTextures);
-    gbuffer_->bind();
-    const float zero[4] = {0, 0, 0, 0};
-    for (int i = 0; i < kGBufferTextures; ++i) gl::ClearBufferfv(GL_COLOR, i, zero);
-    gl::Clear(GL_DEPTH_BUFFER_BIT);
-    gl::Enable(GL_DEPTH_TEST);
-    gl::DepthFunc(GL_LESS);
-
+        gbufferHolds_.clear();
+    }
     const Camera& cam = scene.camera;
     // Near and far planes from the camera's distance, so models of any size keep depth
     // precision (a unit sphere at distance 3: 0.05 .. 200, as before).
@@ -176,7 +181,21 @@ void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int
     viewProjection_ = proj * view;
     for (const SceneModel& model : scene.models) keepModels_.insert(model.data);
 
-    for (const DrawItem& item : drawItems(scene)) {
+    const std::vector<DrawItem> items = drawItems(scene);
+    const fs::path cached = cache ? gbufferCacheFile(scene, items, needs) : fs::path();
+    if (!cached.empty() && (cached == gbufferHolds_ || readGBuffer(cached))) {
+        gbufferHolds_ = cached;
+        // Compiled all the same: what a scene compiles stays observable (--stats, the GUI).
+        programs_.get(gbufferRecipe(scene.materials.at(size_t(items[0].material)), needs));
+        return;
+    }
+    gbuffer_->bind();
+    const float zero[4] = {0, 0, 0, 0};
+    for (int i = 0; i < kGBufferTextures; ++i) gl::ClearBufferfv(GL_COLOR, i, zero);
+    gl::Clear(GL_DEPTH_BUFFER_BIT);
+    gl::Enable(GL_DEPTH_TEST);
+    gl::DepthFunc(GL_LESS);
+    for (const DrawItem& item : items) {
         const MaterialDesc& m = scene.materials.at(size_t(item.material));
         auto program = programs_.get(gbufferRecipe(m, needs));
         program->use();
@@ -207,6 +226,117 @@ void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int
     }
     gl::Disable(GL_DEPTH_TEST);
     gl::checkError("G-buffer pass");
+    if (!cached.empty()) writeGBuffer(cached);
+    gbufferHolds_ = cached;
+}
+
+// The G-buffer is a pure function of the program's source, the meshes, each item's transform
+// and material factors, the camera, the size, the code that turns them into draws (the
+// executable's build ID) and the GL driver; all of them are the key. Only draws that read no
+// image: a map would bring the image decoder into the key.
+fs::path LabRenderer::gbufferCacheFile(const Scene& scene, const std::vector<DrawItem>& items,
+                                       unsigned needs) {
+    if (iblCache_.empty() || items.empty()) return {};
+    const ProgramRecipe recipe =
+        gbufferRecipe(scene.materials.at(size_t(items[0].material)), needs);
+    for (const DrawItem& item : items)
+        if (!gbufferRecipe(scene.materials.at(size_t(item.material)), needs).defines.empty())
+            return {};  // a map is read
+    static const std::string code = buildIds({""});
+    if (code.empty()) return {};
+    Digest key;
+    key.add(std::string("G-buffer v1"));
+    key.add(code);
+    for (GLenum name : {GL_VENDOR, GL_RENDERER, GL_VERSION})
+        key.add(std::string(reinterpret_cast<const char*>(gl::GetString(name))));
+    key.add(std::array<int, 2>{gbuffer_->width(), gbuffer_->height()});
+    key.add(viewProjection_);
+    key.add(programs_.preprocessor().expand(recipe.vertex, recipe.defines).text);
+    key.add(programs_.preprocessor().expand(recipe.fragment, recipe.defines).text);
+    for (const DrawItem& item : items) {
+        const MaterialDesc& m = scene.materials.at(size_t(item.material));
+        key.add(item.transform);
+        key.add(m.albedo), key.add(m.metallic), key.add(m.roughness), key.add(m.ao);
+        key.add(m.occlusionStrength), key.add(m.normalScale), key.add(m.emissive);
+        auto [digest, missing] = meshDigests_.try_emplace(item.mesh, 0);
+        if (missing) {
+            const MeshData& mesh = item.mesh ? *item.mesh : unitSphere();
+            Digest d;
+            d.add(mesh.vertices.data(), mesh.vertices.size() * sizeof(Vertex));
+            d.add(mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t));
+            digest->second = d.h;
+        }
+        key.add(digest->second);
+    }
+    return iblCache_ / "gbuffer" / (key.hex() + ".bin");
+}
+
+namespace {
+
+// Cached G-buffers on disk: "PBRLGBF1", width, height, attachment count, the attachments' RGBA
+// floats (row 0 at the top, as read back) and a digest of them (a torn file is drawn again).
+constexpr char kGBufferMagic[8] = {'P', 'B', 'R', 'L', 'G', 'B', 'F', '1'};
+
+}  // namespace
+
+bool LabRenderer::readGBuffer(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    char magic[8] = {};
+    std::int32_t size[3] = {0, 0, 0};
+    if (!in.read(magic, 8) || std::memcmp(magic, kGBufferMagic, 8) != 0 ||
+        !in.read(reinterpret_cast<char*>(size), sizeof size) || size[0] != gbuffer_->width() ||
+        size[1] != gbuffer_->height() || size[2] != kGBufferTextures)
+        return false;
+    std::vector<Image> images(kGBufferTextures);
+    Digest digest;
+    for (Image& image : images) {
+        image.width = size[0];
+        image.height = size[1];
+        image.channels = 4;
+        image.pixels.resize(size_t(size[0]) * size_t(size[1]) * 4);
+        const auto bytes = std::streamsize(image.pixels.size() * sizeof(float));
+        if (!in.read(reinterpret_cast<char*>(image.pixels.data()), bytes)) return false;
+        digest.add(image.pixels.data(), size_t(bytes));
+    }
+    std::uint64_t stored = 0;
+    if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored) || stored != digest.h ||
+        in.peek() != std::ifstream::traits_type::eof())
+        return false;
+    for (int i = 0; i < kGBufferTextures; ++i) {
+        // The attachments' storage is respecified with the same size and format.
+        gl::BindTexture(GL_TEXTURE_2D, gbuffer_->colorTexture(i));
+        gl::TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, size[0], size[1], 0, GL_RGBA, GL_FLOAT,
+                       flipRows(images[size_t(i)]).pixels.data());
+    }
+    gl::checkError("G-buffer from the cache");
+    logLine("gbuffer", "from " + file.string());
+    return true;
+}
+
+void LabRenderer::writeGBuffer(const fs::path& file) const {
+    std::error_code ec;
+    fs::create_directories(file.parent_path(), ec);
+    const fs::path tmp = file.string() + ".tmp" + std::to_string(::getpid());
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        out.write(kGBufferMagic, 8);
+        const std::int32_t size[3] = {gbuffer_->width(), gbuffer_->height(), kGBufferTextures};
+        out.write(reinterpret_cast<const char*>(size), sizeof size);
+        Digest digest;
+        for (int i = 0; i < kGBufferTextures; ++i) {
+            const Image image = gbuffer_->read(i);
+            const size_t bytes = image.pixels.size() * sizeof(float);
+            digest.add(image.pixels.data(), bytes);
+            out.write(reinterpret_cast<const char*>(image.pixels.data()), std::streamsize(bytes));
+        }
+        out.write(reinterpret_cast<const char*>(&digest.h), sizeof digest.h);
+        if (!out) {
+            fs::remove(tmp, ec);
+            return;  // no cache: fine
+        }
+    }
+    fs::rename(tmp, file, ec);  // atomic: a reader sees the whole file or none
+    if (ec) fs::remove(tmp, ec);
 }
 
 bool LabRenderer::mayRead(const ModuleDesc& d, const std::string& sampler) {
@@ -354,6 +484,27 @@ double LabRenderer::runView(const RenderRequest& request, const Scene& scene, bo
 
 namespace {
 
+// Each texel of a packed input as a q x q block (q = 2: the isolated points' quads; packing is
+// per point, so this equals packing every point q x q times), rows bottom-up as GL texture rows
+// run, like gl_FragCoord: one pass, whatever the number of points.
+Image quadsBottomUp(const Image& image, int q) {
+    Image out;
+    out.width = image.width * q;
+    out.height = image.height * q;
+    out.channels = image.channels;
+    out.pixels.resize(size_t(out.width) * size_t(out.height) * size_t(out.channels));
+    const size_t c = size_t(image.channels), row = size_t(out.width) * c;
+    for (int y = 0; y < image.height; ++y) {
+        const float* in = image.pixels.data() + size_t(y) * size_t(image.width) * c;
+        float* first = out.pixels.data() + size_t(out.height - 1 - q * y) * row;
+        for (int x = 0; x < image.width; ++x)
+            for (int k = 0; k < q; ++k)
+                std::copy_n(in + size_t(x) * c, c, first + (size_t(x) * size_t(q) + size_t(k)) * c);
+        for (int k = 1; k < q; ++k) std::copy_n(first, row, first - size_t(k) * row);
+    }
+    return out;
+}
+
 // The scene's float-rounded camera and first light: what the shader saw.
 glm::dvec3 asFloat(const glm::dvec3& v) {
     return glm::dvec3(glm::vec3(v));
@@ -367,7 +518,7 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
     RenderResult result;
     std::vector<GLuint> inputs;
     if (!request.surfaces) {
-        drawGBuffer(scene, d.needs, request.width, request.height);
+        drawGBuffer(scene, d.needs, request.width, request.height, request.cacheGBuffer);
         for (int i = 0; i < kGBufferTextures; ++i) inputs.push_back(gbuffer_->colorTexture(i));
         result.milliseconds = runView(request, scene, false, inputs, request.width, request.height);
         result.valueTexture = valueTarget_->colorTexture(0);
@@ -384,21 +535,9 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
     const std::vector<Image> packed =
         packSurfaces(*request.surfaces, request.width, request.height);
     const int q = request.isolatePoints ? 2 : 1;  // quad side per point
-    std::vector<Surface> quads;
-    if (q > 1) {
-        quads.resize(request.surfaces->size() * 4);
-        const size_t w = size_t(request.width);
-        for (size_t y = 0; y < size_t(request.height); ++y)
-            for (size_t x = 0; x < w; ++x)
-                for (size_t k = 0; k < 4; ++k)
-                    quads[(2 * y + k / 2) * 2 * w + 2 * x + k % 2] = (*request.surfaces)[y * w + x];
-    }
-    const std::vector<Image> uploaded =
-        q > 1 ? packSurfaces(quads, 2 * request.width, 2 * request.height) : packed;
     probeInputs_.clear();
-    for (const Image& image : uploaded) {
-        // GL texture rows run bottom-up, like gl_FragCoord.
-        probeInputs_.push_back(gl::uploadTexture(flipRows(image), false, GL_RGBA32F));
+    for (const Image& image : packed) {
+        probeInputs_.push_back(gl::uploadTexture(quadsBottomUp(image, q), false, GL_RGBA32F));
         inputs.push_back(probeInputs_.back().id());
     }
     result.milliseconds =
@@ -414,7 +553,7 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
                 for (int c = 0; c < 4; ++c) value.at(x, y, c) = result.value.at(2 * x, 2 * y, c);
         result.value = std::move(value);
     }
-    result.surfaces = unpackSurfaces(packed, {}, {});
+    if (request.readSurfaces) result.surfaces = unpackSurfaces(packed, {}, {});
     return result;
 }
 
@@ -506,22 +645,44 @@ const IblInputs& LabRenderer::environmentInputs(const Scene& scene, bool derived
     const IblMaps& maps = environment(scene, derived);
     Environment& env = environments_[scene.environment + "|" + iblSettings_.key()];
     const IblSettings& s = maps.settings;
-    auto cube = [](GLuint texture, int size, int levels) {
-        return CubeSampler(IblPrecompute::readCube(texture, size, levels));
+    auto add = [](Digest& digest, const Image& image) {
+        digest.add(std::array<int, 3>{image.width, image.height, image.channels});
+        digest.add(image.pixels.data(), image.pixels.size() * sizeof(float));
+    };
+    auto cube = [&](GLuint texture, int size, int levels, Digest& digest) {
+        std::vector<std::vector<Image>> mips = IblPrecompute::readCube(texture, size, levels);
+        for (const auto& faces : mips)
+            for (const Image& face : faces) add(digest, face);
+        return CubeSampler(std::move(mips));
     };
     if (!env.cpu) {
         env.cpu = std::make_unique<IblInputs>();
+        Digest digest;
         env.cpu->environment = cube(maps.environment.id(), s.environmentSize,
-                                    int(std::floor(std::log2(s.environmentSize))) + 1);
+                                    int(std::floor(std::log2(s.environmentSize))) + 1, digest);
+        env.cubeDigest = digest.h;
     }
     if (derived && !env.cpuDerived) {
-        env.cpu->irradiance = cube(maps.irradiance.id(), s.irradianceSize, 1);
-        env.cpu->prefilter = cube(maps.prefilter.id(), s.prefilterSize, s.prefilterMips);
+        Digest digest;
+        env.cpu->irradiance = cube(maps.irradiance.id(), s.irradianceSize, 1, digest);
+        env.cpu->prefilter = cube(maps.prefilter.id(), s.prefilterSize, s.prefilterMips, digest);
         env.cpu->prefilterMaxLod = maps.prefilterMaxLod;
+        digest.add(env.cpu->prefilterMaxLod);
         env.cpu->lut = IblPrecompute::readLut(maps);
+        add(digest, env.cpu->lut);
+        env.derivedDigest = digest.h;
         env.cpuDerived = true;
     }
     return *env.cpu;
+}
+
+std::uint64_t LabRenderer::environmentDigest(const Scene& scene, bool derived) {
+    environmentInputs(scene, derived);
+    const Environment& env = environments_[scene.environment + "|" + iblSettings_.key()];
+    Digest digest;
+    digest.add(env.cubeDigest);
+    if (derived) digest.add(env.derivedDigest);
+    return digest.h;
 }
 
 std::vector<Surface> probeSurfaces(const Probe& probe) {
@@ -545,6 +706,7 @@ RenderResult LabRenderer::renderSurfaces(const LoadedModule& module, const Param
                                          const std::vector<Surface>& surfaces, int width,
                                          int height) {
     RenderRequest r{&module, &params, &scene, source, &surfaces, width, height};
+    r.readSurfaces = true;
     return render(r);
 }
 

@@ -70,7 +70,12 @@ struct RenderRequest {
     // row 0 = top), uploaded as textures.
     const std::vector<Surface>* surfaces = nullptr;
     int width = 0, height = 0;
-    bool readSurfaces = false;  // scene: read the G-buffer back into RenderResult::surfaces
+    // The inputs the view saw into RenderResult::surfaces: the scene's G-buffer read back, or
+    // the given surfaces as the packed floats have them.
+    bool readSurfaces = false;
+    // Scene: keep the G-buffer on disk when its draws read no image, and read it from there
+    // (grading draws the same few scenes, small, in every process; see drawGBuffer).
+    bool cacheGBuffer = false;
     // Scene: read the value back into RenderResult::value (off: only valueTexture, for a view
     // drawn straight from the GPU while the input moves).
     bool readValue = true;
@@ -114,6 +119,9 @@ public:
     // CPU copies of the same maps, for references (read back on first use). `derived`: also
     // the irradiance, prefiltered and LUT maps (otherwise only the environment cube).
     const IblInputs& environmentInputs(const Scene& scene, bool derived = true);
+    // A hash of every texel environmentInputs(scene, derived) holds (the data, not its name):
+    // what a cached value computed from those maps is keyed by.
+    std::uint64_t environmentDigest(const Scene& scene, bool derived = true);
     void setIblSettings(const IblSettings& settings) { iblSettings_ = settings; }
     // True when the scene's environment maps are ready (no precompute on the next render).
     bool hasEnvironmentMaps(const Scene& scene) const {
@@ -124,8 +132,10 @@ public:
     void setPrecomputeProgress(std::function<void(const std::string&)> f) {
         precomputeProgress_ = std::move(f);
     }
-    // Where precomputed maps are kept between runs (empty: no disk cache).
+    // Where precomputed maps are kept between runs (empty: no disk cache). Grading keeps its
+    // converged integrals there too.
     void setIblCache(std::filesystem::path root) { iblCache_ = std::move(root); }
+    const std::filesystem::path& cacheRoot() const { return iblCache_; }
     // Sets uniforms a host-made view declares beyond the module's parameters (converge).
     void setExtraUniforms(std::function<void(const Program&)> f) { extraUniforms_ = std::move(f); }
     const IblSettings& iblSettings() const { return iblSettings_; }
@@ -151,7 +161,14 @@ private:
     };
     static std::vector<MaterialMap> materialMaps(const MaterialDesc& m);
     const gl::GpuMesh& mesh(const MeshData* data);  // nullptr: the unit sphere
-    void drawGBuffer(const Scene& scene, unsigned needs, int width, int height);
+    void drawGBuffer(const Scene& scene, unsigned needs, int width, int height, bool cache);
+    // drawGBuffer's disk cache, for the lesson's sphere grid above all (49 spheres of 9216
+    // triangles: half a second of llvmpipe in every grading process). The file for these draws
+    // (empty: not cacheable), and the attachments read from it or written to it.
+    std::filesystem::path gbufferCacheFile(const Scene& scene, const std::vector<DrawItem>& items,
+                                           unsigned needs);
+    bool readGBuffer(const std::filesystem::path& file);
+    void writeGBuffer(const std::filesystem::path& file) const;
     double runView(const RenderRequest& request, const Scene& scene, bool probe,
                    const std::vector<GLuint>& inputs, int width, int height);
     GLuint texture(const TextureSource& source);  // read and uploaded on first use
@@ -167,7 +184,9 @@ private:
     // address is reused for another mesh.
     std::map<const MeshData*, std::unique_ptr<gl::GpuMesh>> meshes_;
     std::set<std::shared_ptr<const ModelData>> keepModels_;
-    std::map<std::string, gl::Handle> textures_;  // by TextureSource::key
+    std::map<std::string, gl::Handle> textures_;            // by TextureSource::key
+    std::map<const MeshData*, std::uint64_t> meshDigests_;  // for the G-buffer cache's key
+    std::filesystem::path gbufferHolds_;  // the cached G-buffer gbuffer_ holds, if any
     std::vector<gl::Handle> probeInputs_;
     gl::Handle blackCube_, black2d_;
     glm::mat4 viewProjection_{1};
@@ -176,7 +195,8 @@ private:
         std::unique_ptr<IblMaps> maps;
         std::unique_ptr<IblInputs> cpu;
         bool cpuDerived = false;
-        Image equirect;  // kept for the derived maps' first use
+        std::uint64_t cubeDigest = 0, derivedDigest = 0;  // of the CPU copies' texels
+        Image equirect;                                   // kept for the derived maps' first use
     };
     IblSettings iblSettings_;
     std::filesystem::path iblCache_ = IblDiskCache::defaultRoot();

@@ -21,6 +21,11 @@ public:
 // Loads libOSMesa at run time; throws pbrlab::Error saying what is missing when it cannot.
 std::unique_ptr<GlContext> createHeadlessContext();
 
+// Loads libOSMesa (and llvmpipe's LLVM: 0.1 s of relocations) without creating a context, so
+// that a process forking one grader per module pays it once. Loading starts no thread (a
+// context does, and threads do not survive a fork).
+void preloadHeadlessLibrary();
+
 // Opens a window; throws pbrlab::Error when there is no display or no 4.5 core support.
 std::unique_ptr<GlContext> createWindowContext(int width, int height, const std::string& title);
 

@@ -24,6 +24,11 @@ using GetProcAddressFn = void* (*)(const char*);
 
 GetProcAddressFn osmesaGetProcAddress = nullptr;
 
+void* openLibrary() {
+    void* library = dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_LOCAL);
+    return library ? library : dlopen("libOSMesa.so", RTLD_NOW | RTLD_LOCAL);
+}
+
 void* getProc(const char* name) {
     return osmesaGetProcAddress(name);
 }
@@ -31,8 +36,7 @@ void* getProc(const char* name) {
 class OsMesaContext final : public GlContext {
 public:
     OsMesaContext() {
-        library_ = dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_LOCAL);
-        if (!library_) library_ = dlopen("libOSMesa.so", RTLD_NOW | RTLD_LOCAL);
+        library_ = openLibrary();
         if (!library_)
             throw Error(std::string("headless OpenGL unavailable: cannot load libOSMesa (") +
                         dlerror() + "); install the Debian package libosmesa6");
@@ -89,6 +93,10 @@ private:
 
 std::unique_ptr<GlContext> createHeadlessContext() {
     return std::make_unique<OsMesaContext>();
+}
+
+void preloadHeadlessLibrary() {
+    openLibrary();  // stays loaded; when missing, createHeadlessContext says so
 }
 
 }  // namespace pbrlab
