@@ -106,6 +106,12 @@ TEST_P(VariantTest, CorrectPassesMistakeFailsAtItsOwnStepByAMargin) {
     std::printf("[ measured ] %s/%s: fails by %.3g x the tolerance\n", v.module.c_str(),
                 v.file.c_str(), margin);
     EXPECT_GE(margin, 2.0) << m.message;
+    // A mistake matched to a mutant of the reference is named by the mutant's family; the
+    // change itself quotes the reference solution and goes to the instructor only.
+    if (m.namedBy == "mutant") {
+        EXPECT_EQ(m.message.find('`'), std::string::npos) << m.message;
+        EXPECT_FALSE(m.instructorNote.empty());
+    }
     if (const std::string e = expectation(v.path); !e.empty()) {
         EXPECT_NE(m.message.find(e), std::string::npos)
             << "expected \"" << e << "\" in: " << m.message;

@@ -28,9 +28,16 @@ namespace {
 constexpr std::uintmax_t kMaxStudentFileBytes = 10u * 1024 * 1024;
 
 json gradeJson(const ModuleGrade& g) {
-    return {{"id", g.id},           {"title", g.title},        {"status", g.status},
-            {"score", g.score},     {"max_score", g.maxScore}, {"message", g.message},
-            {"mistake", g.mistake}, {"named_by", g.namedBy},   {"checks", g.checks},
+    return {{"id", g.id},
+            {"title", g.title},
+            {"status", g.status},
+            {"score", g.score},
+            {"max_score", g.maxScore},
+            {"message", g.message},
+            {"mistake", g.mistake},
+            {"named_by", g.namedBy},
+            {"checks", g.checks},
+            {"instructor_note", g.instructorNote},
             {"seconds", g.seconds}};
 }
 
@@ -181,6 +188,7 @@ ModuleGrade finishChild(Child& c, const GradeOptions& o) {
         g.message = j.at("message");
         g.mistake = j.value("mistake", "");
         g.namedBy = j.value("named_by", "");
+        g.instructorNote = j.value("instructor_note", "");
         g.checks = j.value("checks", json::array());
         g.seconds = j.value("seconds", 0.0);
     } catch (const std::exception&) {
@@ -310,6 +318,7 @@ ModuleGrade gradeModule(LabRenderer& renderer, const LoadedModule& m, const Data
         g.message = r.message;
         g.mistake = r.mistake;
         g.namedBy = r.namedBy;
+        g.instructorNote = r.instructorNote;
         g.seconds = r.seconds;
         for (const CheckReport& c : r.checks) g.checks.push_back(toJson(c));
         if (!o.html.empty()) writeImages(renderer, m, paths, o);

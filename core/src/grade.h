@@ -33,8 +33,9 @@ struct ModuleGrade {
     std::string status = "missing";
     double score = 0, maxScore = 1;
     std::string message;
-    std::string mistake;  // the mistake named from the shape of the error, when recognised
-    std::string namedBy;  // pattern | typical | mutant (see StepResult)
+    std::string mistake;         // the mistake named from the shape of the error, when recognised
+    std::string namedBy;         // pattern | typical | mutant (see StepResult)
+    std::string instructorNote;  // see StepResult: not for the student's eyes
     nlohmann::json checks = nlohmann::json::array();  // every check with what it measured
     double seconds = 0;
 };

@@ -847,10 +847,11 @@ private:
             // the one change the student's values equal.
             if (!exact && typical.empty() && settings_.mutantCatalogue) {
                 stage("feedback: one change from the reference");
-                const std::string change = mutantMatch(f, points);
-                if (!change.empty()) {
-                    result_.mistake += (result_.mistake.empty() ? "" : " ") + change;
+                const MutantMatch match = mutantMatch(f, points);
+                if (!match.mistake.empty()) {
+                    result_.mistake += (result_.mistake.empty() ? "" : " ") + match.mistake;
                     result_.namedBy = "mutant";
+                    result_.instructorNote = "the reference with " + match.change;
                 }
             }
         }
@@ -951,10 +952,15 @@ private:
     }
 
     // Each mutant of the reference solution (mutants.h) on the sampled points: one the student's
-    // values equal (at 95% of them, the closest overall) is the mistake, said by its family and
-    // its change. One equal everywhere cannot be beaten: the search stops there.
-    std::string mutantMatch(const ValuesRun& f, const Sample& sample) {
-        if (sample.picked.empty()) return "";
+    // values equal (at 95% of them, the closest overall) is the mistake, said to the student by
+    // its family; its change quotes the reference and goes to the instructor only. One equal
+    // everywhere cannot be beaten: the search stops there.
+    struct MutantMatch {
+        std::string mistake;  // for the student
+        std::string change;   // for the instructor: `mutated` for `reference`
+    };
+    MutantMatch mutantMatch(const ValuesRun& f, const Sample& sample) {
+        if (sample.picked.empty()) return {};
         std::ifstream in(m_.sourceDir / "solution.glsl", std::ios::binary);
         std::stringstream text;
         text << in.rdbuf();
@@ -963,7 +969,7 @@ private:
             fs::temp_directory_path() / ("pbrlab-feedback-" + std::to_string(::getpid()));
         std::error_code ec;
         fs::create_directories(tmp, ec);
-        std::string best;
+        MutantMatch best;
         double bestDistance = 1e300;
         for (size_t k = 0; k < mutants.size() && bestDistance > 0; ++k) {
             const fs::path dir = tmp / std::to_string(k);
@@ -981,8 +987,8 @@ private:
                 std::string mistake = mutants[k].family;
                 for (const MutantFamily& family : mutantFamilies())
                     if (mutants[k].family == family.name) mistake = family.mistake;
-                best = "It behaves like the reference with one change, " + mistake + ": " +
-                       mutants[k].change + ".";
+                best = {"It behaves like the reference with one change: " + mistake + ".",
+                        mutants[k].change};
             }
         }
         fs::remove_all(tmp, ec);
