@@ -496,6 +496,9 @@ int main(int argc, char** argv) {
     guiCmd->add_option("--screenshot", gui.screenshot,
                        "With --frames: save the window to this PNG");
     guiCmd->add_option("--size", guiSize, "Window size WxH (default 1600x960)");
+    guiCmd->add_option("--error-budget", gui.errorBudget,
+                       "Compute each environment's maps with the cheapest settings whose mean "
+                       "errors stay within this (as precompute --error-budget)");
     guiCmd->add_flag("--orbit", gui.orbit,
                      "With --frames: orbit the camera a step each frame (as dragging does) and "
                      "print the frame times, median and 95th percentile");

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 
+#include "parallel.h"
 #include "pbrlab/error.h"
 #include "procedural.h"
 
@@ -194,7 +195,9 @@ Image generateSkyEnvironment(int width, bool soft) {
     image.channels = 3;
     image.pixels.resize(size_t(image.width) * image.height * 3);
     constexpr int kSub = 4;
-    for (int y = 0; y < image.height; ++y)
+    // Rows in parallel: the GUI's and every grading process's first IBL frame waits for it.
+    parallelFor(size_t(image.height), [&](size_t row) {
+        const int y = int(row);
         for (int x = 0; x < image.width; ++x) {
             dvec3 sum(0.0);
             for (int sy = 0; sy < kSub; ++sy)
@@ -209,6 +212,7 @@ Image generateSkyEnvironment(int width, bool soft) {
             sum /= double(kSub * kSub);
             for (int c = 0; c < 3; ++c) image.at(x, y, c) = float(sum[c]);
         }
+    });
     return image;
 }
 

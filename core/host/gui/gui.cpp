@@ -18,10 +18,12 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
+#include "converge.h"
 #include "display_pass.h"
 #include "evaluate.h"
 #include "gl/context.h"
@@ -266,6 +268,22 @@ public:
             std::sort(sizes.begin(), sizes.end());
             const int side = sizes.empty() ? 0 : sizes[sizes.size() / 2];
             printFrameTimes("  of which the picture (median side)", renderTimes, side, side);
+            // The baseline, in the same run: the settled frame, what every frame cost before
+            // the live view (the picture at full size, read back and evaluated on the CPU).
+            const auto start = std::chrono::steady_clock::now();
+            render();
+            const double settledMs =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                    .count();
+            std::vector<double> live(
+                frameTimes.begin() + std::min<std::ptrdiff_t>(3, std::ptrdiff_t(frameTimes.size())),
+                frameTimes.end());
+            std::sort(live.begin(), live.end());
+            if (!live.empty())
+                std::printf(
+                    "settled frame (%dx%d, evaluated against the CPU reference): %.1f ms; "
+                    "live frame median / settled: %.3f\n",
+                    kRenderSize, kRenderSize, settledMs, live[live.size() / 2] / settledMs);
         }
         return 0;
     }
@@ -274,6 +292,11 @@ private:
     // The first frames compile programs (llvmpipe compiles at first draw): left out.
     static void printFrameTimes(const char* what, std::vector<double> ms, int w, int h) {
         const size_t warmup = std::min<size_t>(3, ms.size());
+        if (warmup > 0) {
+            std::printf("%s: the first %zu frames (compiles, precompute), ms:", what, warmup);
+            for (size_t i = 0; i < warmup; ++i) std::printf(" %.0f", ms[i]);
+            std::printf("\n");
+        }
         ms.erase(ms.begin(), ms.begin() + std::ptrdiff_t(warmup));
         if (ms.empty()) return;
         std::sort(ms.begin(), ms.end());
@@ -424,6 +447,7 @@ private:
             return;
         }
         precomputeNoticeShown_ = false;
+        if (module().needs & NeedsEnvironment) useBudgetSettings(currentScene());
         // While the input moves, only the picture is drawn (on the GPU, mapped for display
         // there, nothing read back): 30 frames a second at least. The evaluation against the
         // CPU reference, the probes and the statistics follow once it has been still for a
@@ -434,6 +458,39 @@ private:
         else if (dirty_)
             render();
         updateOneStatus();
+    }
+
+    // --error-budget: the settings chosen for this scene's environment (measured the first time
+    // it is shown, as `pbrlab precompute --error-budget` measures them) become the renderer's.
+    void useBudgetSettings(const Scene& scene) {
+        if (options_.errorBudget <= 0) return;
+        auto chosen = budgetSettings_.find(scene.environment);
+        if (chosen == budgetSettings_.end()) {
+            try {
+                const Image equirect =
+                    loadEnvironmentImage(scene.environment, renderer_->cacheRoot());
+                IblTruth truth(equirect);
+                IblPrecompute precompute(renderer_->programs(), paths_.shaders(), paths_.labs());
+                const IblDiskCache cache(renderer_->cacheRoot());
+                const IblChoice choice =
+                    chooseIblSettings(precompute, equirect, truth, options_.errorBudget,
+                                      renderer_->cacheRoot().empty() ? nullptr : &cache);
+                const IblErrors& e = choice.run.errors;
+                char line[256];
+                std::snprintf(line, sizeof line,
+                              "error budget %g on %s: %s; mean errors irradiance %.4f, prefilter "
+                              "%.4f, LUT %.4f",
+                              options_.errorBudget, scene.environment.c_str(),
+                              choice.met ? "met" : "NOT met (the most accurate settings)",
+                              e.irradiance.mean, e.prefilter.mean, e.lut.mean);
+                logLine("gui", std::string(line) + "; " + choice.settings.describe());
+                chosen = budgetSettings_.emplace(scene.environment, choice.settings).first;
+            } catch (const Error& e) {
+                logLine("gui", std::string("error budget: ") + e.what());
+                chosen = budgetSettings_.emplace(scene.environment, renderer_->iblSettings()).first;
+            }
+        }
+        renderer_->setIblSettings(chosen->second);
     }
 
     // An input changed what is drawn (camera, parameter, light): a live frame now, the full
@@ -1489,7 +1546,8 @@ private:
     // The live view (drawLive): its texture while the input moves (0: the settled image).
     std::unique_ptr<DisplayPass> displayPass_;
     GLuint liveTexture_ = 0;
-    int liveSize_ = kRenderSize;      // the live picture's side (kLiveBudgetMs)
+    int liveSize_ = kRenderSize;                         // the live picture's side (kLiveBudgetMs)
+    std::map<std::string, IblSettings> budgetSettings_;  // --error-budget, per environment
     std::vector<int> liveSizes_;      // of every live frame, for --orbit's report
     std::vector<double> liveWindow_;  // the live frames' times since the last resize
     const char* liveWho_ = "";

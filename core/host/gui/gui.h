@@ -21,6 +21,9 @@ struct GuiOptions {
     // With frames: turn the camera a step every frame, as a mouse drag does, and print the
     // frame times (median, 95th percentile): how interactive the lab is, scripted.
     bool orbit = false;
+    // > 0: each environment's maps are computed with the cheapest settings whose measured mean
+    // errors stay within this (chooseIblSettings, as `pbrlab precompute --error-budget`).
+    double errorBudget = 0;
     int width = 1600, height = 960;
 };
 
