@@ -721,7 +721,7 @@ TEST(IblIrradiance, QuadratureConvergesToTheTexelSumOnTheGeneratedSky) {
 // 21 split_sum
 
 TEST(IblSplitSum, AmbientCombinesThePrecomputedValuesAsTheContractSays) {
-    // Written out from DESIGN.md: F0 = mix(0.04, albedo, metallic); F = F0 + (max(1 - r, F0)
+    // Written out from docs/design.md: F0 = mix(0.04, albedo, metallic); F = F0 + (max(1 - r, F0)
     // - F0) (1 - N.V)^5; kD = (1 - F)(1 - metallic); (kD albedo irr + pref (F0 A + B)) ao.
     const dvec3 N(0, 1, 0), V = glm::normalize(dvec3(0.6, 0.8, 0.0));
     const dvec3 albedo(0.9, 0.5, 0.2), irr(0.7, 0.8, 1.1), pref(2.0, 1.5, 1.0);

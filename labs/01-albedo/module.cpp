@@ -21,7 +21,7 @@ ModuleDesc describeModule() {
     d.reference = [](const Surface& s, const ReferenceContext&) {
         return ref::srgbToLinear(s.albedoTexel);
     };
-    d.alternatives = {{"pow(c, 2.2), the usual approximation of the sRGB curve (DESIGN.md)",
+    d.alternatives = {{"pow(c, 2.2), the usual approximation of the sRGB curve (docs/design.md)",
                        [](const Surface& s, const ReferenceContext&) {
                            return glm::pow(glm::clamp(s.albedoTexel, 0.0, 1.0), glm::dvec3(2.2));
                        }}};

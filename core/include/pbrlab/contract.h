@@ -1,4 +1,4 @@
-// The student-facing assignment contract (DESIGN.md): the 21 step ids in lab order, their
+// The student-facing assignment contract (docs/design.md): the 21 step ids in lab order, their
 // GLSL signatures, and which other contract functions each reference solution calls.
 #pragma once
 

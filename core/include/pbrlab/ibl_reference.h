@@ -6,7 +6,7 @@
 // projectSH9) that serve as ground truth in the error-against-run-time plots.
 //
 // Conventions: y is up; directions are unit vectors; `roughness` is perceptual and
-// alpha = roughness^2 (DESIGN.md). The equirectangular mapping is the one of
+// alpha = roughness^2 (docs/design.md). The equirectangular mapping is the one of
 // shaders/ibl/cube_face.glsl: u = atan2(d.x, -d.z) / 2pi + 0.5 (u = 0.5 looks down -z),
 // v = acos(d.y) / pi (v = 0 at the zenith, image row 0).
 #pragma once

@@ -269,7 +269,7 @@ inline GradeCase lessonGridCase() {
 
 // Estimators (Monte Carlo, quadratures) are judged by convergence, not sample by sample: the
 // value is compared with the converged integral, within what any correct estimator of the same
-// budget reaches (DESIGN.md "Grading").
+// budget reaches (docs/design.md, "Grading policy").
 struct Estimate {
     glm::dvec3 mean{0};   // the converged value (the CPU double reference of the integral)
     glm::dvec3 sigma{0};  // standard deviation of a one-sample estimate (0: deterministic)
