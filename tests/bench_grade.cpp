@@ -2,7 +2,7 @@
 // any submission in <= 20 s). Three submissions:
 //   correct    the reference solutions (`pbrlab kit --with-solutions`)
 //   stub       the kit as students get it (every step still its neutral stub)
-//   all-wrong  every step one typical mistake (labs/NN-id/mistakes, the first by name)
+//   all-wrong  every step one typical mistake (labs/<id>/mistakes, the first by name)
 // each graded in turn with a baseline, pair by pair, so a machine that slows down during the
 // run slows both: grading one module (ndotl, the cheapest: fork, context, compiles, checks,
 // robustness sweep), the unit a grade repeats. Reported: the medians of the submission's
@@ -28,7 +28,7 @@ constexpr int kPairs = 5;  // medians of five
 
 struct Submissions {
     DataPaths paths{PBRLAB_SOURCE_DIR};
-    ModuleRegistry modules{PBRLAB_MODULE_DIR, paths.labs()};
+    ModuleRegistry modules{PBRLAB_MODULE_DIR};
     fs::path root = fs::temp_directory_path() / "pbrlab-bench-grade";
     fs::path correct = root / "correct", stub = root / "stub", wrong = root / "all-wrong";
     Submissions() {

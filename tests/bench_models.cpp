@@ -64,7 +64,7 @@ BENCHMARK(BM_LoadModelLazily)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->It
 struct Session {
     std::unique_ptr<GlContext> context = createHeadlessContext();
     DataPaths paths{PBRLAB_SOURCE_DIR};
-    ModuleRegistry modules{PBRLAB_MODULE_DIR, paths.labs()};
+    ModuleRegistry modules{PBRLAB_MODULE_DIR};
     Scene scene = sceneForModel(loadScene(paths.scene("sphere")), kModel);
 };
 

@@ -5,8 +5,11 @@
 #include <set>
 
 #include "pbrlab/contract.h"
+#include "pbrlab/error.h"
+#include "test_support.h"
 
 using namespace pbrlab;
+namespace test = pbrlab::test;
 
 TEST(Contract, TwentyOneStepsInOrderWithUniqueIds) {
     const auto& steps = contractSteps();
@@ -16,13 +19,18 @@ TEST(Contract, TwentyOneStepsInOrderWithUniqueIds) {
         EXPECT_EQ(steps[i].step, int(i + 1));
         EXPECT_TRUE(ids.insert(steps[i].id).second) << steps[i].id;
         EXPECT_EQ(steps[i].lab, i < 14 ? "direct" : "ibl");
+        EXPECT_TRUE(std::filesystem::exists(steps[i].folder / "solution.glsl")) << steps[i].id;
+        if (i > 0) {
+            EXPECT_LT(steps[i - 1].order, steps[i].order);
+        }
         for (const auto& c : steps[i].calls) {
             const ContractStep* callee = findContractStep(c);
             ASSERT_NE(callee, nullptr) << c;
             EXPECT_LT(callee->step, steps[i].step) << "files are concatenated in step order";
         }
     }
-    EXPECT_EQ(findContractStep("ndotl")->folder(), "04-ndotl");
+    EXPECT_EQ(findContractStep("ndotl")->numbered(), "04-ndotl");
+    EXPECT_EQ(findContractStep("ndotl")->folder.filename(), "ndotl");
 }
 
 TEST(Contract, ClosureHoldsEarlierStepsOfTheLabAndWhatTheyCall) {
@@ -52,4 +60,74 @@ TEST(Contract, TheDesignDocumentsTableIsTheHostsContract) {
                                   " | `" + steps[i].function + "`";
         EXPECT_EQ(rows[i].rfind(start, 0), 0u) << rows[i] << "\nexpected to start with " << start;
     }
+}
+
+namespace {
+
+// A step folder in `root`: step.json with these fields (JSON text of the object's members).
+void stepFolder(const test::TempDir& root, const std::string& id, const std::string& members) {
+    root.write(id + "/step.json", "{" + members + "}");
+}
+
+std::string errorOf(const std::vector<std::filesystem::path>& roots) {
+    try {
+        readStepFolders(roots);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+// A step inserted between two others takes its place by its order key alone: nothing else
+// changes, and the steps after it move down one position.
+TEST(Contract, AStepFolderJoinsAtItsOrderKey) {
+    test::TempDir extra;
+    stepFolder(extra, "lambert_again",
+               R"j("id": "lambert_again", "lab": "direct", "order": 45,
+                  "function": "float lambertAgain(vec3 N, vec3 L)", "calls": ["ndotl"])j");
+    const auto builtIn = std::filesystem::path(PBRLAB_SOURCE_DIR) / "labs";
+    const std::vector<ContractStep> steps = readStepFolders({builtIn, extra.path});
+    ASSERT_EQ(steps.size(), 22u);
+    EXPECT_EQ(steps[3].id, "ndotl");
+    EXPECT_EQ(steps[4].id, "lambert_again");
+    EXPECT_EQ(steps[4].step, 5);
+    EXPECT_EQ(steps[5].id, "ndf");
+    EXPECT_EQ(steps[5].step, 6);
+    EXPECT_EQ(steps[4].folder, extra.path / "lambert_again");
+}
+
+TEST(Contract, BrokenStepFoldersAreErrorsNamingTheFile) {
+    const auto builtIn = std::filesystem::path(PBRLAB_SOURCE_DIR) / "labs";
+    struct Case {
+        std::string members, says;
+    };
+    const std::vector<Case> cases = {
+        {R"j("id": "x", "lab": "direct", "order": 45)j", "missing field \"function\""},
+        {R"j("id": "x", "lab": "direct", "order": "first", "function": "float f()")j",
+         "wrong type"},
+        {R"j("id": "no good", "lab": "direct", "order": 45, "function": "float f()")j",
+         "letters, digits and _"},
+        {R"j("id": "ndotl", "lab": "direct", "order": 45, "function": "float f()")j",
+         "already declared by"},
+        {R"j("id": "x", "lab": "direct", "order": 40, "function": "float f()")j",
+         "is also ndotl's"},
+        {R"j("id": "x", "lab": "direct", "order": 45, "function": "float lambertCosine(vec3 N)")j",
+         "function lambertCosine is already ndotl's"},
+        {R"j("id": "x", "lab": "direct", "order": 45, "function": "float f()", "calls": ["nope"])j",
+         "calls 'nope', which no step folder declares"},
+        {R"j("id": "x", "lab": "direct", "order": 45, "function": "float f()", "calls": ["ndf"])j",
+         "calls 'ndf', which comes after it"},
+    };
+    for (const Case& c : cases) {
+        test::TempDir extra;
+        stepFolder(extra, "x", c.members);
+        const std::string error = errorOf({builtIn, extra.path});
+        EXPECT_NE(error.find(c.says), std::string::npos) << c.members << "\n" << error;
+        EXPECT_NE(error.find("step.json"), std::string::npos) << error;
+    }
+    test::TempDir notJson;
+    notJson.write("x/step.json", "{ id: ");
+    EXPECT_NE(errorOf({builtIn, notJson.path}).find("not valid JSON"), std::string::npos);
 }

@@ -20,7 +20,7 @@ namespace {
 
 struct Grader {
     DataPaths paths{PBRLAB_SOURCE_DIR};
-    ModuleRegistry modules{PBRLAB_MODULE_DIR, paths.labs()};
+    ModuleRegistry modules{PBRLAB_MODULE_DIR};
     test::TempDir dir;
 
     fs::path kit(bool solutions) {
@@ -81,7 +81,7 @@ TEST(Grade, UntouchedStubsScoreZeroAndNeverCrash) {
 TEST(Grade, EachProblemCostsOnlyItsOwnStep) {
     Grader g;
     fs::path kit = g.kit(true);
-    fs::copy_file(g.paths.labs() / "05-ndf/mistakes/alpha_is_roughness.glsl", kit / "ndf.glsl",
+    fs::copy_file(g.paths.labs() / "ndf/mistakes/alpha_is_roughness.glsl", kit / "ndf.glsl",
                   fs::copy_options::overwrite_existing);
     std::ofstream(kit / "halfway.glsl") << "vec3 halfwayVector(vec3 L, vec3 V)\n{\n"
                                            "    return normalize(L + V)\n}\n";
@@ -228,7 +228,7 @@ TEST(Grade, InvariantsAreMeasuredOnTheStudentsFunctionAndDeduct) {
     }
     // Without PI, D integrates to PI instead of 1: the step fails on the invariant too, and
     // the message names it.
-    fs::copy_file(g.paths.labs() / "05-ndf/mistakes/missing_pi.glsl", kit / "ndf.glsl",
+    fs::copy_file(g.paths.labs() / "ndf/mistakes/missing_pi.glsl", kit / "ndf.glsl",
                   fs::copy_options::overwrite_existing);
     GradeReport bad = g.grade(kit, {"ndf"});
     const ModuleGrade& m = bad.modules[0];

@@ -16,7 +16,7 @@ namespace {
 struct Headless {
     std::unique_ptr<GlContext> context = createHeadlessContext();
     DataPaths paths{PBRLAB_SOURCE_DIR};
-    ModuleRegistry modules{PBRLAB_MODULE_DIR, paths.labs()};
+    ModuleRegistry modules{PBRLAB_MODULE_DIR};
     LabRenderer renderer{paths};
 
     StepResult check(const std::string& id, const StudentSource& source = {}) {
@@ -166,7 +166,7 @@ TEST(Headless, StudentFilesCannotIncludeTheReferenceSolutions) {
     Headless h;
     test::TempDir kit;
     // Resolvable from the labs root for the host's own files, but not for a student's.
-    auto file = kit.write("ndotl.glsl", "#include \"04-ndotl/solution.glsl\"\n");
+    auto file = kit.write("ndotl.glsl", "#include \"ndotl/solution.glsl\"\n");
     try {
         h.check("ndotl", {kit.path});
         FAIL() << "a student file read the reference solution";

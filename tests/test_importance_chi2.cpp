@@ -1,7 +1,7 @@
 // Step 16 judged as a sampler, in the grader: the chi-square test of the student's own half
 // vectors against the GGX density D(h) (N.h) (ref::ggxHalfVectorChiSquare, run by the
 // importance module's invariants on its sample.glsl view). Correct samplers in any orthonormal
-// frame pass it; the typical mistakes (labs/16-importance/mistakes) are rejected by it or by
+// frame pass it; the typical mistakes (labs/importance/mistakes) are rejected by it or by
 // the unit-length check beside it. The chi-square machinery itself is checked on CPU samplers.
 #include <gtest/gtest.h>
 
@@ -31,7 +31,7 @@ std::vector<Sampler> samplers() {
     const fs::path root(PBRLAB_SOURCE_DIR);
     for (const auto& [dir, correct] :
          {std::pair{root / "tests/variants/importance", true},
-          std::pair{root / "labs/16-importance/mistakes", false}})
+          std::pair{root / "labs/importance/mistakes", false}})
         if (fs::exists(dir))
             for (const auto& f : fs::directory_iterator(dir))
                 if (f.path().extension() == ".glsl") v.push_back({f.path().string(), correct});
@@ -47,7 +47,7 @@ TEST_P(ImportanceChiSquare, CorrectSamplersFollowTheGgxDensityMistakesDoNot) {
     const Sampler& sampler = GetParam();
     auto context = createHeadlessContext();
     DataPaths paths{PBRLAB_SOURCE_DIR};
-    ModuleRegistry modules{PBRLAB_MODULE_DIR, paths.labs()};
+    ModuleRegistry modules{PBRLAB_MODULE_DIR};
     LabRenderer renderer{paths};
     test::TempDir kit;
     StudentSource source;

@@ -26,7 +26,7 @@ const fs::path kModels = fs::path(PBRLAB_SOURCE_DIR) / "assets/models";
 struct Headless {
     std::unique_ptr<GlContext> context = createHeadlessContext();
     DataPaths paths{PBRLAB_SOURCE_DIR};
-    ModuleRegistry modules{PBRLAB_MODULE_DIR, paths.labs()};
+    ModuleRegistry modules{PBRLAB_MODULE_DIR};
     LabRenderer renderer{paths};
 
     // Renders `id` on the scene (32x32: only what compiles and loads matters here) and returns

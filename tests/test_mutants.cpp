@@ -72,7 +72,7 @@ TEST(Mutants, TypicalMutationsAreAmongThem) {
 // submissions: every survivor must be proven equivalent on the teaching domain.
 TEST(Mutants, NoMutantThatIsNotEquivalentSurvivesASubset) {
     DataPaths paths{PBRLAB_SOURCE_DIR};
-    ModuleRegistry modules{PBRLAB_MODULE_DIR, paths.labs()};
+    ModuleRegistry modules{PBRLAB_MODULE_DIR};
     MutationOptions o;
     o.modules = {"ndf", "fresnel", "reflectance", "hammersley", "brdf_lut"};
     o.every = 3;

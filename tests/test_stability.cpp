@@ -12,7 +12,7 @@ using namespace pbrlab;
 TEST(Stability, EveryReferenceIsFiniteOnTheExtremeSet) {
     auto context = createHeadlessContext();
     DataPaths paths{PBRLAB_SOURCE_DIR};
-    ModuleRegistry modules{PBRLAB_MODULE_DIR, paths.labs()};
+    ModuleRegistry modules{PBRLAB_MODULE_DIR};
     LabRenderer renderer{paths};
     ASSERT_FALSE(modules.modules().empty());
     for (const auto& m : modules.modules()) {
@@ -50,7 +50,7 @@ TEST(Stability, SceneLightsAreSweptForViewsThatReadThem) {
     // and Inf times a zero cosine is NaN.
     auto context = createHeadlessContext();
     DataPaths paths{PBRLAB_SOURCE_DIR};
-    ModuleRegistry modules{PBRLAB_MODULE_DIR, paths.labs()};
+    ModuleRegistry modules{PBRLAB_MODULE_DIR};
     LabRenderer renderer{paths};
     const LoadedModule& reflectance = modules.find("reflectance");
     EXPECT_TRUE(readsSceneLights(renderer, reflectance, {}, 1));

@@ -83,13 +83,12 @@ TEST(Startup, AMissingOpenImageIoLibraryIsAClearError) {
 }
 
 TEST(Startup, ACommandAboutOneModuleOpensOnlyItsLibrary) {
-    const fs::path labs = fs::path(PBRLAB_SOURCE_DIR) / "labs";
-    ModuleRegistry one(PBRLAB_MODULE_DIR, labs, "ndotl");
+    ModuleRegistry one(PBRLAB_MODULE_DIR, "ndotl");
     ASSERT_EQ(one.modules().size(), 1u);
     EXPECT_EQ(one.find("ndotl").desc->id, "ndotl");
     // An id no library is named for opens them all, so the error can list what there is.
-    ModuleRegistry all(PBRLAB_MODULE_DIR, labs);
-    ModuleRegistry unknown(PBRLAB_MODULE_DIR, labs, "no_such_step");
+    ModuleRegistry all(PBRLAB_MODULE_DIR);
+    ModuleRegistry unknown(PBRLAB_MODULE_DIR, "no_such_step");
     EXPECT_GT(all.modules().size(), 1u);
     EXPECT_EQ(unknown.modules().size(), all.modules().size());
     try {

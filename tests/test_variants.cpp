@@ -2,7 +2,7 @@
 // own step, graded exactly as a submission is (gradeSubmission: a child process, every check).
 //   tests/variants/<id>/correct_*.glsl   correct alternatives (other frames, sequences,
 //                                        quadratures, epsilons, the lesson's code)
-//   labs/NN-id/mistakes/*.glsl           the typical mistakes the grader also names
+//   labs/<id>/mistakes/*.glsl           the typical mistakes the grader also names
 //   tests/exploits/<id>/*.glsl           shortcuts found by reading the grader; a line
 //                                        "// expect: TEXT" says what the message must name
 // A mistake must fail by a margin, not by a hair: its worst check is at least twice outside
@@ -41,7 +41,7 @@ std::vector<Variant> allVariants() {
                                  f.path().filename().string(), f.path()});
     }
     for (const auto& step : contractSteps()) {
-        fs::path dir = fs::path(PBRLAB_SOURCE_DIR) / "labs" / step.folder() / "mistakes";
+        fs::path dir = step.folder / "mistakes";
         if (!fs::exists(dir)) continue;
         for (const auto& f : fs::directory_iterator(dir))
             if (f.path().extension() == ".glsl")
@@ -63,7 +63,7 @@ std::string expectation(const fs::path& file) {
 
 struct Grader {
     DataPaths paths{PBRLAB_SOURCE_DIR};
-    ModuleRegistry modules{PBRLAB_MODULE_DIR, paths.labs()};
+    ModuleRegistry modules{PBRLAB_MODULE_DIR};
 };
 
 // How clearly a failed grade failed: the worst band excess of its failed value checks, or

@@ -22,6 +22,7 @@
 #include "ibl.h"
 #include "kit.h"
 #include "mutation.h"
+#include "new_step.h"
 #include "pbrlab/contract.h"
 #include "pbrlab/display.h"
 #include "pbrlab/envgen.h"
@@ -39,22 +40,14 @@ using namespace pbrlab;
 
 namespace {
 
-fs::path executableDir() {
-    std::error_code ec;
-    fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    return ec ? fs::current_path() : exe.parent_path();
-}
-
 struct Options {
-    std::string modulesDir;
+    std::vector<std::string> modulesDirs;  // --modules, after the built-in and $PBRLAB_MODULES
     bool verbose = false;
     bool stats = false;
 };
 
-fs::path modulesDir(const Options& o) {
-    if (!o.modulesDir.empty()) return o.modulesDir;
-    const char* env = std::getenv("PBRLAB_MODULES");
-    return env && *env ? fs::path(env) : executableDir() / "modules";
+std::vector<fs::path> modulesDirs(const Options& o) {
+    return moduleDirs(std::vector<fs::path>(o.modulesDirs.begin(), o.modulesDirs.end()));
 }
 
 // What every command that renders needs, made in the right order (context before GL use).
@@ -66,7 +59,7 @@ struct Session {
 
     // `onlyId`: the command is about that one module (see ModuleRegistry).
     explicit Session(const Options& o, bool needGl = true, const std::string& onlyId = {}) {
-        modules = std::make_unique<ModuleRegistry>(modulesDir(o), paths.labs(), onlyId);
+        modules = std::make_unique<ModuleRegistry>(modulesDirs(o), onlyId);
         for (const auto& f : modules->failures())
             std::cerr << "warning: module " << f.library.string() << " not loaded: " << f.reason
                       << "\n";
@@ -144,11 +137,16 @@ void printStats(const Session& session) {
     std::cout << journal();
 }
 
-int runList(const Options& o) {
+int runList(const Options& o, bool withOrder) {
     Session session(o, false);
-    for (const auto& m : session.modules->modules())
+    for (const auto& m : session.modules->modules()) {
         std::cout << m.desc->id << "\t" << m.desc->step << "\t" << m.desc->lab << "\t"
-                  << m.desc->title << "\n";
+                  << m.desc->title;
+        if (withOrder)
+            std::cout << "\t" << findContractStep(m.desc->id)->order << "\t"
+                      << m.sourceDir.string();
+        std::cout << "\n";
+    }
     return 0;
 }
 
@@ -327,7 +325,7 @@ int runGallery(const Options& o, const std::string& outDir, const std::string& s
             "figure{display:inline-block;margin:8px}</style><h1>pbrlab: every step</h1>\n";
     int failures = 0;
     for (const auto& m : session.modules->modules()) {
-        std::string name = findContractStep(m.desc->id)->folder() + ".png";
+        std::string name = findContractStep(m.desc->id)->numbered() + ".png";
         try {
             Scene scene = loadScene(session.paths.scene(m.desc->scene));
             auto r = session.renderer->renderScene(m, ParamValues(m.desc->params), scene, {},
@@ -341,38 +339,30 @@ int runGallery(const Options& o, const std::string& outDir, const std::string& s
             std::cerr << "error: " << m.desc->id << ": " << e.what() << "\n";
         }
     }
-    // glTF models: the same modules on the project's generated models and a scene placing them.
-    html << "<h2>glTF models</h2>\n";
-    struct ModelView {
-        const char* module;
-        const char* scene;  // a scene name, or a model under assets/models
-        const char* model;
-        const char* caption;
-    };
-    const ModelView views[] = {
-        {"brdf", nullptr, "sphere-grid.glb", "brdf on sphere-grid.glb"},
-        {"reflectance", nullptr, "textured-sphere.glb", "reflectance on textured-sphere.glb"},
-        {"reflectance", "models", nullptr, "reflectance, scene models.json"},
-        {"split_sum", "models", nullptr, "split_sum, scene models.json"}};
-    for (const ModelView& v : views) {
-        const std::string name = std::string("model-") + v.module + "-" +
-                                 fs::path(v.model ? v.model : v.scene).stem().string() + ".png";
-        try {
-            const LoadedModule& m = session.modules->find(v.module);
-            Scene scene =
-                sceneFor(session, *m.desc, v.scene ? v.scene : "",
-                         v.model ? (session.paths.assets() / "models" / v.model).string() : "");
-            auto r = session.renderer->renderScene(m, ParamValues(m.desc->params), scene, {},
-                                                   s.width, s.height, false);
-            writeOutput(*m.desc, r, fs::path(outDir) / name);
-            html << "<figure><img src=\"" << name << "\" width=256><figcaption>" << v.caption
-                 << "</figcaption></figure>\n";
-            std::cout << "wrote " << (fs::path(outDir) / name).string() << "\n";
-        } catch (const Error& e) {
-            ++failures;
-            std::cerr << "error: " << v.caption << ": " << e.what() << "\n";
+    // The views the steps add (step.json "gallery"): generated models, scenes placing them.
+    html << "<h2>glTF models and scenes</h2>\n";
+    for (const auto& m : session.modules->modules())
+        for (const ContractStep::GalleryView& v : findContractStep(m.desc->id)->gallery) {
+            const std::string name = "model-" + m.desc->id + "-" +
+                                     fs::path(v.model.empty() ? v.scene : v.model).stem().string() +
+                                     ".png";
+            const std::string caption =
+                m.desc->id + (v.model.empty() ? ", scene " + v.scene + ".json" : " on " + v.model);
+            try {
+                Scene scene = sceneFor(
+                    session, *m.desc, v.scene,
+                    v.model.empty() ? "" : (session.paths.assets() / "models" / v.model).string());
+                auto r = session.renderer->renderScene(m, ParamValues(m.desc->params), scene, {},
+                                                       s.width, s.height, false);
+                writeOutput(*m.desc, r, fs::path(outDir) / name);
+                html << "<figure><img src=\"" << name << "\" width=256><figcaption>" << caption
+                     << "</figcaption></figure>\n";
+                std::cout << "wrote " << (fs::path(outDir) / name).string() << "\n";
+            } catch (const Error& e) {
+                ++failures;
+                std::cerr << "error: " << caption << ": " << e.what() << "\n";
+            }
         }
-    }
     std::cout << "gallery: " << (fs::path(outDir) / "index.html").string() << "\n";
     return failures ? 1 : 0;
 }
@@ -432,12 +422,14 @@ int main(int argc, char** argv) {
     CLI::App app{"pbrlab: a step-by-step lab for physically based rendering"};
     app.require_subcommand(1);
     Options o;
-    app.add_option("--modules", o.modulesDir,
-                   "Directory of module libraries (default: $PBRLAB_MODULES, else beside the "
-                   "executable)");
+    app.add_option("--modules", o.modulesDirs,
+                   "A folder of step libraries (pbrlab-<id>.so) and step folders, loaded after the "
+                   "built-in steps and $PBRLAB_MODULES (colon-separated); repeatable");
     app.add_flag("--verbose,-v", o.verbose, "Log compiles, texture loads and passes to stderr");
 
     auto* list = app.add_subcommand("list", "List the modules, one a line, id first, lab order");
+    bool listOrder = false;
+    list->add_flag("--order", listOrder, "Also each step's order key and folder");
 
     std::string id, submission, size = "512x512", scene, model, out;
     std::vector<std::string> sets;
@@ -532,7 +524,7 @@ int main(int argc, char** argv) {
     gradeCmd->add_option("--batch", batchDir,
                          "Grade every sub-folder of this folder (one submission each)");
     gradeCmd->add_option("--out", batchOut, "With --batch: where the reports go");
-    gradeCmd->add_option("--modules", gradeModules, "Comma-separated ids (default: all)");
+    gradeCmd->add_option("--steps", gradeModules, "Comma-separated step ids (default: all)");
     gradeCmd->add_option("--json", gradeJsonFile, "Write pbrlab's JSON report here");
     gradeCmd->add_option("--gradescope", gradescopeFile, "Write Gradescope's results.json here");
     gradeCmd->add_option("--html", gradeOptions.html, "Write an HTML report with images here");
@@ -562,6 +554,17 @@ int main(int argc, char** argv) {
     kitCmd->add_option("--release-through", kit.releaseThrough,
                        "Give the solutions of the steps up to this id (after due dates)");
     kitCmd->add_flag("--force", kit.force, "Write into a non-empty folder");
+    NewStepOptions newStep;
+    auto* newStepCmd = app.add_subcommand(
+        "new-step", "Write a step folder to build outside the source tree (find_package(pbrlab))");
+    newStepCmd->add_option("id", newStep.id, "The step's id: the student's file is <id>.glsl")
+        ->required();
+    newStepCmd->add_option("--out", newStep.out, "Folder for CMakeLists.txt and <id>/")->required();
+    newStepCmd->add_option("--lab", newStep.lab,
+                           "Its lab (default: the lab of the step before it)");
+    newStepCmd->add_option("--order", newStep.order,
+                           "Its order key: between two steps' keys to insert it there (default: "
+                           "after the last; `pbrlab list --order` shows them)");
     PrecomputeOptions precomputeOptions;
     IblSettings ibl;
     bool filteredSampling = false;
@@ -637,7 +640,7 @@ int main(int argc, char** argv) {
     }
     setVerbose(o.verbose);
     try {
-        if (*list) return runList(o);
+        if (*list) return runList(o, listOrder);
         if (*render)
             return runRender(o, id, submission, cumulative, sets, size, scene, model, probe, out);
         if (*check) return runCheck(o, id, submission, cumulative, checkSize, gradeSeed, checkJson);
@@ -759,6 +762,17 @@ int main(int argc, char** argv) {
                       << "\n";
             return 0;
         }
+        if (*newStepCmd) {
+            for (const fs::path& dir : modulesDirs(o)) addStepRoot(dir);
+            writeStepTemplate(newStep);
+            std::cout << "wrote " << (newStep.out / newStep.id).string() << "/ and "
+                      << (newStep.out / "CMakeLists.txt").string() << "\nbuild: cmake -S "
+                      << newStep.out.string() << " -B " << (newStep.out / "build").string()
+                      << " -DCMAKE_PREFIX_PATH=<pbrlab's install prefix> && cmake --build "
+                      << (newStep.out / "build").string() << "\nuse:   pbrlab --modules "
+                      << (newStep.out / "build" / "modules").string() << " list\n";
+            return 0;
+        }
         if (*precompute) {
             if (filteredSampling) ibl.prefilter = PrefilterMethod::Filtered;
             return runPrecompute(precomputeOptions, ibl);
@@ -767,7 +781,7 @@ int main(int argc, char** argv) {
             Size s = parseSize(guiSize);
             gui.width = s.width;
             gui.height = s.height;
-            gui.modulesDir = modulesDir(o);
+            gui.modulesDirs = modulesDirs(o);
             return runGui(gui);
         }
         if (*textures) {

@@ -1,81 +1,184 @@
 #include "pbrlab/contract.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
+#include <fstream>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
 #include <set>
 
+#include "paths.h"
 #include "pbrlab/error.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
 
 namespace pbrlab {
 
-std::string ContractStep::folder() const {
+std::string ContractStep::numbered() const {
     char buf[8];
     std::snprintf(buf, sizeof buf, "%02d-", step);
     return buf + id;
 }
 
-const std::vector<ContractStep>& contractSteps() {
-    static const std::vector<ContractStep> steps = {
-        {1, "albedo", "direct", "vec3 srgbToLinear(vec3 c)", {}},
-        {2,
-         "radiance",
-         "direct",
-         "vec3 pointLightRadiance(vec3 lightColor, vec3 lightPos, vec3 worldPos)",
-         {}},
-        {3, "halfway", "direct", "vec3 halfwayVector(vec3 L, vec3 V)", {}},
-        {4, "ndotl", "direct", "float lambertCosine(vec3 N, vec3 L)", {}},
-        {5, "ndf", "direct", "float distributionGGX(vec3 N, vec3 H, float roughness)", {}},
-        {6, "g1", "direct", "float geometrySchlickGGX(float NdotX, float roughness)", {}},
-        {7,
-         "smith",
-         "direct",
-         "float geometrySmith(vec3 N, vec3 V, vec3 L, float roughness)",
-         {"g1"}},
-        {8, "f0", "direct", "vec3 baseReflectivity(vec3 albedo, float metallic)", {}},
-        {9, "fresnel", "direct", "vec3 fresnelSchlick(float cosTheta, vec3 F0)", {}},
-        {10,
-         "specular",
-         "direct",
-         "vec3 cookTorranceSpecular(vec3 N, vec3 V, vec3 L, vec3 F0, float roughness)",
-         {"halfway", "ndf", "smith", "fresnel"}},
-        {11,
-         "brdf",
-         "direct",
-         "vec3 cookTorranceBRDF(vec3 N, vec3 V, vec3 L, vec3 albedo, float metallic, float "
-         "roughness)",
-         {"f0", "halfway", "fresnel", "specular"}},
-        {12,
-         "reflectance",
-         "direct",
-         "vec3 reflectedRadiance(vec3 P, vec3 N, vec3 V, vec3 albedo, float metallic, float "
-         "roughness, float ao)",
-         {"radiance", "ndotl", "brdf"}},
-        {13, "tonemap", "direct", "vec3 displayEncode(vec3 hdr)", {}},
-        {14, "normalmap", "direct", "vec3 normalFromMap(vec3 N, vec4 tangent, vec3 mapTexel)", {}},
-        {15, "hammersley", "ibl", "vec2 hammersley(uint i, uint n)", {}},
-        {16, "importance", "ibl", "vec3 importanceSampleGGX(vec2 Xi, vec3 N, float roughness)", {}},
-        {17,
-         "mc_specular",
-         "ibl",
-         "vec3 specularIBLReference(vec3 N, vec3 V, vec3 F0, float roughness, uint sampleCount)",
-         {"hammersley", "importance", "fresnel"}},
-        {18, "irradiance", "ibl", "vec3 irradianceAt(vec3 N)", {}},
-        {19,
-         "prefilter",
-         "ibl",
-         "vec3 prefilterEnvironment(vec3 R, float roughness, uint sampleCount)",
-         {"hammersley", "importance", "ndf"}},
-        {20,
-         "brdf_lut",
-         "ibl",
-         "vec2 integrateBRDF(float NdotV, float roughness, uint sampleCount)",
-         {"hammersley", "importance"}},
-        {21,
-         "split_sum",
-         "ibl",
-         "vec3 ambientIBL(vec3 N, vec3 V, vec3 albedo, float metallic, float roughness, float ao)",
-         {"f0"}},
+namespace {
+
+struct Contract {
+    std::mutex mutex;
+    std::vector<fs::path> roots;
+    bool loaded = false;
+    // Every contract loaded so far, the last one current: a root added later loads a new one
+    // and leaves the pointers into the old ones valid.
+    std::vector<std::unique_ptr<std::vector<ContractStep>>> loads;
+};
+
+Contract& contract() {
+    static Contract c;
+    return c;
+}
+
+// The built-in step folders: the data root's labs/ (the source tree, or share/pbrlab/labs).
+fs::path builtInRoot() {
+    return DataPaths::locate().labs();
+}
+
+ContractStep readStep(const fs::path& file) {
+    std::ifstream in(file);
+    if (!in) throw Error(file.string() + ": cannot read");
+    json j;
+    try {
+        j = json::parse(in);
+    } catch (const std::exception& e) {
+        throw Error(file.string() + ": not valid JSON (" + e.what() + ")");
+    }
+    auto field = [&](const char* name) -> const json& {
+        if (!j.is_object() || !j.contains(name))
+            throw Error(file.string() + ": missing field \"" + name + "\"");
+        return j.at(name);
     };
+    ContractStep s;
+    try {
+        s.id = field("id").get<std::string>();
+        s.lab = field("lab").get<std::string>();
+        s.order = field("order").get<double>();
+        s.function = field("function").get<std::string>();
+        s.calls = j.value("calls", std::vector<std::string>());
+        s.provides = j.value("provides", std::vector<std::string>());
+        for (const json& view : j.value("gallery", json::array())) {
+            ContractStep::GalleryView v{view.value("scene", ""), view.value("model", "")};
+            if (v.scene.empty() == v.model.empty())
+                throw Error(file.string() +
+                            ": each \"gallery\" entry names a \"scene\" or a "
+                            "\"model\", one of the two");
+            s.gallery.push_back(v);
+        }
+    } catch (const json::exception& e) {
+        throw Error(file.string() + ": a field has the wrong type (" + e.what() + ")");
+    }
+    auto isIdChar = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    if (s.id.empty() || !std::all_of(s.id.begin(), s.id.end(), isIdChar))
+        throw Error(file.string() + ": \"id\" must be letters, digits and _ (it names <id>.glsl)");
+    if (s.lab.empty()) throw Error(file.string() + ": \"lab\" is empty");
+    if (s.function.find('(') == std::string::npos)
+        throw Error(file.string() + ": \"function\" is not a GLSL signature");
+    s.folder = file.parent_path();
+    return s;
+}
+
+}  // namespace
+
+std::vector<ContractStep> readStepFolders(const std::vector<fs::path>& roots) {
+    std::vector<ContractStep> steps;
+    for (const fs::path& root : roots) {
+        std::error_code ec;
+        if (!fs::is_directory(root, ec)) continue;
+        std::vector<fs::path> files;
+        for (const auto& entry : fs::directory_iterator(root, ec))
+            if (fs::is_regular_file(entry.path() / "step.json", ec))
+                files.push_back(entry.path() / "step.json");
+        std::sort(files.begin(), files.end());
+        for (const fs::path& file : files) {
+            ContractStep s = readStep(file);
+            auto same = std::find_if(steps.begin(), steps.end(),
+                                     [&](const ContractStep& t) { return t.id == s.id; });
+            if (same == steps.end()) {
+                steps.push_back(std::move(s));
+            } else if (!fs::equivalent(same->folder, s.folder, ec)) {
+                throw Error(file.string() + ": step id '" + s.id + "' is already declared by " +
+                            (same->folder / "step.json").string());
+            }
+        }
+    }
+    std::stable_sort(steps.begin(), steps.end(), [](const ContractStep& a, const ContractStep& b) {
+        return a.order < b.order;
+    });
+    for (size_t i = 0; i < steps.size(); ++i) {
+        steps[i].step = int(i + 1);
+        if (i > 0 && steps[i].order == steps[i - 1].order) {
+            char order[32];
+            std::snprintf(order, sizeof order, "%g", steps[i].order);
+            throw Error((steps[i].folder / "step.json").string() + ": order " + order +
+                        " is also " + steps[i - 1].id + "'s: give each step its own");
+        }
+    }
+    // Every contract function is declared in every program: one name, one step.
+    auto name = [](const ContractStep& s) {
+        const std::string head = s.function.substr(0, s.function.find('('));
+        return head.substr(head.find_last_of(" \t") + 1);
+    };
+    for (size_t i = 0; i < steps.size(); ++i)
+        for (size_t k = 0; k < i; ++k)
+            if (name(steps[i]) == name(steps[k]))
+                throw Error((steps[i].folder / "step.json").string() + ": function " +
+                            name(steps[i]) + " is already " + steps[k].id + "'s");
+    // The programs concatenate the steps' files in order: a step may call earlier ones only.
+    for (const ContractStep& s : steps)
+        for (const std::string& callee : s.calls) {
+            auto found = std::find_if(steps.begin(), steps.end(),
+                                      [&](const ContractStep& t) { return t.id == callee; });
+            if (found == steps.end())
+                throw Error((s.folder / "step.json").string() + ": calls '" + callee +
+                            "', which no step folder declares");
+            if (found->order >= s.order)
+                throw Error((s.folder / "step.json").string() + ": calls '" + callee +
+                            "', which comes after it (give this step a larger order)");
+        }
     return steps;
+}
+
+namespace {
+
+void load(Contract& c) {
+    std::vector<fs::path> roots = {builtInRoot()};
+    roots.insert(roots.end(), c.roots.begin(), c.roots.end());
+    c.loads.push_back(std::make_unique<std::vector<ContractStep>>(readStepFolders(roots)));
+    c.loaded = true;
+}
+
+}  // namespace
+
+void addStepRoot(const fs::path& root) {
+    Contract& c = contract();
+    std::lock_guard lock(c.mutex);
+    std::error_code ec;
+    for (const fs::path& known : c.roots)
+        if (known == root || fs::equivalent(known, root, ec)) return;
+    c.roots.push_back(root);
+    // Only a root with step folders changes the contract (the build's modules/ folder has none).
+    for (const auto& entry : fs::directory_iterator(root, ec))
+        if (fs::is_regular_file(entry.path() / "step.json", ec)) {
+            c.loaded = false;
+            return;
+        }
+}
+
+const std::vector<ContractStep>& contractSteps() {
+    Contract& c = contract();
+    std::lock_guard lock(c.mutex);
+    if (!c.loaded) load(c);
+    return *c.loads.back();
 }
 
 std::string contractPrototypes() {
@@ -83,6 +186,13 @@ std::string contractPrototypes() {
         "// Every contract function, declared before any is defined: any step may call any.\n";
     for (const auto& s : contractSteps()) text += s.function + ";\n";
     return text + kFresnelSchlickRoughness + ";\n";
+}
+
+const ContractStep* findProvider(const std::string& sampler) {
+    for (const auto& s : contractSteps())
+        for (const std::string& provided : s.provides)
+            if (provided == sampler) return &s;
+    return nullptr;
 }
 
 const ContractStep* findContractStep(const std::string& id) {

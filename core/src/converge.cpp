@@ -1,6 +1,7 @@
 #include "converge.h"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -22,15 +23,15 @@ namespace pbrlab {
 
 namespace {
 
-// A host-made module: one of shaders/converge/<name>/view.glsl with the IBL lab's reference
-// library (the closure of split_sum holds every IBL step).
+// A host-made module: one of shaders/converge/<name>/view.glsl with every step's reference
+// solution linked in (as every view is), placed after every step so that it may read every
+// precomputed map.
 struct Method {
     ModuleDesc desc;
     LoadedModule module;
     Method(const DataPaths& paths, const std::string& name, std::vector<ParamDecl> params = {}) {
-        desc.id = "split_sum";
-        desc.step = 21;
-        desc.lab = "ibl";
+        desc.id = "converge_" + name;
+        desc.step = std::numeric_limits<int>::max();
         desc.components = 3;
         desc.needs = NeedsMaterial | NeedsEnvironment;
         desc.params = std::move(params);

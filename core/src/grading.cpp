@@ -278,10 +278,7 @@ private:
             c.detail = "no map computed by this step's or a later step's reference solution";
         } else {
             for (const std::string& f : forbidden) {
-                std::string producer;
-                for (const DerivedMap& map : kDerivedMaps)
-                    if (f == map.sampler) producer = map.producer;
-                const ContractStep* step = findContractStep(producer);
+                const ContractStep* step = findProvider(f);
                 c.detail += (c.detail.empty() ? "" : "; ") + f +
                             (step ? " is computed by the reference solution of step " +
                                         std::to_string(step->step) + " (" + step->id + ")"
@@ -923,7 +920,7 @@ private:
         return a;
     }
 
-    // The step's typical mistakes (labs/NN-id/mistakes/*.glsl): the one the student's values
+    // The step's typical mistakes (labs/<id>/mistakes/*.glsl): the one the student's values
     // equal at 95% of the sampled points names the mistake outright.
     std::string typicalMistake(const ValuesRun& f, const Sample& sample) {
         const fs::path dir = m_.sourceDir / "mistakes";

@@ -20,7 +20,7 @@ struct GradeSettings {
     int domainPoints = 2048;
     bool feedback = true;  // on failure, name the mistake (costs a few more renders)
     // What the feedback may compare with besides the patterns: the step's typical mistakes
-    // (labs/NN-id/mistakes) and the mutants of its reference solution. Off: patterns alone
+    // (labs/<id>/mistakes) and the mutants of its reference solution. Off: patterns alone
     // (how the patterns' reach is measured).
     bool typicalMistakes = true, mutantCatalogue = true;
     bool robustness = true;  // the extreme-input sweep (reported, not deducted)

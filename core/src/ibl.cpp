@@ -20,8 +20,14 @@ namespace pbrlab {
 
 const char* const kCubeFaceNames[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
 
-const DerivedMap kDerivedMaps[3] = {
-    {"uIrradianceMap", "irradiance"}, {"uPrefilterMap", "prefilter"}, {"uBrdfLut", "brdf_lut"}};
+const DerivedMap kDerivedMaps[3] = {{"uIrradianceMap"}, {"uPrefilterMap"}, {"uBrdfLut"}};
+
+// The id of the step whose reference solution a pass for this map links (step.json "provides"),
+// "" when no step declares the map.
+static std::string providerOf(const char* sampler) {
+    const ContractStep* step = findProvider(sampler);
+    return step ? step->id : std::string();
+}
 
 namespace {
 
@@ -412,7 +418,7 @@ std::shared_ptr<Program> IblPrecompute::program(const std::string& pass,
     r.fragment.push_back(shaders_ / "common.glsl");
     if (!contractId.empty())
         for (const ContractStep* step : contractClosure(contractId, {}))
-            r.fragment.push_back(labs_ / step->folder() / "solution.glsl");
+            r.fragment.push_back(step->folder / "solution.glsl");
     r.fragment.push_back(shaders_ / "ibl" / (pass + ".frag"));
     r.defines = extra;
     r.defines["PBRLAB_IBL"] = "1";
@@ -549,7 +555,7 @@ std::vector<fs::path> IblPrecompute::sources(const std::vector<std::string>& sha
     for (const std::string& s : shaders) files.push_back(shaders_ / "ibl" / (s + ".frag"));
     if (!contractId.empty())
         for (const ContractStep* step : contractClosure(contractId, {}))
-            files.push_back(labs_ / step->folder() / "solution.glsl");
+            files.push_back(step->folder / "solution.glsl");
     return files;
 }
 
@@ -575,8 +581,8 @@ std::string IblPrecompute::mapsKey(const Image& equirect, const IblSettings& s) 
           std::to_string(equirect.channels) + s.key() + kCpuMapsVersion);
     // Every file that can compute the irradiance or the prefiltered map.
     std::vector<fs::path> files =
-        sources({"prefilter", "irradiance", "irradiance_riemann"}, "prefilter");
-    for (const auto& p : sources({}, "irradiance")) files.push_back(p);
+        sources({"prefilter", "irradiance", "irradiance_riemann"}, providerOf("uPrefilterMap"));
+    for (const auto& p : sources({}, providerOf("uIrradianceMap"))) files.push_back(p);
     addFiles(f, files);
     return f.hex();
 }
@@ -584,7 +590,7 @@ std::string IblPrecompute::mapsKey(const Image& equirect, const IblSettings& s) 
 std::string IblPrecompute::lutKey(const IblSettings& s) const {
     Fnv f;
     f.add(s.lutKey());
-    addFiles(f, sources({"brdf_lut", "brdf_lut_quadrature"}, "brdf_lut"));
+    addFiles(f, sources({"brdf_lut", "brdf_lut_quadrature"}, providerOf("uBrdfLut")));
     return f.hex();
 }
 
@@ -737,7 +743,7 @@ void IblPrecompute::buildPrefilter(IblMaps& maps, Inputs& inputs) {
     }
     Defines defines;
     if (s.prefilter == PrefilterMethod::Filtered) defines["PBRLAB_FILTERED_IS"] = "1";
-    auto p = program("prefilter", "prefilter", defines);
+    auto p = program("prefilter", providerOf("uPrefilterMap"), defines);
     const GLuint source = inputs.sourceCube();
     p->use();
     gl::ActiveTexture(GL_TEXTURE0);
@@ -759,8 +765,9 @@ void IblPrecompute::buildIrradiance(IblMaps& maps, Inputs& inputs) {
         uploadCube(maps.irradiance.id(), {convolveBins(inputs.bins(), s.irradianceSize, 1.0)});
         return;
     }
-    auto p = s.irradiance == IrradianceMethod::Riemann ? program("irradiance_riemann", "")
-                                                       : program("irradiance", "irradiance");
+    auto p = s.irradiance == IrradianceMethod::Riemann
+                 ? program("irradiance_riemann", "")
+                 : program("irradiance", providerOf("uIrradianceMap"));
     const GLuint source = inputs.sourceCube();
     p->use();
     gl::ActiveTexture(GL_TEXTURE0);
@@ -787,8 +794,8 @@ void IblPrecompute::buildLut(IblMaps& maps) {
     GLenum buffer = GL_COLOR_ATTACHMENT0;
     gl::DrawBuffers(1, &buffer);
     gl::Viewport(0, 0, s.lutWidth, s.lutHeight);
-    auto p = s.lut == LutMethod::Quadrature ? program("brdf_lut_quadrature", "brdf_lut")
-                                            : program("brdf_lut", "brdf_lut");
+    auto p = s.lut == LutMethod::Quadrature ? program("brdf_lut_quadrature", providerOf("uBrdfLut"))
+                                            : program("brdf_lut", providerOf("uBrdfLut"));
     p->use();
     p->set("uSize", glm::vec2(float(s.lutWidth), float(s.lutHeight)));
     p->setUnsigned("uSampleCount", unsigned(s.lutSamples));

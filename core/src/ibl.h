@@ -153,12 +153,12 @@ private:
     gl::FullscreenTriangle fullscreen_;
 };
 
-// The maps the precompute derives from the environment, and the contract step each stands
-// in for: a view may read a map only when that step comes before its own (no step sees what
-// its own or a later step computes).
+// The maps the precompute derives from the environment, by their contract sampler names. The
+// step each stands in for declares it (step.json "provides", findProvider): a view may read a
+// map only when that step comes before its own (no step sees what its own or a later step
+// computes).
 struct DerivedMap {
-    const char* sampler;   // the contract's uniform name
-    const char* producer;  // the contract step whose quantity the map holds
+    const char* sampler;  // the contract's uniform name
 };
 extern const DerivedMap kDerivedMaps[3];
 

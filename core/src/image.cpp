@@ -123,17 +123,19 @@ struct OiioLibrary {
 std::atomic<bool> oiioOpened{false};
 
 OiioLibrary openOiioLibrary() {
-    // $PBRLAB_OIIO_LIBRARY when set; otherwise beside the executable (where the build puts it
-    // and an install copies it), then the dynamic linker's own search (the test and benchmark
-    // programs in build/tests carry build/ in their RUNPATH).
+    // $PBRLAB_OIIO_LIBRARY when set; otherwise beside the executable (where the build puts it)
+    // or in <prefix>/lib/pbrlab (where an install copies it), then the dynamic linker's own search
+    // (the test and benchmark programs in build/tests carry build/ in their RUNPATH).
     std::vector<std::string> candidates;
     if (const char* named = std::getenv("PBRLAB_OIIO_LIBRARY"); named && *named) {
         candidates.push_back(named);
     } else {
         std::error_code ec;
-        const fs::path beside =
-            fs::read_symlink("/proc/self/exe", ec).parent_path() / "libpbrlab_oiio.so";
-        if (!ec && fs::exists(beside, ec)) candidates.push_back(beside.string());
+        const fs::path exeDir = fs::read_symlink("/proc/self/exe", ec).parent_path();
+        // Beside the executable (the build tree), or in <prefix>/lib/pbrlab (cmake --install).
+        for (const fs::path& place : {exeDir, exeDir.parent_path() / "lib" / "pbrlab"})
+            if (!ec && fs::exists(place / "libpbrlab_oiio.so", ec))
+                candidates.push_back((place / "libpbrlab_oiio.so").string());
         candidates.push_back("libpbrlab_oiio.so");
     }
     std::string failures;
@@ -156,7 +158,7 @@ OiioLibrary openOiioLibrary() {
     }
     return {nullptr,
             "this format needs OpenImageIO, which pbrlab loads from its library "
-            "libpbrlab_oiio.so (built and installed beside the pbrlab executable; "
+            "libpbrlab_oiio.so (built beside the pbrlab executable, installed in lib/pbrlab; "
             "PBRLAB_OIIO_LIBRARY may name another path), and it could not be loaded (" +
                 failures + ")"};
 }

@@ -73,7 +73,7 @@ int writeKit(const ModuleRegistry& modules, const KitOptions& o) {
                   released ? text : stubSolution(text, d.function, solution.string()));
         fs::path handout = m.sourceDir / "README.md";
         if (fs::exists(handout))
-            writeFile(o.out / "handouts" / (findContractStep(d.id)->folder() + ".md"),
+            writeFile(o.out / "handouts" / (findContractStep(d.id)->numbered() + ".md"),
                       readFile(handout));
         list += "| " + std::to_string(d.step) + " | `" + d.id + ".glsl` | `" + d.function + "` | " +
                 (released ? "solution given" : "to write") + " |\n";

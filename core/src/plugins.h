@@ -1,9 +1,11 @@
-// The plugin host: finds module shared libraries (pbrlab-*.so) in a directory, checks their
-// ABI version and descriptor against the contract, and keeps the ones that pass. A module
-// that fails is recorded with its path and reason; the others still load.
+// The plugin host: finds module shared libraries (pbrlab-<id>.so) in its folders, checks their
+// ABI version, gives each the identity its step folder declares (step.json: id, lab, position,
+// signature) and keeps the ones that pass. A module that fails is recorded with its path and
+// reason; the others still load.
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,7 +16,7 @@ namespace pbrlab {
 struct LoadedModule {
     const ModuleDesc* desc = nullptr;
     std::filesystem::path library;
-    std::filesystem::path sourceDir;  // labs/NN-id: solution.glsl, view.glsl, README.md
+    std::filesystem::path sourceDir;  // its step folder: step.json, solution.glsl, view.glsl, ...
 };
 
 struct ModuleLoadFailure {
@@ -24,12 +26,14 @@ struct ModuleLoadFailure {
 
 class ModuleRegistry {
 public:
-    // `labsRoot` holds the module folders (labs/NN-id) with their GLSL and handouts. When
-    // `onlyId` is given and a library's name ends in -<onlyId>.so, only that library is opened
-    // (a command about one module need not pay ~1 ms per library to open and close them all);
-    // otherwise every library is.
-    ModuleRegistry(const std::filesystem::path& moduleDir, const std::filesystem::path& labsRoot,
-                   const std::string& onlyId = {});
+    // Loads pbrlab-<id>.so from each folder, in order; a folder may also hold step folders
+    // (<id>/step.json: an out-of-tree step, added to the contract). When `onlyId` is given and
+    // a library is named pbrlab-<onlyId>.so, only that library is opened (a command about one
+    // module need not pay ~1 ms per library to open and close them all); otherwise every one.
+    explicit ModuleRegistry(const std::vector<std::filesystem::path>& moduleDirs,
+                            const std::string& onlyId = {});
+    explicit ModuleRegistry(const std::filesystem::path& moduleDir, const std::string& onlyId = {})
+        : ModuleRegistry(std::vector<std::filesystem::path>{moduleDir}, onlyId) {}
     ModuleRegistry(const ModuleRegistry&) = delete;
     ModuleRegistry& operator=(const ModuleRegistry&) = delete;
     ~ModuleRegistry();
@@ -43,6 +47,8 @@ private:
     std::vector<LoadedModule> modules_;
     std::vector<ModuleLoadFailure> failures_;
     std::vector<void*> handles_;
+    // The descriptors with their identity from step.json (the libraries' own stay untouched).
+    std::vector<std::unique_ptr<ModuleDesc>> descs_;
 };
 
 }  // namespace pbrlab

@@ -1,5 +1,5 @@
 // CPU references of the direct lab in double precision. Each function mirrors the GLSL
-// reference solution of its step (labs/NN-id/solution.glsl) formula for formula and guard for
+// reference solution of its step (labs/<id>/solution.glsl) formula for formula and guard for
 // guard, so the two differ only by float rounding.
 #include "pbrlab/reference.h"
 

@@ -58,16 +58,6 @@ GLint glWrap(TextureSource::Wrap wrap) {
 
 }  // namespace
 
-fs::path DataPaths::scene(const std::string& name) const {
-    if (name.find('/') != std::string::npos || fs::path(name).extension() == ".json") return name;
-    return assets() / "scenes" / (name + ".json");
-}
-
-DataPaths DataPaths::locate() {
-    if (const char* env = std::getenv("PBRLAB_DATA"); env && *env) return {env};
-    return {PBRLAB_SOURCE_DIR};
-}
-
 Scene applyParamBindings(Scene scene, const ModuleDesc& module, const ParamValues& values) {
     for (const auto& p : module.params)
         // A binding moves the scene only once the value leaves its default, so every module's
@@ -83,6 +73,29 @@ Scene applyParamBindings(Scene scene, const ModuleDesc& module, const ParamValue
 LabRenderer::LabRenderer(const DataPaths& paths)
     : paths_(paths), programs_(ShaderPreprocessor({paths.shaders(), paths.labs()})) {}
 
+std::string parameterUniforms(const ModuleDesc& d) {
+    std::string text;
+    for (const ParamDecl& p : d.params) {
+        const char* type = "float";
+        switch (p.type) {
+            case ParamType::Float:
+                type = "float";
+                break;
+            case ParamType::Int:
+            case ParamType::Bool:
+            case ParamType::Enum:
+                type = "int";
+                break;
+            case ParamType::Color:
+            case ParamType::Direction:
+                type = "vec3";
+                break;
+        }
+        text += std::string("uniform ") + type + " " + p.uniformName() + ";\n";
+    }
+    return text;
+}
+
 ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentSource& source,
                                       bool probe, int lightCount, const std::string& view) const {
     ProgramRecipe r;
@@ -95,7 +108,7 @@ ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentS
     r.fragment.push_back(ShaderPart("<contract prototypes>", contractPrototypes()));
     r.fragment.push_back(paths_.shaders() / "fresnel_roughness.glsl");
     for (const ContractStep& step : contractSteps()) {
-        ShaderPart part(paths_.labs() / step.folder() / "solution.glsl");
+        ShaderPart part(step.folder / "solution.glsl");
         if (!source.dir.empty() && (step.id == d.id || source.cumulative)) {
             fs::path student = source.dir / (step.id + ".glsl");
             std::error_code ec;
@@ -110,6 +123,9 @@ ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentS
         r.fragment.push_back(part);
     }
     r.fragment.push_back(paths_.shaders() / "surface.glsl");
+    // The step's parameters, declared from its descriptor (set in runView): a view reads
+    // u_<name> without declaring it.
+    r.fragment.push_back(ShaderPart("<parameters of " + d.id + ">", parameterUniforms(d)));
     r.fragment.push_back(module.sourceDir / (view.empty() ? "view.glsl" : view + ".glsl"));
     r.fragment.push_back(paths_.shaders() / "view_main.frag");
     r.defines["NUM_LIGHTS"] = std::to_string(std::max(lightCount, 1));
@@ -344,8 +360,10 @@ bool LabRenderer::mayRead(const ModuleDesc& d, const std::string& sampler) {
     if (sampler == "uEnvironment") return true;
     for (const DerivedMap& map : kDerivedMaps)
         if (sampler == map.sampler) {
-            const ContractStep* producer = findContractStep(map.producer);
-            return producer && producer->step < d.step;
+            // A map no step declares is the host's alone: any step that needs the environment
+            // may read it.
+            const ContractStep* producer = findProvider(sampler);
+            return !producer || producer->step < d.step;
         }
     return false;
 }

@@ -10,6 +10,7 @@
 
 #include "gl/objects.h"
 #include "ibl.h"
+#include "paths.h"
 #include "pbrlab/cube_sampler.h"
 #include "pbrlab/scene.h"
 #include "plugins.h"
@@ -18,20 +19,16 @@
 namespace pbrlab {
 
 // Where shaders/, labs/ and assets/ are: $PBRLAB_DATA, else the source tree it was built from.
-struct DataPaths {
-    std::filesystem::path root;
-    std::filesystem::path shaders() const { return root / "shaders"; }
-    std::filesystem::path labs() const { return root / "labs"; }
-    std::filesystem::path assets() const { return root / "assets"; }
-    std::filesystem::path scene(const std::string& name) const;  // a name or a .json path
-    static DataPaths locate();
-};
 
 // Whose code fills the contract functions: the reference solutions, or a student's folder.
 struct StudentSource {
     std::filesystem::path dir;  // empty: reference solutions only
     bool cumulative = false;    // use the student's earlier steps too (default: stepwise)
 };
+
+// GLSL declarations of the step's parameter uniforms (u_<name>: float, int for int, bool and
+// enum, vec3 for colour and direction), which every view program of the step gets.
+std::string parameterUniforms(const ModuleDesc& d);
 
 // The scene after the module's parameters that move things (e.g. the light direction).
 Scene applyParamBindings(Scene scene, const ModuleDesc& module, const ParamValues& values);

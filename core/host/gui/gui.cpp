@@ -96,6 +96,12 @@ struct ModuleState {
     bool stampKnown = false;
 };
 
+std::string describeDirs(const std::vector<fs::path>& dirs) {
+    std::string text;
+    for (const fs::path& dir : dirs) text += (text.empty() ? "" : ", ") + dir.string();
+    return text;
+}
+
 fs::path configFile() {
     const char* xdg = std::getenv("XDG_CONFIG_HOME");
     const char* home = std::getenv("HOME");
@@ -149,11 +155,11 @@ public:
     explicit GuiApp(const GuiOptions& options) : options_(options) {
         context_ = createWindowContext(options.width, options.height, "pbrlab");
         paths_ = DataPaths::locate();
-        registry_ = std::make_unique<ModuleRegistry>(options.modulesDir, paths_.labs());
+        registry_ = std::make_unique<ModuleRegistry>(options.modulesDirs);
         for (const auto& f : registry_->failures())
             messages_ += "module " + f.library.string() + " not loaded: " + f.reason + "\n";
         if (registry_->modules().empty())
-            throw Error("no modules in " + options.modulesDir.string());
+            throw Error("no step libraries in " + describeDirs(options.modulesDirs));
         renderer_ = std::make_unique<LabRenderer>(paths_);
         submission_ = options.submission;
         if (submission_.empty()) {
@@ -682,10 +688,12 @@ private:
         badgeJob_.json = fs::temp_directory_path() /
                          ("pbrlab-badge-" + std::to_string(getpid()) + "-" + id + ".json");
         const std::string exe = fs::read_symlink("/proc/self/exe").string();
-        const std::string modules = options_.modulesDir.string(), sub = submission_.string(),
-                          json = badgeJob_.json.string();
-        std::vector<std::string> args = {exe, "--modules", modules, "check", id, "--submission",
-                                         sub, "--json",    json};
+        // The same step folders as this process (moduleDirs drops the ones given twice).
+        std::vector<std::string> args = {exe};
+        for (const fs::path& dir : options_.modulesDirs)
+            args.insert(args.end(), {"--modules", dir.string()});
+        args.insert(args.end(), {"check", id, "--submission", submission_.string(), "--json",
+                                 badgeJob_.json.string()});
         std::vector<char*> argv;
         for (std::string& a : args) argv.push_back(a.data());
         argv.push_back(nullptr);

@@ -8,7 +8,7 @@
 namespace pbrlab {
 
 struct GuiOptions {
-    std::filesystem::path modulesDir;
+    std::vector<std::filesystem::path> modulesDirs;  // where the step libraries are (moduleDirs)
     std::filesystem::path submission;  // empty: the current directory when it holds <id>.glsl
     std::string module;                // start on this module id
     std::string view;                  // student|solution|reference|difference|split or a term

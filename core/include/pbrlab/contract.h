@@ -1,21 +1,45 @@
-// The student-facing assignment contract (docs/design.md): the 21 step ids in lab order, their
-// GLSL signatures, and which other contract functions each reference solution calls.
+// The student-facing assignment contract (docs/design.md): every step's id, lab, position,
+// GLSL signature and the other steps its reference solution calls. Each step declares them in
+// its own folder, in step.json; the contract is what the step folders declare, nothing more:
+// the built-in labs/ first, then every folder added by addStepRoot (out-of-tree steps).
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
 namespace pbrlab {
 
 struct ContractStep {
-    int step;
-    std::string id;
-    std::string lab;                 // "direct" or "ibl"
+    int step = 0;                    // position in the assignment, 1-based (from the order keys)
+    std::string id;                  // "ndotl": the student's file is <id>.glsl
+    std::string lab;                 // the steps a program links together ("direct", "ibl")
+    double order = 0;                // sorts the steps; inserting one changes no other
     std::string function;            // the GLSL signature
     std::vector<std::string> calls;  // ids its reference solution calls
-    std::string folder() const;      // "04-ndotl"
+    // The host's precomputed maps (contract samplers) that hold this step's quantity: a view may
+    // read one only when this step comes before its own.
+    std::vector<std::string> provides;
+    // More pictures of the step in the gallery, besides its default view: on a generated model
+    // (assets/models) or a scene (assets/scenes), each one of the two.
+    struct GalleryView {
+        std::string scene, model;
+    };
+    std::vector<GalleryView> gallery;
+    std::filesystem::path folder;  // step.json, solution.glsl, view.glsl, README.md, ...
+    std::string numbered() const;  // "04-ndotl": file names that sort in step order
 };
 
+// The steps declared by <root>/*/step.json for each root, in order, numbered. Throws
+// pbrlab::Error naming the step.json at fault (a missing field, an id declared twice, two
+// steps with one order key, a call to an unknown or later step).
+std::vector<ContractStep> readStepFolders(const std::vector<std::filesystem::path>& roots);
+
+// Adds every <root>/*/step.json to the contract (call before the contract is first used, as the
+// host does for --modules and $PBRLAB_MODULES). A root without step folders adds nothing.
+void addStepRoot(const std::filesystem::path& root);
+
+// The steps of the built-in labs/ and the added roots, in order (readStepFolders).
 const std::vector<ContractStep>& contractSteps();
 
 // The contract helper every step may call besides the steps' functions (shaders/
@@ -26,6 +50,8 @@ inline constexpr const char* kFresnelSchlickRoughness =
 // GLSL prototypes of every contract function (and the helper), for programs that link them all.
 std::string contractPrototypes();
 const ContractStep* findContractStep(const std::string& id);
+// The step whose quantity the sampler's map holds (step.json "provides"), or nullptr.
+const ContractStep* findProvider(const std::string& sampler);
 
 // The contract steps whose GLSL a program for `id` needs, in step order: every earlier step
 // of the same lab (students may call any of them), `extra` ids, and what those call in turn.

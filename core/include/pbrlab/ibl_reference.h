@@ -1,5 +1,5 @@
 // The CPU truth of the lab "ibl" (contract steps 15-21) in double precision. The sampling
-// functions mirror the GLSL reference solutions (labs/15-hammersley ... labs/21-split_sum)
+// functions mirror the GLSL reference solutions (labs/hammersley ... labs/split_sum)
 // formula for formula and guard for guard, so GPU and CPU differ only by float rounding and by
 // how the environment is stored (cube map on the GPU, equirectangular image here). Next to
 // the Monte Carlo estimators are high-accuracy quadratures (brdfLutExact, irradianceAt,

@@ -1,5 +1,5 @@
 // The CPU truth: every contract function of the direct lab in double precision, with the same
-// guards as the GLSL reference solutions (labs/NN-id/solution.glsl), so GPU and CPU differ
+// guards as the GLSL reference solutions (labs/<id>/solution.glsl), so GPU and CPU differ
 // only by float rounding. Modules compose their CPU references from these.
 #pragma once
 

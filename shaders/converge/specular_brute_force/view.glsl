@@ -1,5 +1,4 @@
 // converge: the specular ambient term by brute-force Monte Carlo (step 17), u_samples samples.
-uniform int u_samples;
 
 vec3 view(Surface s)
 {

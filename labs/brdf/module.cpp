@@ -1,0 +1,94 @@
+// brdf: the Cook-Torrance BRDF f_r = kD albedo / PI + specular (no cosine).
+#include "pbrlab/module.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+using namespace pbrlab;
+
+namespace {
+
+ModuleDesc describeModule() {
+    ModuleDesc d;
+    d.title = "Cook-Torrance BRDF kD albedo / PI + specular";
+    d.params = {lightDirectionParam()};
+    d.components = 3;
+    d.display = {DisplayMode::HdrColor, 0, 1};
+    d.needs = NeedsAlbedo | NeedsMetallic | NeedsRoughness;
+    // As step 10: between the floored and the lesson's denominator, +- 1e-3 of the value or
+    // the spread of 8 ulps of N, V, L (README.md).
+    d.tolerance = {1e-7, 1e-3, 8};
+    d.reference = [](const Surface& s, const ReferenceContext&) {
+        return grazingBand(s) *
+               ref::cookTorranceBRDF(s.normal, s.view, s.light, s.albedo, s.metallic, s.roughness);
+    };
+    d.alternatives = {{"the lesson's 4 N.V N.L + 0.001 in the specular denominator (seed 001)",
+                       [](const Surface& s, const ReferenceContext&) {
+                           return grazingBand(s) *
+                                  ref::cookTorranceBRDF(s.normal, s.view, s.light, s.albedo,
+                                                        s.metallic, s.roughness,
+                                                        ref::DenominatorGuard::LessonEpsilon);
+                       },
+                       true}};
+    // N anywhere; V and L in its hemisphere, half the time L near V's mirror direction (the
+    // highlight); any albedo and metallic; roughness 0.05 to 1.
+    d.domain = [](DomainRandom& r) {
+        Surface s;
+        s.normal = r.direction();
+        s.view = r.around(s.normal, 0, 1);
+        const glm::dvec3 mirror = glm::reflect(-s.view, s.normal);
+        do s.light = r.uniform() < 0.5 ? r.around(mirror, 0.9, 1) : r.around(s.normal, 0, 1);
+        while (glm::dot(s.light, s.normal) < 0);
+        s.albedo = s.albedoTexel = r.color();
+        s.metallic = r.uniform();
+        s.roughness = r.range(0.05, 1);
+        return s;
+    };
+    d.cases = {lessonGridCase()};
+    // As step 10's probe (planeOfIncidenceProbe), for a half-metallic orange: albedo
+    // (0.9, 0.5, 0.1), metallic 0.5, so both the diffuse and the specular term show in every
+    // channel.
+    d.probe = planeOfIncidenceProbe([](Surface& s) {
+        s.metallic = 0.5;
+        s.albedo = s.albedoTexel = glm::dvec3(0.9, 0.5, 0.1);
+    });
+    // Reciprocity (Helmholtz): f(V, L) = f(L, V). Pairs with N.V, N.L >= 0.3, dielectric and
+    // metal, two roughnesses; the largest relative difference over them.
+    d.invariants = [](const EvaluateFn& evaluate) {
+        std::vector<Surface> pairs;
+        const double cosines[] = {0.3, 0.6, 0.95};
+        for (double a : cosines)
+            for (double b : cosines)
+                for (double r : {0.3, 0.8})
+                    for (double m : {0.0, 1.0}) {
+                        Surface s;
+                        s.covered = true;
+                        s.normal = {0, 0, 1};
+                        s.albedo = s.albedoTexel = {0.8, 0.5, 0.2};
+                        s.metallic = m;
+                        s.roughness = r;
+                        s.view = {std::sqrt(1 - a * a), 0, a};
+                        s.light = glm::normalize(
+                            glm::dvec3(-0.6 * std::sqrt(1 - b * b), 0.8 * std::sqrt(1 - b * b), b));
+                        Surface swapped = s;
+                        std::swap(swapped.view, swapped.light);
+                        pairs.push_back(s);
+                        pairs.push_back(swapped);
+                    }
+        std::vector<glm::dvec3> f = evaluate(pairs);
+        double worst = 0;
+        for (size_t i = 0; i + 1 < f.size(); i += 2)
+            for (int c = 0; c < 3; ++c)
+                worst = std::max(
+                    worst, std::abs(f[i][c] - f[i + 1][c]) / std::max(std::abs(f[i][c]), 1e-3));
+        return std::vector<InvariantResult>{
+            {"reciprocity max |f(V,L) - f(L,V)| / f", worst, "<= 1e-4", worst <= 1e-4,
+             "f_r(V, L) = f_r(L, V) for any BRDF: something treats V and L differently"}};
+    };
+    return d;
+}
+
+}  // namespace
+
+PBRLAB_MODULE(describeModule)

@@ -1,0 +1,81 @@
+// split_sum: ambient light from the environment with three precomputed lookups.
+#include "pbrlab/module.h"
+
+#include <numbers>
+
+#include "pbrlab/ibl_reference.h"
+
+using namespace pbrlab;
+
+namespace {
+
+// What the reference solution computes, from the same maps the shader reads (CubeSampler
+// reads them as the GPU's sampler does).
+constexpr double kMaxNdotVFloor = 1e-3;  // the largest floor on N.V a correct solution may use
+
+glm::dvec3 splitSum(const Surface& s, const IblInputs& ibl, double minNdotV = 0) {
+    const glm::dvec3 N = s.normal, V = s.view;
+    const double NdotV = std::max(glm::dot(N, V), minNdotV);
+    const glm::dvec3 R = glm::reflect(-V, N);
+    glm::dvec3 irradiance = ibl.irradiance.sample(N, 0);
+    glm::dvec3 prefiltered = ibl.prefilter.sample(R, s.roughness * ibl.prefilterMaxLod);
+    glm::dvec2 lut(sampleTexture(ibl.lut, {NdotV, s.roughness}));
+    return ref::ambientIBL(N, V, s.albedo, s.metallic, s.roughness, s.ao, irradiance, prefiltered,
+                           lut, minNdotV);
+}
+
+ModuleDesc describeModule() {
+    ModuleDesc d;
+    d.title = "Split-sum ambient light";
+    d.components = 3;
+    d.display = {DisplayMode::HdrColor};
+    d.needs = NeedsMaterial | NeedsEmissive | NeedsEnvironment | NeedsPrecomputedMaps;
+    d.skyBackground = true;
+    d.scene = "sphere-grid";
+    // Band: +- 2e-3 of the value or the spread of 8 ulps of the inputs; GPU and CPU read the
+    // same maps, and 0.1% of the points may differ more where llvmpipe's 8-bit filter weights
+    // meet a bright texel (README.md).
+    d.tolerance = {1e-5, 2e-3, 8, 1e-3};
+    d.reference = [](const Surface& s, const ReferenceContext& c) {
+        return (c.ibl ? splitSum(s, *c.ibl) : glm::dvec3(0)) + s.emissive;
+    };
+    d.alternatives = {{"N.V floored at up to 1e-3 (an epsilon of its own at grazing angles)",
+                       [](const Surface& s, const ReferenceContext& c) {
+                           return (c.ibl ? splitSum(s, *c.ibl, kMaxNdotVFloor) : glm::dvec3(0)) +
+                                  s.emissive;
+                       },
+                       true}};
+    // x: N·V from 0 (grazing) to 1; y: roughness 0 to 1, on an orange half-metal (so both the
+    // diffuse and the specular term show). N = +z; V turns in the xz-plane.
+    d.probe.xAxis = "N·V 0..1";
+    d.probe.yAxis = "roughness 0..1";
+    d.probe.width = 65;
+    d.probe.height = 33;
+    d.probe.at = [](double x, double y) {
+        Surface s;
+        s.covered = true;
+        s.normal = {0, 0, 1};
+        s.view = {std::sqrt(1 - x * x), 0, x};
+        s.albedo = s.albedoTexel = {0.9, 0.55, 0.25};
+        s.metallic = 0.5;
+        s.roughness = y;
+        s.ao = 1;
+        return s;
+    };
+    // N anywhere, V in its hemisphere, any material, roughness 0 to 1, any ao.
+    d.domain = [](DomainRandom& r) {
+        Surface s;
+        s.normal = r.direction();
+        s.view = r.around(s.normal, 0, 1);
+        s.albedo = s.albedoTexel = r.color();
+        s.metallic = r.uniform();
+        s.roughness = r.uniform();
+        s.ao = r.uniform();
+        return s;
+    };
+    return d;
+}
+
+}  // namespace
+
+PBRLAB_MODULE(describeModule)

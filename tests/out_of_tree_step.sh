@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# A step from outside the source tree, as an instructor adds one (docs/authoring-a-module.md):
+# pbrlab installed with cmake --install, a step folder made by `pbrlab new-step` and built
+# against the installed package (find_package(pbrlab)), then loaded with --modules (and
+# $PBRLAB_MODULES): it must be listed at its declared position, rendered, checked, in the kit,
+# graded and in the gallery like the built-in steps, and the steps after it move down one
+# without any change to their folders.
+# Usage: out_of_tree_step.sh BUILD_DIR
+set -euo pipefail
+build=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+export PBRLAB_CACHE="$work/cache"
+
+echo "== cmake --install"
+cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
+pbrlab="$work/prefix/bin/pbrlab"
+
+echo "== new-step, inserted between ndotl (order 40) and ndf (order 50)"
+"$pbrlab" new-step half_lambert --out "$work/step" --order 45
+cmake -S "$work/step" -B "$work/step/build" -DCMAKE_PREFIX_PATH="$work/prefix" \
+    -DCMAKE_BUILD_TYPE=Release > "$work/configure.log"
+cmake --build "$work/step/build" > "$work/build.log"
+modules="$work/step/build/modules"
+test -f "$modules/pbrlab-half_lambert.so"
+
+echo "== list"
+"$pbrlab" --modules "$modules" list | tee "$work/list.txt"
+grep -qP '^ndotl\t4\tdirect\t' "$work/list.txt"
+grep -qP '^half_lambert\t5\tdirect\t' "$work/list.txt"
+grep -qP '^ndf\t6\tdirect\t' "$work/list.txt"
+grep -qP '^split_sum\t22\tibl\t' "$work/list.txt"
+PBRLAB_MODULES="$modules" "$pbrlab" list | grep -qP '^half_lambert\t5\t'
+# Without the folder the built-in steps are as they were.
+"$pbrlab" list | grep -qP '^ndf\t5\tdirect\t'
+
+echo "== render, check"
+"$pbrlab" --modules "$modules" render half_lambert --size 64x64 --out "$work/half_lambert.png"
+test -s "$work/half_lambert.png"
+"$pbrlab" --modules "$modules" check half_lambert
+"$pbrlab" --modules "$modules" check ndf
+
+echo "== kit and grade"
+"$pbrlab" --modules "$modules" kit --out "$work/kit" > /dev/null
+test -f "$work/kit/half_lambert.glsl"
+grep -q 'float halfLambert(vec3 N, vec3 L)' "$work/kit/half_lambert.glsl"
+"$pbrlab" --modules "$modules" kit --with-solutions --out "$work/solutions" > /dev/null
+"$pbrlab" --modules "$modules" grade "$work/solutions" --steps half_lambert,ndf \
+    --json "$work/solutions.json" | tee "$work/grade.txt"
+grep -qE '^half_lambert +passed +1\.0 / 1\.0' "$work/grade.txt"
+grep -qE '^ndf +passed' "$work/grade.txt"
+"$pbrlab" --modules "$modules" grade "$work/kit" --steps half_lambert | tee "$work/stub.txt"
+grep -qE '^half_lambert +failed +0\.0 / 1\.0' "$work/stub.txt"
+
+echo "== gallery"
+"$pbrlab" --modules "$modules" gallery --out "$work/gallery" --size 48x48 > /dev/null
+test -s "$work/gallery/05-half_lambert.png"
+test -s "$work/gallery/06-ndf.png"
+echo "out-of-tree step: listed, rendered, checked, in the kit, graded and in the gallery"
