@@ -1,4 +1,4 @@
-// Contract helper for step 21 (split_sum), available to student code: Schlick's Fresnel for
+// Contract helper for step `split_sum` (split_sum), available to student code: Schlick's Fresnel for
 // ambient light. Light from the environment arrives over a whole lobe of half vectors, so the
 // grazing-angle rise is capped for rough surfaces: the ceiling is max(1 - roughness, F0)
 // instead of 1 (Lagarde's "fresnelSchlickRoughness"). cosTheta is N.V here.

@@ -16,7 +16,7 @@ ModuleDesc describeModule() {
     d.components = 3;
     d.display = {DisplayMode::HdrColor, 0, 1};
     d.needs = NeedsAlbedo | NeedsMetallic | NeedsRoughness;
-    // As step 10: between the floored and the lesson's denominator, +- 1e-3 of the value or
+    // As step `specular`: between the floored and the lesson's denominator, +- 1e-3 of the value or
     // the spread of 8 ulps of N, V, L (README.md).
     d.tolerance = {1e-7, 1e-3, 8};
     d.reference = [](const Surface& s, const ReferenceContext&) {
@@ -46,7 +46,7 @@ ModuleDesc describeModule() {
         return s;
     };
     d.cases = {lessonGridCase()};
-    // As step 10's probe (planeOfIncidenceProbe), for a half-metallic orange: albedo
+    // As step `specular`'s probe (planeOfIncidenceProbe), for a half-metallic orange: albedo
     // (0.9, 0.5, 0.1), metallic 0.5, so both the diffuse and the specular term show in every
     // channel.
     d.probe = planeOfIncidenceProbe([](Surface& s) {

@@ -1,4 +1,4 @@
-// What step 11 shows: the BRDF f_r on the sphere, as HDR colour (Reinhard + gamma). Where the
+// What this step shows: the BRDF f_r on the sphere, as HDR colour (Reinhard + gamma). Where the
 // light is above the horizon the painted plates show their albedo through the diffuse term,
 // evenly, with no falloff (f_r has no cosine), plus the highlight; the metal plates are dark
 // (no diffuse term) outside the highlight. The value fades to 0 over the thin band where

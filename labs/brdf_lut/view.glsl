@@ -1,4 +1,4 @@
-// What step 20 shows: the LUT's value (scale A in red, bias B in green) at each pixel's N·V
+// What this step shows: the LUT's value (scale A in red, bias B in green) at each pixel's N·V
 // and roughness. Where the sphere faces the camera, A is high and B near 0: red, darker on
 // the rougher spheres (right; masking). At the silhouette (N·V -> 0) Fresnel moves the weight
 // into B: a thin yellow-green rim on the smooth spheres. N·V is floored at 1e-3 (see the

@@ -1,4 +1,4 @@
-// What step 8 shows: F0 as a colour on the sphere. Dielectric areas (metallic 0) are a flat
+// What this step shows: F0 as a colour on the sphere. Dielectric areas (metallic 0) are a flat
 // dark grey, 0.04; metal plates (metallic 1) show their albedo, the tint of their reflection.
 vec3 view(Surface s)
 {

@@ -9,7 +9,7 @@ using namespace pbrlab;
 namespace {
 
 // The cosine the view feeds to fresnelSchlick (u_cosine): N·V shows the rim every surface
-// gets at grazing view angles; H·V is what the BRDF feeds it (steps 10-12).
+// gets at grazing view angles; H·V is what the BRDF feeds it (steps `specular` to `reflectance`).
 enum Cosine { kNdotV = 0, kHdotV = 1 };
 
 double viewCosine(const Surface& s, int cosine) {

@@ -1,4 +1,4 @@
-// What step 6 shows: G1 towards the camera (masking), with the plates' roughness map. White
+// What this step shows: G1 towards the camera (masking), with the plates' roughness map. White
 // (1) where the sphere faces the camera, darkening to black at the silhouette, sooner on
 // rough plates.
 vec3 view(Surface s)

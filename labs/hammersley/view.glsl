@@ -1,4 +1,4 @@
-// What step 15 shows: how evenly the n points of your set cover the unit square. Each pixel
+// What this step shows: how evenly the n points of your set cover the unit square. Each pixel
 // stands for a box [0, a) x [0, b) with its corner (a, b) at the pixel and counts how many of
 // the n points fall inside it, minus how many an exactly even spread would put there (n a b):
 // the local discrepancy, in points (red). A low-discrepancy set keeps it within a few points

@@ -1,4 +1,4 @@
-// What step 16 shows: where your half vectors go, through what does not depend on the tangent
+// What this step shows: where your half vectors go, through what does not depend on the tangent
 // frame you chose around N (any orthonormal frame is correct):
 //   red:   N.H of the sample for Xi, i.e. cos(theta_h), set by Xi.y alone. With Xi = uv on
 //          the sphere grid, each sphere runs from N.H = 1 at the top (Xi.y = 0) to its lowest

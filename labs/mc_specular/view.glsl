@@ -1,4 +1,4 @@
-// What step 17 shows: the specular light each sphere reflects from the environment, summed
+// What this step shows: the specular light each sphere reflects from the environment, summed
 // sample by sample (no point lights, no diffuse part), with the sky drawn behind. Smooth
 // spheres (left) mirror the sky and the ground; rough ones (right) blur them; metals (top
 // rows) reflect more and tint it with their red albedo, dielectrics (bottom) reflect 4 %
@@ -6,7 +6,7 @@
 // few samples (--set samples=4) show as a few overlapping copies of the sky on the rough
 // spheres, not as grain; the sun (1.2 degrees, 20000 times brighter than the sky) is found
 // by one sample here and there: the bright specks on the rough spheres, which only average
-// out after tens of thousands of samples. That is the cost the split sum (steps 19-21) removes.
+// out after tens of thousands of samples. That is the cost the split sum (steps `prefilter` to `split_sum`) removes.
 // Where the interpolated normal turns away from the camera (N·V < 0, a sliver of silhouette
 // pixels) V is below the surface and nothing is reflected towards the eye: the view shows 0
 // there without calling your function. N·V = 0 itself is evaluated (the stability sweep's

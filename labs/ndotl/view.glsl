@@ -1,4 +1,4 @@
-// What step 4 shows: N·L in grey on the sphere, white where it faces the light head-on,
+// What this step shows: N·L in grey on the sphere, white where it faces the light head-on,
 // black on the side turned away (the terminator is where N·L reaches 0).
 vec3 view(Surface s)
 {

@@ -1,4 +1,4 @@
-// What step 14 shows: the perturbed world-space normal as a colour (0.5 + 0.5 n): the
+// What this step shows: the perturbed world-space normal as a colour (0.5 + 0.5 n): the
 // sphere's smooth normal gradient (red to the right, green up, blue towards the camera) with
 // the plates' seams, rivets and dents from the normal map standing out in relief.
 vec3 view(Surface s)

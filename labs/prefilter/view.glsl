@@ -1,4 +1,4 @@
-// What step 19 shows: the environment seen in each sphere's mirror direction
+// What this step shows: the environment seen in each sphere's mirror direction
 // R = reflect(-V, N), blurred by the GGX lobe of the sphere's roughness (columns: 0.05 on the
 // left to 0.86 on the right; the rows repeat, metallic plays no part here). No Fresnel, no
 // BRDF scale: this is the radiance the split sum multiplies by the LUT's F0 A + B. The sun

@@ -1,4 +1,4 @@
-// What step 12 shows: the shaded sphere, HDR radiance through Reinhard + gamma. The plates
+// What this step shows: the shaded sphere, HDR radiance through Reinhard + gamma. The plates
 // lit from the upper right, a highlight there (tight on smooth plates), metal plates darker
 // than painted ones except in the highlight, crevices darker (ao) and the side turned away
 // from the light lit only by the faint ambient term.

@@ -1,4 +1,4 @@
-// What step 10 shows: the specular lobe on the sphere, for F0 = baseReflectivity(albedo,
+// What this step shows: the specular lobe on the sphere, for F0 = baseReflectivity(albedo,
 // metallic), in false colour over 1e-3..1e3 (log; red channel). A bright highlight where H
 // meets N, tight and intense on smooth plates, wide and dim on rough ones; brighter over the
 // metal plates (F0 up to 1) than over the dielectric parts (0.04); zero where N·L <= 0.

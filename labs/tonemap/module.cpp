@@ -10,8 +10,8 @@ namespace {
 
 // What view.glsl tonemaps: a non-zero s.extra carries the probe's HDR value (w = 1 marks it;
 // the stability sweep's extreme values arrive the same way); on the sphere extra is zero and
-// the input is the reflected radiance of step 12. Denormal components count as zero on both
-// sides, whether or not the GPU flushes them.
+// the input is the reflected radiance of step `reflectance`. Denormal components count as zero on
+// both sides, whether or not the GPU flushes them.
 glm::dvec3 hdrInput(const Surface& s, const ReferenceContext& c) {
     const double minNormal = std::numeric_limits<float>::min();  // denormals count as zero
     if (glm::any(glm::greaterThanEqual(glm::abs(s.extra), glm::dvec4(minNormal))))

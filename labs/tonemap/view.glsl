@@ -1,5 +1,5 @@
-// What step 13 shows: the final picture of the direct lab, the sphere's reflected radiance
-// (step 12) display-encoded: the same image as step 12's HDR view, now made by your function.
+// What this step shows: the final picture of the direct lab, the sphere's reflected radiance
+// (step `reflectance`) display-encoded: the same image as step `reflectance`'s HDR view, now made by your function.
 // The probe (and the stability sweep) hand their HDR input over in s.extra instead: a
 // non-zero extra means "tonemap this value" (denormals count as zero, flushed or not).
 vec3 view(Surface s)

@@ -1,4 +1,4 @@
-// Precompute: the split-sum BRDF LUT with the step 20 function (Monte Carlo); texel centres map
+// Precompute: the split-sum BRDF LUT with the step `brdf_lut` function (Monte Carlo); texel centres map
 // to x = N.V and y = roughness.
 uniform vec2 uSize;
 uniform uint uSampleCount;

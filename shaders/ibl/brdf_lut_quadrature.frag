@@ -1,4 +1,4 @@
-// Precompute: the split-sum BRDF LUT (the step 20 integrals, scale A and bias B) by
+// Precompute: the split-sum BRDF LUT (the step `brdf_lut` integrals, scale A and bias B) by
 // deterministic quadrature instead of Monte Carlo; texel centres map to x = N.V and
 // y = roughness. The integral over half vectors H of ((1 - Fc), Fc) G_vis pdf(H) becomes,
 // with u the GGX distribution function of the half vector's angle theta (as in importance
@@ -9,7 +9,7 @@
 // split at thetaA and thetaB, and the range between them is stretched towards both ends
 // (u = uA + (uB - uA) (3 t^2 - 2 t^3)), where the inner integral behaves like a power 3/2:
 // 8 Gauss-Legendre nodes in u on each side of thetaA, 4 in phi. Accuracy against
-// ref::brdfLutExact in docs/ibl.md. Guards and G as in the step 20 solution.
+// ref::brdfLutExact in docs/ibl.md. Guards and G as in the step `brdf_lut` solution.
 uniform vec2 uSize;
 layout(location = 0) out vec4 outColor;
 
@@ -31,7 +31,7 @@ float pbrlab_ggxCdf(float theta, float a2)
 vec2 pbrlab_lutRing(float u, float w, float NdotV, float roughness, float a2)
 {
     float cv = NdotV, sv = sqrt(1.0 - cv * cv);
-    float denom = (1.0 - u) + a2 * u;  // cos^2 and sin^2 of theta without 1 - cos^2 (see step 16)
+    float denom = (1.0 - u) + a2 * u;  // cos^2 and sin^2 of theta without 1 - cos^2 (see step `importance`)
     float c2 = (1.0 - u) / denom;
     float ch = sqrt(c2), sh = sqrt(a2 * u / denom);
     float phiMax = 3.14159265358979;

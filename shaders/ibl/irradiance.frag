@@ -1,4 +1,4 @@
-// Precompute: the irradiance cube (stores E/PI) with the step 18 function.
+// Precompute: the irradiance cube (stores E/PI) with the step `irradiance` function.
 #include "ibl/cube_face.glsl"
 
 uniform int uFace;

@@ -1,5 +1,5 @@
 // Precompute: one mip of the prefiltered environment, from the source cube bound as
-// uEnvironment. By default with the step 19 function; with PBRLAB_FILTERED_IS, filtered
+// uEnvironment. By default with the step `prefilter` function; with PBRLAB_FILTERED_IS, filtered
 // importance sampling (Krivanek and Colbert, GPU Gems 3, ch. 20): each sample reads the source
 // mip whose texel covers about the solid angle the sample stands for, 1 / (n pdf), plus
 // uLodBias mips, so a small bright sun is averaged instead of hit or missed (no fireflies on

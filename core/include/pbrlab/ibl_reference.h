@@ -20,6 +20,10 @@
 
 namespace pbrlab::ref {
 
+// GGX alpha^2 = roughness^4 with the floor of distributionGGX (reference.h): roughness 0 keeps a
+// finite lobe.
+double ggxAlpha2(double roughness);
+
 // Guards shared with the GLSL solutions (each is explained where it is used, in
 // ibl_reference.cpp and the solution files).
 constexpr double kIblMinNdotV = 1e-4;  // N.V floor in the IBL weights and the LUT (N.V = 0)

@@ -1,4 +1,4 @@
-// converge: the specular ambient term by brute-force Monte Carlo (step 17), u_samples samples.
+// converge: the specular ambient term by brute-force Monte Carlo (step `mc_specular`), u_samples samples.
 
 vec3 view(Surface s)
 {
