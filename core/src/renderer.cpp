@@ -12,6 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "digest.h"
+#include "pbrlab/color.h"
 #include "pbrlab/contract.h"
 #include "pbrlab/envgen.h"
 #include "pbrlab/error.h"
@@ -27,16 +28,6 @@ namespace fs = std::filesystem;
 namespace pbrlab {
 
 namespace {
-
-// A linear factor as an 8-bit-free sRGB texture would store it (exact curve).
-glm::dvec3 srgbEncode(const glm::dvec3& linear) {
-    glm::dvec3 e;
-    for (int c = 0; c < 3; ++c) {
-        double v = std::clamp(linear[c], 0.0, 1.0);
-        e[c] = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
-    }
-    return e;
-}
 
 // The built-in unit sphere of JSON scenes (DrawItem::mesh == nullptr).
 const MeshData& unitSphere() {
@@ -205,7 +196,9 @@ void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int
         gl::UniformMatrix3fv(program->location("uNormalMatrix"), 1, GL_FALSE, &normalMatrix[0][0]);
         program->set("uViewProjection", viewProjection_);
         program->set("uAlbedo", glm::vec3(m.albedo));
-        program->set("uAlbedoTexel", glm::vec3(srgbEncode(m.albedo)));
+        // The albedo factor as an sRGB texture would store it (exact curve, no 8-bit rounding).
+        program->set("uAlbedoTexel", glm::vec3(srgbEncode(m.albedo.r), srgbEncode(m.albedo.g),
+                                               srgbEncode(m.albedo.b)));
         program->set("uMetallic", float(m.metallic));
         program->set("uRoughness", float(m.roughness));
         program->set("uAo", float(m.ao));
@@ -488,19 +481,20 @@ namespace {
 // per point, so this equals packing every point q x q times), rows bottom-up as GL texture rows
 // run, like gl_FragCoord: one pass, whatever the number of points.
 Image quadsBottomUp(const Image& image, int q) {
+    const Image flipped = flipRows(image);  // the small one: q^2 times fewer rows to move
     Image out;
     out.width = image.width * q;
     out.height = image.height * q;
     out.channels = image.channels;
     out.pixels.resize(size_t(out.width) * size_t(out.height) * size_t(out.channels));
     const size_t c = size_t(image.channels), row = size_t(out.width) * c;
-    for (int y = 0; y < image.height; ++y) {
-        const float* in = image.pixels.data() + size_t(y) * size_t(image.width) * c;
-        float* first = out.pixels.data() + size_t(out.height - 1 - q * y) * row;
-        for (int x = 0; x < image.width; ++x)
+    for (int y = 0; y < flipped.height; ++y) {
+        const float* in = flipped.pixels.data() + size_t(y) * size_t(flipped.width) * c;
+        float* first = out.pixels.data() + size_t(q * y) * row;
+        for (int x = 0; x < flipped.width; ++x)
             for (int k = 0; k < q; ++k)
                 std::copy_n(in + size_t(x) * c, c, first + (size_t(x) * size_t(q) + size_t(k)) * c);
-        for (int k = 1; k < q; ++k) std::copy_n(first, row, first - size_t(k) * row);
+        for (int k = 1; k < q; ++k) std::copy_n(first, row, first + size_t(k) * row);
     }
     return out;
 }

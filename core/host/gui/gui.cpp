@@ -837,9 +837,9 @@ private:
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x)
                 for (int c = 0; c < 3; ++c)
-                    image.at(x, y, c) = rows[(size_t(h - 1 - y) * w + x) * 4 + size_t(c)] / 255.0f;
+                    image.at(x, y, c) = rows[(size_t(y) * w + x) * 4 + size_t(c)] / 255.0f;
         try {
-            writeImage(file, image, FileDepth::Uint8, true);
+            writeImage(file, flipRows(std::move(image)), FileDepth::Uint8, true);
             messages_ += "screenshot: " + file.string() + "\n";
             std::cout << "screenshot " << file.string() << " (" << w << "x" << h << ")\n";
         } catch (const Error& e) {
