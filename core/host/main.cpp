@@ -57,6 +57,11 @@ fs::path modulesDir(const Options& o) {
     return env && *env ? fs::path(env) : executableDir() / "modules";
 }
 
+// Progress of the precompute passes, on stderr.
+void printPrecomputePass(const std::string& pass) {
+    std::cerr << "precompute " << pass << "\n";
+}
+
 // What every command that renders needs, made in the right order (context before GL use).
 struct Session {
     std::unique_ptr<GlContext> context;
@@ -73,9 +78,9 @@ struct Session {
         if (!needGl) return;
         context = createHeadlessContext();
         logLine("gl", context->description());
-        renderer = std::make_unique<LabRenderer>(paths);
-        renderer->setPrecomputeProgress(
-            [](const std::string& pass) { std::cerr << "precompute " << pass << "\n"; });
+        RendererOptions options;
+        options.onPrecomputePass = printPrecomputePass;
+        renderer = std::make_unique<LabRenderer>(paths, options);
     }
 };
 
@@ -739,7 +744,8 @@ int main(int argc, char** argv) {
         if (*convergeCmd) {
             Session session(o);
             setVerbose(true);
-            auto rows = runConverge(*session.renderer, session.paths, converge);
+            converge.onPrecomputePass = printPrecomputePass;
+            auto rows = runConverge(session.paths, converge);
             writeConvergeReport(rows, converge.out);
             std::printf("%-9s %-20s %-26s %8s %10s %14s %11s %11s %13s\n", "term", "method",
                         "setting", "samples", "ms", "precompute ms", "rmse", "max error",
