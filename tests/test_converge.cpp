@@ -15,18 +15,15 @@ using namespace pbrlab;
 TEST(Converge, BruteForceErrorFallsWithSamplesAndTheReportIsWritten) {
     auto context = createHeadlessContext();
     DataPaths paths{PBRLAB_SOURCE_DIR};
-    LabRenderer renderer{paths};
-    IblSettings small;  // keep the precomputes of the test short on 2 cores
-    small.prefilterSize = 32;
-    small.environmentSize = 128;
-    renderer.setIblSettings(small);
     ConvergeOptions o;
+    o.ibl.prefilterSize = 32;  // keep the precomputes of the test short on 2 cores
+    o.ibl.environmentSize = 128;
     o.size = 24;
     o.truthSamples = 4096;
     o.quick = true;
     test::TempDir dir;
     o.out = dir.path;
-    std::vector<ConvergeRow> rows = runConverge(renderer, paths, o);
+    std::vector<ConvergeRow> rows = runConverge(paths, o);
     writeConvergeReport(rows, o.out);
     std::vector<double> bruteForce;
     double splitSum = -1;

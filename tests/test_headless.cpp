@@ -135,31 +135,66 @@ TEST(Headless, PrecomputedMapsAreCachedOnDiskAndReusedExactly) {
     small.lutSamples = 32;
     const LoadedModule& m = h.modules.find("split_sum");
     Scene scene = loadScene(h.paths.scene(m.desc->scene));
-    auto render = [&](LabRenderer& r) {
-        r.setIblSettings(small);
-        r.setIblCache(cache.path);
-        return r.renderScene(m, ParamValues(m.desc->params), scene, {}, 48, 48, false).value;
+    const ParamValues params(m.desc->params);
+    // Each run a fresh renderer (nothing in memory) that keeps its maps in `cache`.
+    auto render = [&] {
+        RendererOptions options;
+        options.cacheRoot = cache.path;
+        LabRenderer r{h.paths, options};
+        RenderRequest request{&m, &params, &scene, {}, nullptr, 48, 48};
+        request.ibl = small;
+        return r.render(request).value;
     };
     resetCounters();
-    Image first = render(h.renderer);
+    Image first = render();
     EXPECT_EQ(eventCount(Counter::PrecomputePasses), 4);  // cube, irradiance, prefilter, LUT
-    LabRenderer second{h.paths};
     resetCounters();
-    Image again = render(second);
+    Image again = render();
     EXPECT_EQ(eventCount(Counter::PrecomputePasses), 1);  // only the environment cube
     EXPECT_EQ(again.pixels, first.pixels);
     // Another setting is another key: computed again, the LUT apart from the maps that depend
     // on the environment (each is cached under what it depends on).
     small.lutWidth = small.lutHeight = 32;
-    LabRenderer third{h.paths};
     resetCounters();
-    render(third);
+    render();
     EXPECT_EQ(eventCount(Counter::PrecomputePasses), 2);  // the environment cube, the LUT
     small.bins = 8;
-    LabRenderer fourth{h.paths};
     resetCounters();
-    render(fourth);
+    render();
     EXPECT_EQ(eventCount(Counter::PrecomputePasses), 3);  // cube, irradiance, prefilter
+}
+
+TEST(Headless, ARenderIsAFunctionOfItsRequest) {
+    // The renderer keeps no modes between calls: a request with other IBL settings in between
+    // leaves the next render of a request exactly as it was. Not vacuous: the two settings do
+    // reach the maps the view reads (their pictures differ).
+    test::TempDir cache;
+    Headless h;
+    RendererOptions options;
+    options.cacheRoot = cache.path;  // nothing from, or into, the user's cache
+    LabRenderer renderer{h.paths, options};
+    IblSettings small;  // small maps, quick to precompute
+    small.environmentSize = 64;
+    small.irradianceSize = 8;
+    small.prefilterSize = 16;
+    small.prefilterMips = 3;
+    small.lutWidth = small.lutHeight = 16;
+    IblSettings smaller = small;
+    smaller.irradianceSize = 4;
+    smaller.prefilterSize = 8;
+    const LoadedModule& m = h.modules.find("split_sum");
+    const Scene scene = loadScene(h.paths.scene(m.desc->scene));
+    const ParamValues params(m.desc->params);
+    auto render = [&](const IblSettings& ibl) {
+        RenderRequest request{&m, &params, &scene, {}, nullptr, 32, 32};
+        request.ibl = ibl;
+        return renderer.render(request).value;
+    };
+    const Image a = render(small);
+    const Image b = render(smaller);
+    EXPECT_NE(a.pixels, b.pixels);
+    EXPECT_EQ(render(small).pixels, a.pixels);
+    EXPECT_EQ(render(smaller).pixels, b.pixels);
 }
 
 TEST(Headless, StudentFilesCannotIncludeTheReferenceSolutions) {

@@ -16,6 +16,7 @@
 #include <random>
 #include <vector>
 
+#include "pbrlab/cube_sampler.h"
 #include "pbrlab/envgen.h"
 #include "pbrlab/error.h"
 #include "pbrlab/ibl_reference.h"
@@ -805,6 +806,44 @@ TEST(IblEnvironment, EquirectLookupHitsTexelCentresAndRoundTrips) {
     EXPECT_LT(maxAbs(env.radiance(seam) - 0.5 * (env.texel(7, 1) + env.texel(0, 1))), 1e-6);
     Image empty;
     EXPECT_THROW(EquirectEnvironment{empty}, pbrlab::Error);
+}
+
+TEST(IblCubeFaces, FollowTheOpenGlFaceTable) {
+    // Directions worked out by hand from OpenGL 4.5 table 8.19 (sc, tc over ma per face).
+    struct Case {
+        dvec3 d;
+        int face;
+        double s, t;
+    };
+    const Case cases[] = {
+        {{1, 0, 0}, 0, 0, 0},  // +x: sc = -z, tc = -y
+        {{1, 0.5, 0.25}, 0, -0.25, -0.5},
+        {{-2, 1, 1}, 1, 0.5, -0.5},        // -x: sc = +z, tc = -y
+        {{0.5, 1, 0.25}, 2, 0.5, 0.25},    // +y: sc = +x, tc = +z
+        {{0, -1, 0.3}, 3, 0, -0.3},        // -y: sc = +x, tc = -z
+        {{0.5, 0.25, 1}, 4, 0.5, -0.25},   // +z: sc = +x, tc = -y
+        {{0.2, 0.1, -2}, 5, -0.1, -0.05},  // -z: sc = -x, tc = -y
+        {{1, 1, 0}, 0, 0, -1},             // a tie goes to x first
+        {{0, 1, 1}, 2, 0, 1},              // then to y
+    };
+    for (const Case& c : cases) {
+        const pbrlab::CubeFacePoint p = pbrlab::cubeFacePoint(c.d);
+        EXPECT_EQ(p.face, c.face) << c.d.x << " " << c.d.y << " " << c.d.z;
+        // Rounding only: one division by ma.
+        EXPECT_NEAR(p.s, c.s, 1e-15) << c.face;
+        EXPECT_NEAR(p.t, c.t, 1e-15) << c.face;
+    }
+    EXPECT_EQ(pbrlab::cubeFacePoint(dvec3(0.0)).face, -1);  // no direction, no face
+    // cubeFaceDirection is its inverse, at any distance along the direction.
+    for (int face = 0; face < 6; ++face)
+        for (double s = -0.875; s < 1.0; s += 0.25)
+            for (double t = -0.875; t < 1.0; t += 0.25) {
+                const pbrlab::CubeFacePoint p =
+                    pbrlab::cubeFacePoint(3.0 * pbrlab::cubeFaceDirection(face, s, t));
+                EXPECT_EQ(p.face, face);
+                EXPECT_NEAR(p.s, s, 1e-15);
+                EXPECT_NEAR(p.t, t, 1e-15);
+            }
 }
 
 TEST(IblEnvGen, GeneratedSkyIsDeterministicFiniteAndHighDynamicRange) {

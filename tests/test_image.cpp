@@ -120,6 +120,23 @@ size_t countEntries(const fs::path& dir) {
 
 }  // namespace
 
+// ---------------------------------------------------------------- row order
+
+TEST(FlipRows, ReversesTheRowsAndKeepsEachRow) {
+    for (int height : {1, 3, 4}) {  // odd heights keep their middle row
+        Image img = makeImage(5, height, 2);
+        for (size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = float(i);
+        const Image flipped = pbrlab::flipRows(img);
+        ASSERT_EQ(flipped.width, 5);
+        ASSERT_EQ(flipped.height, height);
+        ASSERT_EQ(flipped.channels, 2);
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < 5; ++x)
+                for (int c = 0; c < 2; ++c)
+                    EXPECT_EQ(flipped.at(x, y, c), img.at(x, height - 1 - y, c)) << height;
+    }
+}
+
 // ---------------------------------------------------------------- round trips
 
 TEST_F(ImageTest, Png8RoundTripIsExactAndRow0IsTop) {

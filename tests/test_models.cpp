@@ -483,7 +483,8 @@ TEST(Models, EmissionIsCheckedAgainstTheCpuReference) {
         if (surfaces[i].emissive.r > surfaces[brightest].emissive.r) brightest = i;
     Surface s = surfaces[brightest];
     ASSERT_GT(s.emissive.r, 0.5);
-    const ReferenceContext context = referenceContext(h.renderer, *m.desc, scene, params);
+    const ReferenceContext context =
+        referenceContext(h.renderer, *m.desc, scene, params, request.render.ibl);
     const double gpu = e.render.value.pixels[brightest * 4];
     const double withEmission = m.desc->reference(s, context).r;
     s.emissive = glm::dvec3(0);

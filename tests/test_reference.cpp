@@ -9,6 +9,7 @@
 #include <limits>
 #include <vector>
 
+#include "pbrlab/color.h"
 #include "pbrlab/ibl_reference.h"
 #include "pbrlab/reference.h"
 
@@ -55,11 +56,6 @@ double integrateTheta(const F& f, double step = 0.01) {
             sum += rule.w[i] * half * f(mid + half * rule.x[i]);
     }
     return sum;
-}
-
-// The sRGB encoding (inverse of the decoding), written out here from IEC 61966-2-1.
-double srgbEncode(double linear) {
-    return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
 }
 
 // Unpolarised Fresnel reflectance of a dielectric of index n seen from air (exact equations).
@@ -138,14 +134,27 @@ TEST(SrgbToLinear, IsContinuousAtTheKnee) {
     EXPECT_NEAR(above, 0.0031308, 1e-7);
 }
 
+TEST(SrgbEncode, MatchesStandardAtKnownPoints) {
+    // The host's encoding (pbrlab/color.h: display, textures), checked against values of the
+    // IEC 61966-2-1 curve: linear 0.5 encodes to 0.735356983 (published sRGB tables), and
+    // 0.214041140 is the decoding of 0.5 above. Tolerance 1e-9: the literals' digits.
+    EXPECT_NEAR(pbrlab::srgbEncode(0.5), 0.735356983, 1e-9);
+    EXPECT_NEAR(pbrlab::srgbEncode(0.214041140), 0.5, 1e-9);
+    // The linear toe: 12.92 * x by definition of the standard. Rounding only (1e-15).
+    EXPECT_NEAR(pbrlab::srgbEncode(0.002), 0.002 * 12.92, 1e-15);
+    // Clamped to [0, 1] first (a display value cannot leave the range).
+    EXPECT_EQ(pbrlab::srgbEncode(-0.5), 0.0);
+    EXPECT_NEAR(pbrlab::srgbEncode(1.5), 1.0, 1e-15);
+}
+
 TEST(SrgbToLinear, InvertsTheStandardEncoding) {
-    // Round trip through the standard's encoding written independently above. The rounded
+    // Round trip through the host's encoding, itself held to the standard above. The rounded
     // constants of the standard (0.04045 vs 12.92 * 0.0031308) could limit agreement to ~1e-8
     // right at the knee; on this 1e-3 grid the measured worst is 1.1e-16. Tolerance 1e-7.
     double worst = 0.0;
     for (int i = 0; i <= 1000; ++i) {
         const double c = i / 1000.0;
-        worst = std::max(worst, std::abs(srgbEncode(srgbToLinear(dvec3(c)).x) - c));
+        worst = std::max(worst, std::abs(pbrlab::srgbEncode(srgbToLinear(dvec3(c)).x) - c));
     }
     note("sRGB decode/encode round trip max error", worst);
     EXPECT_LT(worst, 1e-7);

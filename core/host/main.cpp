@@ -50,6 +50,11 @@ std::vector<fs::path> modulesDirs(const Options& o) {
     return moduleDirs(std::vector<fs::path>(o.modulesDirs.begin(), o.modulesDirs.end()));
 }
 
+// Progress of the precompute passes, on stderr.
+void printPrecomputePass(const std::string& pass) {
+    std::cerr << "precompute " << pass << "\n";
+}
+
 // What every command that renders needs, made in the right order (context before GL use).
 struct Session {
     std::unique_ptr<GlContext> context;
@@ -66,9 +71,9 @@ struct Session {
         if (!needGl) return;
         context = createHeadlessContext();
         logLine("gl", context->description());
-        renderer = std::make_unique<LabRenderer>(paths);
-        renderer->setPrecomputeProgress(
-            [](const std::string& pass) { std::cerr << "precompute " << pass << "\n"; });
+        RendererOptions options;
+        options.onPrecomputePass = printPrecomputePass;
+        renderer = std::make_unique<LabRenderer>(paths, options);
     }
 };
 
@@ -742,7 +747,8 @@ int main(int argc, char** argv) {
         if (*convergeCmd) {
             Session session(o);
             setVerbose(true);
-            auto rows = runConverge(*session.renderer, session.paths, converge);
+            converge.onPrecomputePass = printPrecomputePass;
+            auto rows = runConverge(session.paths, converge);
             writeConvergeReport(rows, converge.out);
             std::printf("%-9s %-20s %-26s %8s %10s %14s %11s %11s %13s\n", "term", "method",
                         "setting", "samples", "ms", "precompute ms", "rmse", "max error",

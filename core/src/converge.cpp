@@ -41,12 +41,11 @@ struct Method {
 
 // llvmpipe compiles a shader's machine code at its first draw: render once untimed, then keep
 // the fastest of three (the least disturbed by the rest of the machine).
-RenderResult timedRender(LabRenderer& renderer, const LoadedModule& m, const ParamValues& p,
-                         const Scene& scene, int size) {
-    RenderResult best = renderer.renderScene(m, p, scene, {}, size, size, false);
+RenderResult timedRender(LabRenderer& renderer, const RenderRequest& request) {
+    RenderResult best = renderer.render(request);
     best.milliseconds = 1e300;
     for (int i = 0; i < 3; ++i) {
-        RenderResult r = renderer.renderScene(m, p, scene, {}, size, size, false);
+        RenderResult r = renderer.render(request);
         if (r.milliseconds < best.milliseconds) best = std::move(r);
     }
     return best;
@@ -124,14 +123,23 @@ void score(ConvergeRow& row, const Image& value, const Truth& truth,
 
 }  // namespace
 
-std::vector<ConvergeRow> runConverge(LabRenderer& renderer, const DataPaths& paths,
-                                     const ConvergeOptions& o) {
+std::vector<ConvergeRow> runConverge(const DataPaths& paths, const ConvergeOptions& o) {
     Scene scene = loadScene(paths.scene(o.scene));
     Image equirect = loadEnvironmentImage(scene.environment);
     ref::EquirectEnvironment environment(equirect);
-    const IblSettings defaults = renderer.iblSettings();
-    // Measure every precompute: no maps from the disk cache.
-    renderer.setIblCache({});
+    const IblSettings& defaults = o.ibl;
+    // Measure every precompute: a renderer of its own, without the disk cache.
+    RendererOptions noDiskCache;
+    noDiskCache.cacheRoot.clear();
+    noDiskCache.onPrecomputePass = o.onPrecomputePass;
+    LabRenderer renderer(paths, noDiskCache);
+    const ParamValues none;  // what the parameterless methods are given
+    // A picture of the scene with these parameters and maps (the default view).
+    auto request = [&](const Method& method, const ParamValues& params, const IblSettings& ibl) {
+        RenderRequest r{&method.module, &params, &scene, {}, nullptr, o.size, o.size};
+        r.ibl = ibl;
+        return r;
+    };
 
     Method bruteForce(paths, "specular_brute_force",
                       {intParam("samples", 64, 1, 1 << 20, "Monte Carlo samples")});
@@ -141,9 +149,11 @@ std::vector<ConvergeRow> runConverge(LabRenderer& renderer, const DataPaths& pat
 
     // The truth, per pixel of the scene, in double precision on the CPU.
     Truth truth;
-    truth.surfaces =
-        renderer.renderScene(splitSum.module, ParamValues(), scene, {}, o.size, o.size, true)
-            .surfaces;
+    {
+        RenderRequest r = request(splitSum, none, defaults);
+        r.readSurfaces = true;
+        truth.surfaces = renderer.render(r).surfaces;
+    }
     truth.specular.assign(truth.surfaces.size(), glm::dvec3(0));
     truth.diffuse = truth.specular;
     auto start = std::chrono::steady_clock::now();
@@ -176,17 +186,16 @@ std::vector<ConvergeRow> runConverge(LabRenderer& renderer, const DataPaths& pat
     for (int n = 1; n <= o.maxBruteForce; n *= (o.quick ? 16 : 2)) {
         ParamValues params(bruteForce.desc.params);
         params.set("samples", glm::dvec3(n, 0, 0));
-        RenderResult r = timedRender(renderer, bruteForce.module, params, scene, o.size);
+        RenderResult r = timedRender(renderer, request(bruteForce, params, defaults));
         ConvergeRow row{"specular", "brute_force", "N=" + std::to_string(n), n, r.milliseconds};
         score(row, r.value, truth, truth.specular);
         rows.push_back(row);
     }
 
     // Split sum: a cheap frame, after a precompute whose quality varies.
-    auto splitSumRow = [&](IblSettings s, const std::string& setting, int samples) {
-        renderer.setIblSettings(s);
-        RenderResult r = timedRender(renderer, splitSum.module, ParamValues(), scene, o.size);
-        const IblMaps& maps = renderer.environmentMaps(scene);
+    auto splitSumRow = [&](const IblSettings& s, const std::string& setting, int samples) {
+        RenderResult r = timedRender(renderer, request(splitSum, none, s));
+        const IblMaps& maps = renderer.environmentMaps(scene, s);
         ConvergeRow row{
             "specular",     "split_sum",
             setting,        samples,
@@ -213,17 +222,16 @@ std::vector<ConvergeRow> runConverge(LabRenderer& renderer, const DataPaths& pat
         s.lutWidth = s.lutHeight = size;
         splitSumRow(s, "lut=" + std::to_string(size), s.lutSamples);
     }
-    renderer.setIblSettings(defaults);
 
     // Diffuse: the irradiance cube against 9 spherical-harmonic coefficients.
     {
-        RenderResult r = timedRender(renderer, convolution.module, ParamValues(), scene, o.size);
+        RenderResult r = timedRender(renderer, request(convolution, none, defaults));
         ConvergeRow row{"diffuse",
                         "convolution",
                         "irradiance " + std::to_string(defaults.irradianceSize) + "^2 x 6",
                         32 * 128,
                         r.milliseconds,
-                        precomputeMs(renderer.environmentMaps(scene), "irradiance")};
+                        precomputeMs(renderer.environmentMaps(scene, defaults), "irradiance")};
         score(row, r.value, truth, truth.diffuse);
         rows.push_back(row);
     }
@@ -233,13 +241,13 @@ std::vector<ConvergeRow> runConverge(LabRenderer& renderer, const DataPaths& pat
         double shMs =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                 .count();
-        renderer.setExtraUniforms([&](const Program& p) {
+        RenderRequest shRequest = request(harmonics, none, defaults);
+        shRequest.extraUniforms = [&](const Program& p) {
             std::vector<glm::vec3> c;
             for (const auto& v : sh.c) c.emplace_back(v);
             p.set("uSH[0]", c);
-        });
-        RenderResult r = timedRender(renderer, harmonics.module, ParamValues(), scene, o.size);
-        renderer.setExtraUniforms({});
+        };
+        RenderResult r = timedRender(renderer, shRequest);
         ConvergeRow row{"diffuse", "spherical_harmonics", "9 coefficients (CPU projection)",
                         9,         r.milliseconds,        shMs};
         score(row, r.value, truth, truth.diffuse);

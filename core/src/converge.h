@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,8 @@ struct ConvergeOptions {
                                // (roughness < 0.5; rougher lobes use a texel sum)
     int maxBruteForce = 1024;  // brute force at 1, 2, 4 ... this many samples
     bool quick = false;        // fewer settings (tests)
+    IblSettings ibl;           // the maps' settings, except where a row varies them
+    std::function<void(const std::string&)> onPrecomputePass;  // progress (RendererOptions)
 };
 
 struct ConvergeRow {
@@ -34,8 +37,8 @@ struct ConvergeRow {
     double displayRmse = 0;
 };
 
-std::vector<ConvergeRow> runConverge(LabRenderer& renderer, const DataPaths& paths,
-                                     const ConvergeOptions& options);
+// Renders with a renderer of its own, without the disk cache: every precompute is measured.
+std::vector<ConvergeRow> runConverge(const DataPaths& paths, const ConvergeOptions& options);
 
 // converge.csv, converge.gp (gnuplot script) and converge.png (when gnuplot is installed).
 void writeConvergeReport(const std::vector<ConvergeRow>& rows, const std::filesystem::path& out);

@@ -26,9 +26,9 @@ glm::dvec4 sampleTexture(const Image& im, const glm::dvec2& uv) {
                     glm::mix(texel(im, x0, y0 + 1), texel(im, x0 + 1, y0 + 1), fx), fy);
 }
 
-glm::dvec3 CubeSampler::sampleLevel(const glm::dvec3& d, int level) const {
-    // OpenGL 4.5 table 8.19: major axis, then sc, tc and ma.
-    glm::dvec3 a = glm::abs(d);
+CubeFacePoint cubeFacePoint(const glm::dvec3& d) {
+    // Table 8.19: the major axis picks the face and its sign, then sc, tc and ma.
+    const glm::dvec3 a = glm::abs(d);
     int face;
     double sc, tc, ma;
     if (a.x >= a.y && a.x >= a.z) {
@@ -47,9 +47,33 @@ glm::dvec3 CubeSampler::sampleLevel(const glm::dvec3& d, int level) const {
         tc = -d.y;
         ma = a.z;
     }
-    if (!(ma > 0)) return glm::dvec3(0);
-    glm::dvec2 st(0.5 * (sc / ma + 1), 0.5 * (tc / ma + 1));
-    return glm::dvec3(sampleTexture(mips_[size_t(level)][size_t(face)], st));
+    if (!(ma > 0)) return {};
+    return {face, sc / ma, tc / ma};
+}
+
+glm::dvec3 cubeFaceDirection(int face, double s, double t) {
+    // Table 8.19 solved for the direction, with ma = 1.
+    switch (face) {
+        case 0:
+            return {1.0, -t, -s};
+        case 1:
+            return {-1.0, -t, s};
+        case 2:
+            return {s, 1.0, t};
+        case 3:
+            return {s, -1.0, -t};
+        case 4:
+            return {s, -t, 1.0};
+        default:
+            return {-s, -t, -1.0};
+    }
+}
+
+glm::dvec3 CubeSampler::sampleLevel(const glm::dvec3& d, int level) const {
+    const CubeFacePoint p = cubeFacePoint(d);
+    if (p.face < 0) return glm::dvec3(0);
+    const glm::dvec2 st(0.5 * (p.s + 1), 0.5 * (p.t + 1));
+    return glm::dvec3(sampleTexture(mips_[size_t(level)][size_t(p.face)], st));
 }
 
 glm::dvec3 CubeSampler::sample(const glm::dvec3& dir, double lod) const {

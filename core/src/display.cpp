@@ -3,14 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pbrlab/color.h"
+
 namespace pbrlab {
 
 namespace {
-
-double srgbEncode(double v) {
-    v = std::clamp(v, 0.0, 1.0);
-    return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
-}
 
 double normalised(double v, const Display& d) {
     if (d.logScale)

@@ -3,14 +3,15 @@
 namespace pbrlab {
 
 ReferenceContext referenceContext(LabRenderer& renderer, const ModuleDesc& module,
-                                  const Scene& scene, const ParamValues& params) {
+                                  const Scene& scene, const ParamValues& params,
+                                  const IblSettings& ibl) {
     ReferenceContext context{params, {}, glm::dvec3(glm::vec3(scene.camera.position))};
     // The shader received float uniforms; so does the reference.
     for (const auto& l : scene.lights)
         context.lights.push_back(
             {glm::dvec3(glm::vec3(l.position)), glm::dvec3(glm::vec3(l.color))});
     if (module.needs & NeedsEnvironment)
-        context.ibl = &renderer.environmentInputs(scene, module.needs & NeedsPrecomputedMaps);
+        context.ibl = &renderer.environmentInputs(scene, ibl, module.needs & NeedsPrecomputedMaps);
     return context;
 }
 
@@ -25,7 +26,7 @@ Evaluation evaluate(LabRenderer& renderer, const EvalRequest& request) {
     e.render = renderer.render(render);
     if (!request.band) return e;
     const Scene scene = applyParamBindings(*r.scene, d, *r.params);
-    const ReferenceContext context = referenceContext(renderer, d, scene, *r.params);
+    const ReferenceContext context = referenceContext(renderer, d, scene, *r.params, r.ibl);
     e.band = referenceBand(d, e.render.surfaces, context);
     e.comparison = compareWithBand(e.render.value, e.render.surfaces, e.band, d.components,
                                    d.nonNegative, d.tolerance.outlierFraction);

@@ -9,9 +9,11 @@
 namespace pbrlab {
 
 // What a CPU reference reads besides the surface: the scene's lights and camera as the
-// shader received them (float), and the environment's maps when the module needs them.
+// shader received them (float), and the environment's maps when the module needs them: those
+// of `ibl`, the settings of the render it is compared with (RenderRequest::ibl).
 ReferenceContext referenceContext(LabRenderer& renderer, const ModuleDesc& module,
-                                  const Scene& scene, const ParamValues& params);
+                                  const Scene& scene, const ParamValues& params,
+                                  const IblSettings& ibl);
 
 struct EvalRequest {
     RenderRequest render;  // set render.seamlessCubes = false to compare (EvalRequest does)

@@ -198,6 +198,10 @@ CheckReport reportFor(const std::string& name, const ModuleDesc& d, const Compar
     return r;
 }
 
+// The IBL settings of the maps grading reads: the defaults, as every RenderRequest below
+// leaves them, so that the references read the maps the views read.
+const IblSettings kGradingIbl{};
+
 class StepGrader {
 public:
     StepGrader(LabRenderer& renderer, const LoadedModule& m, const DataPaths& paths,
@@ -384,7 +388,8 @@ private:
         Scene judged = scene;
         if (!e.environment.empty()) judged.environment = e.environment;
         const ParamValues defaults(d_.params);
-        const ReferenceContext context = referenceContext(renderer_, d_, judged, defaults);
+        const ReferenceContext context =
+            referenceContext(renderer_, d_, judged, defaults, kGradingIbl);
         struct PointSet {
             std::string name;
             std::vector<Surface> surfaces;
@@ -432,7 +437,8 @@ private:
             key.add(d_.id);
             key.add(e.truthSamples);
             if (d_.needs & NeedsEnvironment)
-                key.add(renderer_.environmentDigest(judged, d_.needs & NeedsPrecomputedMaps));
+                key.add(renderer_.environmentDigest(judged, kGradingIbl,
+                                                    d_.needs & NeedsPrecomputedMaps));
             for (const ParamDecl& p : d_.params) {
                 key.add(p.name);
                 key.add(context.params.vector(p.name));
@@ -810,7 +816,7 @@ private:
             }
             const Scene bound = applyParamBindings(f.scene, d_, f.params);
             auto context = std::make_shared<ReferenceContext>(
-                referenceContext(renderer_, d_, bound, f.params));
+                referenceContext(renderer_, d_, bound, f.params, kGradingIbl));
             in.reference = [this, context](const Surface& s) { return d_.reference(s, *context); };
             in.student = [this, &f](const std::vector<Surface>& surfaces) {
                 const Grid g = grid(surfaces);

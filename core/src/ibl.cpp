@@ -10,6 +10,7 @@
 
 #include "parallel.h"
 #include "pbrlab/contract.h"
+#include "pbrlab/cube_sampler.h"
 #include "pbrlab/error.h"
 #include "pbrlab/ibl_reference.h"
 #include "pbrlab/log.h"
@@ -123,28 +124,7 @@ double IblMaps::milliseconds(const std::string& map) const {
 glm::dvec3 cubeTexelDirection(int face, double x, double y, int size) {
     // As pbrlab_cubeDirection in shaders/ibl/cube_face.glsl.
     const double s = (x + 0.5) / size * 2.0 - 1.0, t = (y + 0.5) / size * 2.0 - 1.0;
-    glm::dvec3 d;
-    switch (face) {
-        case 0:
-            d = {1.0, -t, -s};
-            break;
-        case 1:
-            d = {-1.0, -t, s};
-            break;
-        case 2:
-            d = {s, 1.0, t};
-            break;
-        case 3:
-            d = {s, -1.0, -t};
-            break;
-        case 4:
-            d = {s, -t, 1.0};
-            break;
-        default:
-            d = {-s, -t, -1.0};
-            break;
-    }
-    return glm::normalize(d);
+    return glm::normalize(cubeFaceDirection(face, s, t));
 }
 
 std::vector<std::vector<Image>> equirectToCube(const Image& equirect, int size, int levels) {
@@ -260,31 +240,13 @@ private:
     std::chrono::steady_clock::time_point start_;
 };
 
-// The cube bin (face, i, j) a direction falls in, for bins of n texels a side: OpenGL's face
-// selection and (s, t) (as CubeSampler).
+// The cube bin (face, i, j) a direction falls in, for bins of n texels a side, as a cube map
+// of n x n texels selects it. `d` is never zero here (texel directions of the sphere).
 int binOf(const glm::dvec3& d, int n) {
-    const glm::dvec3 a = glm::abs(d);
-    int face;
-    double sc, tc, ma;
-    if (a.x >= a.y && a.x >= a.z) {
-        face = d.x >= 0 ? 0 : 1;
-        sc = d.x >= 0 ? -d.z : d.z;
-        tc = -d.y;
-        ma = a.x;
-    } else if (a.y >= a.z) {
-        face = d.y >= 0 ? 2 : 3;
-        sc = d.x;
-        tc = d.y >= 0 ? d.z : -d.z;
-        ma = a.y;
-    } else {
-        face = d.z >= 0 ? 4 : 5;
-        sc = d.z >= 0 ? d.x : -d.x;
-        tc = -d.y;
-        ma = a.z;
-    }
-    const int i = std::clamp(int(0.5 * (sc / ma + 1.0) * n), 0, n - 1);
-    const int j = std::clamp(int(0.5 * (tc / ma + 1.0) * n), 0, n - 1);
-    return (face * n + j) * n + i;
+    const CubeFacePoint p = cubeFacePoint(d);
+    const int i = std::clamp(int(0.5 * (p.s + 1.0) * n), 0, n - 1);
+    const int j = std::clamp(int(0.5 * (p.t + 1.0) * n), 0, n - 1);
+    return (p.face * n + j) * n + i;
 }
 
 // Four floats processed as one (GCC and Clang vector extensions: SSE on any x86-64).

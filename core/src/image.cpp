@@ -29,13 +29,13 @@
 
 namespace pbrlab {
 
-Image flipRows(const Image& image) {
-    Image flipped = image;
+Image flipRows(Image image) {
     const size_t row = size_t(image.width) * size_t(image.channels);
-    for (int y = 0; y < image.height; ++y)
-        std::copy_n(image.pixels.data() + size_t(image.height - 1 - y) * row, row,
-                    flipped.pixels.data() + size_t(y) * row);
-    return flipped;
+    float* pixels = image.pixels.data();
+    for (int top = 0, bottom = image.height - 1; top < bottom; ++top, --bottom)
+        std::swap_ranges(pixels + size_t(top) * row, pixels + size_t(top + 1) * row,
+                         pixels + size_t(bottom) * row);
+    return image;
 }
 
 namespace {

@@ -93,7 +93,7 @@ Difference compareRenders(LabRenderer& renderer, const LoadedModule& m, const Sc
     rounding.tolerance.relative = 1e-5;
     for (Tolerance& t : rounding.componentTolerances) t.relative = 1e-5;
     const Scene bound = applyParamBindings(scene, d, params);
-    const ReferenceContext context = referenceContext(renderer, d, bound, params);
+    const ReferenceContext context = referenceContext(renderer, d, bound, params, request.ibl);
     Difference diff;
     for (size_t i = 0; i < solution.surfaces.size(); ++i) {
         const Surface& s = solution.surfaces[i];

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pbrlab/color.h"
+
 namespace pbrlab::ref {
 
 namespace {
@@ -15,12 +17,6 @@ namespace {
 constexpr double kMinLength2 = 1e-12;
 // Reflectance at normal incidence of a typical dielectric (metallic workflow).
 constexpr double kDielectricF0 = 0.04;
-
-// IEC 61966-2-1 decoding of one channel.
-double srgbChannelToLinear(double c) {
-    c = std::clamp(c, 0.0, 1.0);
-    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
 
 // A unit vector perpendicular to N, deterministic: the coordinate axis least aligned with N
 // (x unless N is close to x), projected onto the plane of N.
@@ -37,7 +33,7 @@ dvec3 safeNormalize(const dvec3& v, const dvec3& fallback) {
 }
 
 dvec3 srgbToLinear(const dvec3& c) {
-    return {srgbChannelToLinear(c.x), srgbChannelToLinear(c.y), srgbChannelToLinear(c.z)};
+    return {srgbDecode(c.x), srgbDecode(c.y), srgbDecode(c.z)};
 }
 
 dvec3 pointLightRadiance(const dvec3& lightColor, const dvec3& lightPos, const dvec3& worldPos) {

@@ -12,6 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "digest.h"
+#include "pbrlab/color.h"
 #include "pbrlab/contract.h"
 #include "pbrlab/envgen.h"
 #include "pbrlab/error.h"
@@ -28,14 +29,9 @@ namespace pbrlab {
 
 namespace {
 
-// A linear factor as an 8-bit-free sRGB texture would store it (exact curve).
-glm::dvec3 srgbEncode(const glm::dvec3& linear) {
-    glm::dvec3 e;
-    for (int c = 0; c < 3; ++c) {
-        double v = std::clamp(linear[c], 0.0, 1.0);
-        e[c] = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
-    }
-    return e;
+// What a scene's environment maps are kept by: their source and every setting they depend on.
+std::string environmentKey(const Scene& scene, const IblSettings& settings) {
+    return scene.environment + "|" + settings.key();
 }
 
 // The built-in unit sphere of JSON scenes (DrawItem::mesh == nullptr).
@@ -70,8 +66,10 @@ Scene applyParamBindings(Scene scene, const ModuleDesc& module, const ParamValue
     return scene;
 }
 
-LabRenderer::LabRenderer(const DataPaths& paths)
-    : paths_(paths), programs_(ShaderPreprocessor({paths.shaders(), paths.labs()})) {}
+LabRenderer::LabRenderer(const DataPaths& paths, RendererOptions options)
+    : paths_(paths),
+      options_(std::move(options)),
+      programs_(ShaderPreprocessor({paths.shaders(), paths.labs()})) {}
 
 std::string parameterUniforms(const ModuleDesc& d) {
     std::string text;
@@ -180,8 +178,8 @@ std::vector<LabRenderer::MaterialMap> LabRenderer::materialMaps(const MaterialDe
             {NeedsEmissive, &m.emissiveMap, "HAS_EMISSIVE_MAP", "uEmissiveMap"}};
 }
 
-void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int height,
-                              bool cache) {
+glm::mat4 LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int height,
+                                   bool cache) {
     if (!gbuffer_ || gbuffer_->width() != width || gbuffer_->height() != height) {
         gbuffer_ = std::make_unique<gl::RenderTarget>(width, height, kGBufferTextures);
         gbufferHolds_.clear();
@@ -194,16 +192,17 @@ void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int
         glm::lookAt(glm::vec3(cam.position), glm::vec3(cam.target), glm::vec3(0, 1, 0));
     glm::mat4 proj = glm::perspective(glm::radians(float(cam.fovY)), float(width) / float(height),
                                       float(distance / 60), float(distance * 60));
-    viewProjection_ = proj * view;
+    const glm::mat4 viewProjection = proj * view;
     for (const SceneModel& model : scene.models) keepModels_.insert(model.data);
 
     const std::vector<DrawItem> items = drawItems(scene);
-    const fs::path cached = cache ? gbufferCacheFile(scene, items, needs) : fs::path();
+    const fs::path cached =
+        cache ? gbufferCacheFile(scene, items, needs, viewProjection) : fs::path();
     if (!cached.empty() && (cached == gbufferHolds_ || readGBuffer(cached))) {
         gbufferHolds_ = cached;
         // Compiled all the same: what a scene compiles stays observable (--stats, the GUI).
         programs_.get(gbufferRecipe(scene.materials.at(size_t(items[0].material)), needs));
-        return;
+        return viewProjection;
     }
     gbuffer_->bind();
     const float zero[4] = {0, 0, 0, 0};
@@ -219,9 +218,11 @@ void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int
         program->set("uModel", model);
         glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
         gl::UniformMatrix3fv(program->location("uNormalMatrix"), 1, GL_FALSE, &normalMatrix[0][0]);
-        program->set("uViewProjection", viewProjection_);
+        program->set("uViewProjection", viewProjection);
         program->set("uAlbedo", glm::vec3(m.albedo));
-        program->set("uAlbedoTexel", glm::vec3(srgbEncode(m.albedo)));
+        // The albedo factor as an sRGB texture would store it (exact curve, no 8-bit rounding).
+        program->set("uAlbedoTexel", glm::vec3(srgbEncode(m.albedo.r), srgbEncode(m.albedo.g),
+                                               srgbEncode(m.albedo.b)));
         program->set("uMetallic", float(m.metallic));
         program->set("uRoughness", float(m.roughness));
         program->set("uAo", float(m.ao));
@@ -244,6 +245,7 @@ void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int
     gl::checkError("G-buffer pass");
     if (!cached.empty()) writeGBuffer(cached);
     gbufferHolds_ = cached;
+    return viewProjection;
 }
 
 // The G-buffer is a pure function of the program's source, the meshes, each item's transform
@@ -251,8 +253,8 @@ void LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int
 // executable's build ID) and the GL driver; all of them are the key. Only draws that read no
 // image: a map would bring the image decoder into the key.
 fs::path LabRenderer::gbufferCacheFile(const Scene& scene, const std::vector<DrawItem>& items,
-                                       unsigned needs) {
-    if (iblCache_.empty() || items.empty()) return {};
+                                       unsigned needs, const glm::mat4& viewProjection) {
+    if (options_.cacheRoot.empty() || items.empty()) return {};
     const ProgramRecipe recipe =
         gbufferRecipe(scene.materials.at(size_t(items[0].material)), needs);
     for (const DrawItem& item : items)
@@ -266,7 +268,7 @@ fs::path LabRenderer::gbufferCacheFile(const Scene& scene, const std::vector<Dra
     for (GLenum name : {GL_VENDOR, GL_RENDERER, GL_VERSION})
         key.add(std::string(reinterpret_cast<const char*>(gl::GetString(name))));
     key.add(std::array<int, 2>{gbuffer_->width(), gbuffer_->height()});
-    key.add(viewProjection_);
+    key.add(viewProjection);
     key.add(programs_.preprocessor().expand(recipe.vertex, recipe.defines).text);
     key.add(programs_.preprocessor().expand(recipe.fragment, recipe.defines).text);
     for (const DrawItem& item : items) {
@@ -284,7 +286,7 @@ fs::path LabRenderer::gbufferCacheFile(const Scene& scene, const std::vector<Dra
         }
         key.add(digest->second);
     }
-    return iblCache_ / "gbuffer" / (key.hex() + ".bin");
+    return options_.cacheRoot / "gbuffer" / (key.hex() + ".bin");
 }
 
 namespace {
@@ -397,7 +399,8 @@ GLuint LabRenderer::blackTexture(GLenum target) {
 }
 
 double LabRenderer::runView(const RenderRequest& request, const Scene& scene, bool probe,
-                            const std::vector<GLuint>& inputs, int width, int height) {
+                            const std::vector<GLuint>& inputs, int width, int height,
+                            const glm::mat4& viewProjection) {
     const LoadedModule& module = *request.module;
     const ModuleDesc& d = *module.desc;
     // reloadIfChanged: an edited student file is recompiled; if that fails, the error is thrown
@@ -415,16 +418,17 @@ double LabRenderer::runView(const RenderRequest& request, const Scene& scene, bo
     };
     std::vector<Binding> bindings;
     if (program->uses("uEnvironment"))
-        bindings.push_back(
-            {"uEnvironment", GL_TEXTURE_CUBE_MAP,
-             mayRead(d, "uEnvironment") ? environment(scene, false).environment.id() : 0});
+        bindings.push_back({"uEnvironment", GL_TEXTURE_CUBE_MAP,
+                            mayRead(d, "uEnvironment")
+                                ? environment(scene, request.ibl, false).maps->environment.id()
+                                : 0});
     for (const DerivedMap& map : kDerivedMaps) {
         if (!program->uses(map.sampler)) continue;
         const GLenum target =
             std::string(map.sampler) == "uBrdfLut" ? GL_TEXTURE_2D : GL_TEXTURE_CUBE_MAP;
         GLuint texture = 0;
         if (mayRead(d, map.sampler)) {
-            const IblMaps& maps = environment(scene, true);
+            const IblMaps& maps = *environment(scene, request.ibl, true).maps;
             texture = target == GL_TEXTURE_2D                        ? maps.lut.id()
                       : std::string(map.sampler) == "uIrradianceMap" ? maps.irradiance.id()
                                                                      : maps.prefilter.id();
@@ -458,13 +462,13 @@ double LabRenderer::runView(const RenderRequest& request, const Scene& scene, bo
         program->set(b.name, unit++);
     }
     if (program->uses("uPrefilterMaxLod")) {
-        const auto it = environments_.find(scene.environment + "|" + iblSettings_.key());
+        const auto it = environments_.find(environmentKey(scene, request.ibl));
         const bool derived =
             it != environments_.end() && it->second.maps && it->second.maps->derived;
         program->set("uPrefilterMaxLod", derived ? it->second.maps->prefilterMaxLod : 0.f);
     }
     if (program->uses("uInverseViewProjection")) {
-        program->set("uInverseViewProjection", glm::inverse(viewProjection_));
+        program->set("uInverseViewProjection", glm::inverse(viewProjection));
         program->set("uViewportSize", glm::vec2(float(width), float(height)));
     }
     for (const ParamDecl& p : d.params) {
@@ -485,7 +489,7 @@ double LabRenderer::runView(const RenderRequest& request, const Scene& scene, bo
                 break;
         }
     }
-    if (extraUniforms_) extraUniforms_(*program);
+    if (request.extraUniforms) request.extraUniforms(*program);
     if (request.seamlessCubes)
         gl::Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     else
@@ -506,19 +510,20 @@ namespace {
 // per point, so this equals packing every point q x q times), rows bottom-up as GL texture rows
 // run, like gl_FragCoord: one pass, whatever the number of points.
 Image quadsBottomUp(const Image& image, int q) {
+    const Image flipped = flipRows(image);  // the small one: q^2 times fewer rows to move
     Image out;
     out.width = image.width * q;
     out.height = image.height * q;
     out.channels = image.channels;
     out.pixels.resize(size_t(out.width) * size_t(out.height) * size_t(out.channels));
     const size_t c = size_t(image.channels), row = size_t(out.width) * c;
-    for (int y = 0; y < image.height; ++y) {
-        const float* in = image.pixels.data() + size_t(y) * size_t(image.width) * c;
-        float* first = out.pixels.data() + size_t(out.height - 1 - q * y) * row;
-        for (int x = 0; x < image.width; ++x)
+    for (int y = 0; y < flipped.height; ++y) {
+        const float* in = flipped.pixels.data() + size_t(y) * size_t(flipped.width) * c;
+        float* first = out.pixels.data() + size_t(q * y) * row;
+        for (int x = 0; x < flipped.width; ++x)
             for (int k = 0; k < q; ++k)
                 std::copy_n(in + size_t(x) * c, c, first + (size_t(x) * size_t(q) + size_t(k)) * c);
-        for (int k = 1; k < q; ++k) std::copy_n(first, row, first - size_t(k) * row);
+        for (int k = 1; k < q; ++k) std::copy_n(first, row, first + size_t(k) * row);
     }
     return out;
 }
@@ -536,9 +541,11 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
     RenderResult result;
     std::vector<GLuint> inputs;
     if (!request.surfaces) {
-        drawGBuffer(scene, d.needs, request.width, request.height, request.cacheGBuffer);
+        const glm::mat4 viewProjection =
+            drawGBuffer(scene, d.needs, request.width, request.height, request.cacheGBuffer);
         for (int i = 0; i < kGBufferTextures; ++i) inputs.push_back(gbuffer_->colorTexture(i));
-        result.milliseconds = runView(request, scene, false, inputs, request.width, request.height);
+        result.milliseconds =
+            runView(request, scene, false, inputs, request.width, request.height, viewProjection);
         result.valueTexture = valueTarget_->colorTexture(0);
         if (request.readValue) result.value = valueTarget_->read(0);
         if (request.readSurfaces) {
@@ -559,7 +566,7 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
         inputs.push_back(probeInputs_.back().id());
     }
     result.milliseconds =
-        runView(request, scene, true, inputs, q * request.width, q * request.height);
+        runView(request, scene, true, inputs, q * request.width, q * request.height, glm::mat4(1));
     result.value = valueTarget_->read(0);
     if (q > 1) {  // one value per quad (all four are the same point)
         Image value = result.value;
@@ -635,33 +642,41 @@ Image loadEnvironmentImage(const std::string& source, const fs::path& cache) {
     return image;
 }
 
-IblMaps& LabRenderer::environment(const Scene& scene, bool derived) {
-    Environment& env = environments_[scene.environment + "|" + iblSettings_.key()];
+LabRenderer::Environment& LabRenderer::environment(const Scene& scene, const IblSettings& settings,
+                                                   bool derived) {
+    Environment& env = environments_[environmentKey(scene, settings)];
     if (!env.maps) {
         if (!precompute_)
             precompute_ =
                 std::make_unique<IblPrecompute>(programs_, paths_.shaders(), paths_.labs());
-        logLine("environment", scene.environment + " (" + iblSettings_.key() + ")");
-        precompute_->onPass = precomputeProgress_;
-        env.equirect = loadEnvironmentImage(scene.environment, iblCache_);
-        env.maps = precompute_->buildEnvironment(env.equirect, iblSettings_);
+        logLine("environment", scene.environment + " (" + settings.key() + ")");
+        precompute_->onPass = options_.onPrecomputePass;
+        env.equirect = loadEnvironmentImage(scene.environment, options_.cacheRoot);
+        env.maps = precompute_->buildEnvironment(env.equirect, settings);
     }
     if (derived && !env.maps->derived) {
-        precompute_->onPass = precomputeProgress_;
-        IblDiskCache cache(iblCache_);
-        precompute_->buildDerived(*env.maps, env.equirect, iblCache_.empty() ? nullptr : &cache);
+        precompute_->onPass = options_.onPrecomputePass;
+        IblDiskCache cache(options_.cacheRoot);
+        precompute_->buildDerived(*env.maps, env.equirect,
+                                  options_.cacheRoot.empty() ? nullptr : &cache);
         env.equirect = Image();  // nothing reads it any more
     }
-    return *env.maps;
+    return env;
 }
 
-const IblMaps& LabRenderer::environmentMaps(const Scene& scene) {
-    return environment(scene, true);
+bool LabRenderer::hasEnvironmentMaps(const Scene& scene, const IblSettings& settings) const {
+    auto it = environments_.find(environmentKey(scene, settings));
+    return it != environments_.end() && it->second.maps && it->second.maps->derived;
 }
 
-const IblInputs& LabRenderer::environmentInputs(const Scene& scene, bool derived) {
-    const IblMaps& maps = environment(scene, derived);
-    Environment& env = environments_[scene.environment + "|" + iblSettings_.key()];
+const IblMaps& LabRenderer::environmentMaps(const Scene& scene, const IblSettings& settings) {
+    return *environment(scene, settings, true).maps;
+}
+
+const IblInputs& LabRenderer::environmentInputs(const Scene& scene, const IblSettings& settings,
+                                                bool derived) {
+    Environment& env = environment(scene, settings, derived);
+    const IblMaps& maps = *env.maps;
     const IblSettings& s = maps.settings;
     auto add = [](Digest& digest, const Image& image) {
         digest.add(std::array<int, 3>{image.width, image.height, image.channels});
@@ -694,9 +709,10 @@ const IblInputs& LabRenderer::environmentInputs(const Scene& scene, bool derived
     return *env.cpu;
 }
 
-std::uint64_t LabRenderer::environmentDigest(const Scene& scene, bool derived) {
-    environmentInputs(scene, derived);
-    const Environment& env = environments_[scene.environment + "|" + iblSettings_.key()];
+std::uint64_t LabRenderer::environmentDigest(const Scene& scene, const IblSettings& settings,
+                                             bool derived) {
+    environmentInputs(scene, settings, derived);
+    const Environment& env = environments_[environmentKey(scene, settings)];
     Digest digest;
     digest.add(env.cubeDigest);
     if (derived) digest.add(env.derivedDigest);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -84,11 +85,27 @@ struct RenderRequest {
     // are zero and texture() with implicit LOD reads as at a single point, whatever the
     // neighbouring points are (grading lays out unrelated points side by side).
     bool isolatePoints = false;
+    // The environment maps the view reads are the scene's environment precomputed with these
+    // settings (the renderer keeps them per environment and settings, for the next request).
+    IblSettings ibl;
+    // Sets uniforms a host-made view declares beyond the module's parameters (converge).
+    std::function<void(const Program&)> extraUniforms;
+};
+
+// What a renderer is for its whole life. Neither changes what a render returns (maps read
+// from the disk cache are the computed ones, bit for bit), so they are not in the request:
+// they say where its caches live and whom it tells about long work.
+struct RendererOptions {
+    // Where precomputed maps are kept between runs (empty: no disk cache). Grading keeps its
+    // converged integrals there too.
+    std::filesystem::path cacheRoot = IblDiskCache::defaultRoot();
+    // Told as each precompute pass starts, for progress output.
+    std::function<void(const std::string&)> onPrecomputePass;
 };
 
 class LabRenderer {
 public:
-    explicit LabRenderer(const DataPaths& paths);
+    explicit LabRenderer(const DataPaths& paths, RendererOptions options = {});
 
     // The program recipe for a module's view: every contract function (the student's for the
     // graded steps, the reference solutions for the others), the surface loader, the view,
@@ -96,7 +113,10 @@ public:
     ProgramRecipe viewRecipe(const LoadedModule& module, const StudentSource& source, bool probe,
                              int lightCount, const std::string& view = "") const;
 
+    // A function of the request (and of the files it names): the renderer holds only caches
+    // between calls (programs, the G-buffer, textures, environment maps by their settings).
     RenderResult render(const RenderRequest& request);
+    // Shorthands for requests with the defaults above (default IBL settings among them).
     // Pictures (seamless cube filtering), for the gallery, the CLI and the GUI.
     RenderResult renderScene(const LoadedModule& module, const ParamValues& params,
                              const Scene& scene, const StudentSource& source, int width, int height,
@@ -110,32 +130,21 @@ public:
 
     ProgramCache& programs() { return programs_; }
 
-    // The split-sum maps of the scene's environment, precomputed on first use (and only for
-    // modules that need an environment), then reused for every frame.
-    const IblMaps& environmentMaps(const Scene& scene);
+    // The split-sum maps of the scene's environment with these settings, precomputed on first
+    // use (and only for modules that need an environment), then reused for every frame.
+    const IblMaps& environmentMaps(const Scene& scene, const IblSettings& settings);
     // CPU copies of the same maps, for references (read back on first use). `derived`: also
     // the irradiance, prefiltered and LUT maps (otherwise only the environment cube).
-    const IblInputs& environmentInputs(const Scene& scene, bool derived = true);
-    // A hash of every texel environmentInputs(scene, derived) holds (the data, not its name):
-    // what a cached value computed from those maps is keyed by.
-    std::uint64_t environmentDigest(const Scene& scene, bool derived = true);
-    void setIblSettings(const IblSettings& settings) { iblSettings_ = settings; }
-    // True when the scene's environment maps are ready (no precompute on the next render).
-    bool hasEnvironmentMaps(const Scene& scene) const {
-        auto it = environments_.find(scene.environment + "|" + iblSettings_.key());
-        return it != environments_.end() && it->second.maps && it->second.maps->derived;
-    }
-    // Told as each precompute pass starts, for progress output.
-    void setPrecomputeProgress(std::function<void(const std::string&)> f) {
-        precomputeProgress_ = std::move(f);
-    }
-    // Where precomputed maps are kept between runs (empty: no disk cache). Grading keeps its
-    // converged integrals there too.
-    void setIblCache(std::filesystem::path root) { iblCache_ = std::move(root); }
-    const std::filesystem::path& cacheRoot() const { return iblCache_; }
-    // Sets uniforms a host-made view declares beyond the module's parameters (converge).
-    void setExtraUniforms(std::function<void(const Program&)> f) { extraUniforms_ = std::move(f); }
-    const IblSettings& iblSettings() const { return iblSettings_; }
+    const IblInputs& environmentInputs(const Scene& scene, const IblSettings& settings,
+                                       bool derived = true);
+    // A hash of every texel environmentInputs(scene, settings, derived) holds (the data, not
+    // its name): what a cached value computed from those maps is keyed by.
+    std::uint64_t environmentDigest(const Scene& scene, const IblSettings& settings,
+                                    bool derived = true);
+    // True when the scene's environment maps with these settings are ready (no precompute on
+    // a render that reads them).
+    bool hasEnvironmentMaps(const Scene& scene, const IblSettings& settings) const;
+    const std::filesystem::path& cacheRoot() const { return options_.cacheRoot; }
 
     // Whether the module's view may read this IBL sampler: the environment cube when it needs
     // the environment, a derived map (kDerivedMaps) only when the step that computes it comes
@@ -158,22 +167,29 @@ private:
     };
     static std::vector<MaterialMap> materialMaps(const MaterialDesc& m);
     const gl::GpuMesh& mesh(const MeshData* data);  // nullptr: the unit sphere
-    void drawGBuffer(const Scene& scene, unsigned needs, int width, int height, bool cache);
+    // Draws (or reads from the disk cache) the scene's G-buffer; returns the view-projection
+    // it drew with.
+    glm::mat4 drawGBuffer(const Scene& scene, unsigned needs, int width, int height, bool cache);
     // drawGBuffer's disk cache, for the lesson's sphere grid above all (49 spheres of 9216
     // triangles: half a second of llvmpipe in every grading process). The file for these draws
     // (empty: not cacheable), and the attachments read from it or written to it.
     std::filesystem::path gbufferCacheFile(const Scene& scene, const std::vector<DrawItem>& items,
-                                           unsigned needs);
+                                           unsigned needs, const glm::mat4& viewProjection);
     bool readGBuffer(const std::filesystem::path& file);
     void writeGBuffer(const std::filesystem::path& file) const;
+    // `viewProjection`: the G-buffer's, for the sky behind a scene (unused on probes).
     double runView(const RenderRequest& request, const Scene& scene, bool probe,
-                   const std::vector<GLuint>& inputs, int width, int height);
+                   const std::vector<GLuint>& inputs, int width, int height,
+                   const glm::mat4& viewProjection);
     GLuint texture(const TextureSource& source);  // read and uploaded on first use
-    // The scene's environment: the cube only, or with the derived maps too.
-    IblMaps& environment(const Scene& scene, bool derived);
+    // The scene's environment with these settings: the cube only, or with the derived maps
+    // too.
+    struct Environment;
+    Environment& environment(const Scene& scene, const IblSettings& settings, bool derived);
     GLuint blackTexture(GLenum target);  // 1 x 1 black, for samplers a view may not read
 
     DataPaths paths_;
+    RendererOptions options_;
     ProgramCache programs_;
     gl::FullscreenTriangle fullscreen_;
     std::unique_ptr<gl::RenderTarget> gbuffer_, valueTarget_;
@@ -186,7 +202,6 @@ private:
     std::filesystem::path gbufferHolds_;  // the cached G-buffer gbuffer_ holds, if any
     std::vector<gl::Handle> probeInputs_;
     gl::Handle blackCube_, black2d_;
-    glm::mat4 viewProjection_{1};
 
     struct Environment {
         std::unique_ptr<IblMaps> maps;
@@ -195,11 +210,7 @@ private:
         std::uint64_t cubeDigest = 0, derivedDigest = 0;  // of the CPU copies' texels
         Image equirect;                                   // kept for the derived maps' first use
     };
-    IblSettings iblSettings_;
-    std::filesystem::path iblCache_ = IblDiskCache::defaultRoot();
-    std::function<void(const Program&)> extraUniforms_;
-    std::function<void(const std::string&)> precomputeProgress_;
-    std::map<std::string, Environment> environments_;  // by source and settings
+    std::map<std::string, Environment> environments_;  // by source and settings key
     std::unique_ptr<IblPrecompute> precompute_;
 };
 

@@ -8,6 +8,7 @@
 #include <system_error>
 #include <vector>
 
+#include "pbrlab/color.h"
 #include "pbrlab/error.h"
 #include "pbrlab/image.h"
 #include "procedural.h"
@@ -151,14 +152,6 @@ struct Rgb {
     double r, g, b;
 };
 
-double srgbToLinear(double c) {
-    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
-double linearToSrgb(double c) {
-    c = clamp01(c);
-    return c <= 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
-}
-
 // Industrial paints, as sRGB 8-bit colours.
 constexpr std::array<std::array<int, 3>, 6> kPaints = {{
     {74, 98, 116},    // steel blue
@@ -224,8 +217,8 @@ Texel evaluate(double u, double v) {
 
     const auto& c = kPaints[hash(p.id, 5) % kPaints.size()];
     const double shade = 0.88 + 0.24 * fbm(u, v, 8, 3, kSeedPaint);
-    t.paintColour = {srgbToLinear(c[0] / 255.0) * shade, srgbToLinear(c[1] / 255.0) * shade,
-                     srgbToLinear(c[2] / 255.0) * shade};
+    t.paintColour = {srgbDecode(c[0] / 255.0) * shade, srgbDecode(c[1] / 255.0) * shade,
+                     srgbDecode(c[2] / 255.0) * shade};
 
     t.roughMetal = 0.24 + 0.12 * unit(hash(p.id, 6)) +
                    0.22 * (fbm(u, v, 16, 4, kSeedRoughMetal) - 0.5) + 0.2 * scratch +
@@ -307,11 +300,11 @@ void generateMetalPlates(const std::filesystem::path& outDir, int size) {
 
             const double grime = 1.0 - 0.6 * clamp01(2.0 * cavity);
             albedo.at(x, y, 0) =
-                float(linearToSrgb(lerp(t.metal.r, t.paintColour.r, t.paint) * grime));
+                float(srgbEncode(lerp(t.metal.r, t.paintColour.r, t.paint) * grime));
             albedo.at(x, y, 1) =
-                float(linearToSrgb(lerp(t.metal.g, t.paintColour.g, t.paint) * grime));
+                float(srgbEncode(lerp(t.metal.g, t.paintColour.g, t.paint) * grime));
             albedo.at(x, y, 2) =
-                float(linearToSrgb(lerp(t.metal.b, t.paintColour.b, t.paint) * grime));
+                float(srgbEncode(lerp(t.metal.b, t.paintColour.b, t.paint) * grime));
 
             const double rough = lerp(t.roughMetal, t.roughPaint, t.paint) + 0.3 * cavity;
             roughness.at(x, y, 0) = float(std::clamp(rough, 0.05, 1.0));

@@ -448,7 +448,8 @@ private:
         }
         // The first render of an environment precomputes for seconds: show a frame that says so.
         if (dirty_ && (module().needs & NeedsEnvironment) &&
-            !renderer_->hasEnvironmentMaps(currentScene()) && !precomputeNoticeShown_) {
+            !renderer_->hasEnvironmentMaps(currentScene(), iblFor(currentScene())) &&
+            !precomputeNoticeShown_) {
             precomputeNoticeShown_ = true;
             return;
         }
@@ -467,11 +468,10 @@ private:
     }
 
     // --error-budget: the settings chosen for this scene's environment (measured the first time
-    // it is shown, as `pbrlab precompute --error-budget` measures them) become the renderer's.
+    // it is shown, as `pbrlab precompute --error-budget` measures them) go into its requests.
     void useBudgetSettings(const Scene& scene) {
         if (options_.errorBudget <= 0) return;
-        auto chosen = budgetSettings_.find(scene.environment);
-        if (chosen == budgetSettings_.end()) {
+        if (!budgetSettings_.count(scene.environment)) {
             try {
                 const Image equirect =
                     loadEnvironmentImage(scene.environment, renderer_->cacheRoot());
@@ -490,13 +490,19 @@ private:
                               choice.met ? "met" : "NOT met (the most accurate settings)",
                               e.irradiance.mean, e.prefilter.mean, e.lut.mean);
                 logLine("gui", std::string(line) + "; " + choice.settings.describe());
-                chosen = budgetSettings_.emplace(scene.environment, choice.settings).first;
+                budgetSettings_.emplace(scene.environment, choice.settings);
             } catch (const Error& e) {
                 logLine("gui", std::string("error budget: ") + e.what());
-                chosen = budgetSettings_.emplace(scene.environment, renderer_->iblSettings()).first;
+                budgetSettings_.emplace(scene.environment, IblSettings());
             }
         }
-        renderer_->setIblSettings(chosen->second);
+    }
+
+    // The IBL settings of every request for this scene: --error-budget's choice for its
+    // environment, else the defaults.
+    IblSettings iblFor(const Scene& scene) const {
+        const auto chosen = budgetSettings_.find(scene.environment);
+        return chosen != budgetSettings_.end() ? chosen->second : IblSettings();
     }
 
     // An input changed what is drawn (camera, parameter, light): a live frame now, the full
@@ -518,6 +524,7 @@ private:
                 nullptr,   liveSize_,       liveSize_};
             request.seamlessCubes = false;  // as the settled picture: no jump when it lands
             request.readValue = false;
+            request.ibl = iblFor(scene);
             const RenderResult r = renderer_->render(request);
             liveTexture_ = displayPass_->run(r.valueTexture, liveSize_, liveSize_, module().display,
                                              module().components);
@@ -556,6 +563,7 @@ private:
             request.render = {&m, &st.params, &scene, {}, nullptr, kRenderSize, kRenderSize};
             request.render.readSurfaces = true;
             request.render.seamlessCubes = false;
+            request.render.ibl = iblFor(scene);
             Evaluation solution = evaluate(*renderer_, request);
             solutionValue_ = solution.render.value;
             surfaces_ = solution.render.surfaces;
@@ -570,6 +578,7 @@ private:
             RenderRequest probeRequest{
                 &m, &st.params, &scene, {}, &probe, module().probe.width, module().probe.height};
             probeRequest.seamlessCubes = false;
+            probeRequest.ibl = iblFor(scene);
             probeSolution_ = renderer_->render(probeRequest).value;
             renderError_.clear();
         } catch (const Error& e) {
@@ -584,6 +593,7 @@ private:
                     RenderRequest request{&m,      &st.params,  &scene,     studentSource(),
                                           nullptr, kRenderSize, kRenderSize};
                     request.seamlessCubes = false;
+                    request.ibl = iblFor(scene);
                     studentValue_ = renderer_->render(request).value;
                     studentStats_ =
                         compareWithBand(studentValue_, surfaces_, band_, module().components,
@@ -597,6 +607,7 @@ private:
                                                module().probe.width,
                                                module().probe.height};
                     probeRequest.seamlessCubes = false;
+                    probeRequest.ibl = iblFor(scene);
                     probeStudent_ = renderer_->render(probeRequest).value;
                     if (attempt == 0) compileLog_.clear();
                     rendered = true;
@@ -845,9 +856,9 @@ private:
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x)
                 for (int c = 0; c < 3; ++c)
-                    image.at(x, y, c) = rows[(size_t(h - 1 - y) * w + x) * 4 + size_t(c)] / 255.0f;
+                    image.at(x, y, c) = rows[(size_t(y) * w + x) * 4 + size_t(c)] / 255.0f;
         try {
-            writeImage(file, image, FileDepth::Uint8, true);
+            writeImage(file, flipRows(std::move(image)), FileDepth::Uint8, true);
             messages_ += "screenshot: " + file.string() + "\n";
             std::cout << "screenshot " << file.string() << " (" << w << "x" << h << ")\n";
         } catch (const Error& e) {

@@ -12,6 +12,19 @@
 
 namespace pbrlab {
 
+// OpenGL's cube-map faces (OpenGL 4.5 section 8.13, table 8.19), in one place for every CPU
+// copy of a cube: face order +x -x +y -y +z -z; face coordinates s, t in [-1, 1], s along a
+// face image's rows, t down its columns (t = -1 is row 0, the t = 0 edge of the texture).
+struct CubeFacePoint {
+    int face = -1;  // -1: the direction has no major axis (zero length, or not a number)
+    double s = 0, t = 0;
+};
+// The face a direction selects (its major axis; ties go to x, then y) and where it meets it.
+CubeFacePoint cubeFacePoint(const glm::dvec3& direction);
+// The direction through (s, t) of a face, not normalised (the face is the plane at distance 1
+// along its axis): the inverse of cubeFacePoint.
+glm::dvec3 cubeFaceDirection(int face, double s, double t);
+
 class CubeSampler {
 public:
     CubeSampler() = default;

@@ -29,7 +29,8 @@ struct Image {
 };
 
 // The same picture with its rows in the other order (GL textures and read-back run bottom-up).
-Image flipRows(const Image& image);
+// Takes the image by value: pass std::move(image) to flip without a copy.
+Image flipRows(Image image);
 
 // Reads any file OpenImageIO knows (PNG and Radiance HDR are told by their first bytes, other
 // formats by OpenImageIO, which tries the extension's format first). Values are the stored code

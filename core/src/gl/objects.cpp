@@ -98,17 +98,12 @@ Image RenderTarget::read(int i) const {
     image.height = height_;
     image.channels = 4;
     image.pixels.resize(size_t(width_) * height_ * 4);
-    std::vector<float> rows(image.pixels.size());
     BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.id());
     ReadBuffer(GL_COLOR_ATTACHMENT0 + i);
     PixelStorei(GL_PACK_ALIGNMENT, 1);
-    ReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, rows.data());
+    ReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, image.pixels.data());
     checkError("reading back a render target");
-    const size_t rowFloats = size_t(width_) * 4;
-    for (int y = 0; y < height_; ++y)
-        std::copy_n(rows.data() + size_t(height_ - 1 - y) * rowFloats, rowFloats,
-                    image.pixels.data() + size_t(y) * rowFloats);
-    return image;
+    return flipRows(std::move(image));
 }
 
 GpuMesh::GpuMesh(const MeshData& mesh) : indexCount_(GLsizei(mesh.indices.size())) {
