@@ -26,23 +26,6 @@ struct TexelTable {
     std::vector<glm::dvec3> rawDirection;  // d itself, to recheck radiances (see current())
 };
 
-glm::dvec3 faceDirection(int face, double s, double t) {
-    switch (face) {
-        case 0:
-            return {1.0, -t, -s};
-        case 1:
-            return {-1.0, -t, s};
-        case 2:
-            return {s, 1.0, t};
-        case 3:
-            return {s, -1.0, -t};
-        case 4:
-            return {s, -t, 1.0};
-        default:
-            return {-s, -t, -1.0};
-    }
-}
-
 TexelTable buildTable(const CubeSampler& env) {
     TexelTable table;
     table.environment = &env;
@@ -56,7 +39,7 @@ TexelTable buildTable(const CubeSampler& env) {
         for (int j = 0; j < size; ++j)
             for (int i = 0; i < size; ++i) {
                 const double s = -1.0 + (i + 0.5) * h, t = -1.0 + (j + 0.5) * h;
-                const glm::dvec3 d = faceDirection(face, s, t);
+                const glm::dvec3 d = cubeFaceDirection(face, s, t);
                 const double r2 = glm::dot(d, d);
                 table.rawDirection.push_back(d);
                 table.direction.push_back(d / std::sqrt(r2));
@@ -114,7 +97,7 @@ glm::dvec3 convergedIrradiance(const glm::dvec3& N, const CubeSampler& env) {
             for (int j = 0; j < size; ++j)
                 for (int i = 0; i < size; ++i) {
                     const double s0 = -1 + i * h, s1 = s0 + h, t0 = -1 + j * h, t1 = t0 + h;
-                    const glm::dvec3 d = faceDirection(face, 0.5 * (s0 + s1), 0.5 * (t0 + t1));
+                    const glm::dvec3 d = cubeFaceDirection(face, 0.5 * (s0 + s1), 0.5 * (t0 + t1));
                     table.direction.push_back(glm::normalize(d));
                     table.solidAngle.push_back(cornerAngle(s1, t1) - cornerAngle(s0, t1) -
                                                cornerAngle(s1, t0) + cornerAngle(s0, t0));

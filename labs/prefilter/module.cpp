@@ -20,26 +20,6 @@ struct CubeEnvironment final : ref::Environment {
     const CubeSampler& cube;
 };
 
-// The reference solution in double, reading the same environment texels (mip 0) the shader
-// reads: N = V = R, Hammersley-driven GGX half vectors, L = reflect(-V, H), weights N.L.
-glm::dvec3 prefilter(const CubeSampler& env, const glm::dvec3& R, double roughness,
-                     std::uint32_t sampleCount) {
-    const glm::dvec3 N = R, V = R;
-    const std::uint32_t n = std::max(sampleCount, 1u);
-    glm::dvec3 sum(0.0);
-    double weight = 0.0;
-    for (std::uint32_t i = 0; i < n; ++i) {
-        const glm::dvec3 H = ref::importanceSampleGGX(ref::hammersley(i, n), N, roughness);
-        const glm::dvec3 L = 2.0 * glm::dot(V, H) * H - V;
-        const double NdotL = glm::dot(N, L);
-        if (NdotL > 0.0) {
-            sum += env.sample(L, 0.0) * NdotL;
-            weight += NdotL;
-        }
-    }
-    return weight > 0.0 ? sum / weight : env.sample(R, 0.0);
-}
-
 // The samples uniform as the shader receives it (an int, clamped to the declared range).
 std::uint32_t samples(const ReferenceContext& c) {
     return std::uint32_t(std::max(c.params.number("samples"), 1.0));
@@ -61,7 +41,10 @@ ModuleDesc describeModule() {
     d.reference = [](const Surface& s, const ReferenceContext& c) {
         if (!c.ibl) return glm::dvec3(0);
         const glm::dvec3 R = glm::reflect(-s.view, s.normal);
-        return prefilter(c.ibl->environment, R, s.roughness, samples(c));
+        // The reference solution in double (ref::prefilterEnvironment), reading the same
+        // environment texels (mip 0) the shader reads.
+        return ref::prefilterEnvironment(CubeEnvironment(c.ibl->environment), R, s.roughness,
+                                         samples(c));
     };
     // x: R's elevation from the nadir (0) through the horizon (0.5) to the zenith (1), in the
     // vertical plane of the shipped sky's sun (azimuth 130 degrees, elevation 35: column 100 of
