@@ -1,0 +1,64 @@
+// The steps' badges: each step's grade, `pbrlab check ID --json` run in a process of its own
+// (a step takes up to seconds to grade), one at a time, again whenever the student's file or
+// a file it includes changes. The window polls it each frame and stays responsive.
+#pragma once
+
+#include <sys/types.h>
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "source_watch.h"
+
+namespace pbrlab {
+
+class ModuleRegistry;
+
+enum class Status { Unknown, Missing, CompileError, Passes, Fails };
+
+struct Badge {
+    Status status = Status::Unknown;
+    std::string gradeMessage;  // why the badge says "fails": the grader's message
+    SourceWatch watch;         // the student's file as last graded
+};
+
+class Badges {
+public:
+    // modulesDirs: the step folders the grading process loads, as this one does.
+    Badges(std::vector<std::filesystem::path> modulesDirs, std::filesystem::path submission)
+        : modulesDirs_(std::move(modulesDirs)), submission_(std::move(submission)) {}
+    Badges(const Badges&) = delete;
+    Badges& operator=(const Badges&) = delete;
+    ~Badges();  // a grade still running is not needed any more: it is stopped
+
+    // Collects a finished grade, and starts the next one needed (at most one at a time).
+    // Returns the id of the step whose grade just arrived (empty: none).
+    std::string update(const ModuleRegistry& registry);
+
+    // The step's badge (Status::Unknown before its first check).
+    const Badge& of(const std::string& id) const {
+        static const Badge unknown;
+        auto it = badges_.find(id);
+        return it == badges_.end() ? unknown : it->second;
+    }
+    // The render found that the student's file does not compile: the badge says so now.
+    void markCompileError(const std::string& id) { badges_[id].status = Status::CompileError; }
+
+private:
+    void start(const std::string& id);
+    std::vector<std::filesystem::path> modulesDirs_;
+    std::filesystem::path submission_;
+    std::map<std::string, Badge> badges_;
+    size_t cursor_ = 0;  // the step checked last, so every step gets its turn
+    struct Job {
+        pid_t pid = -1;
+        std::string id;
+        std::filesystem::path json;
+    } job_;  // the badge being graded (a `pbrlab check` process)
+};
+
+const char* badgeText(Status s);
+
+}  // namespace pbrlab

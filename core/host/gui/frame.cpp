@@ -1,0 +1,271 @@
+// The frame function: GuiState -> evaluation -> images (Lab::update and what it calls).
+#include <algorithm>
+#include <cmath>
+
+#include "evaluate.h"
+#include "lab.h"
+#include "pbrlab/display.h"
+#include "pbrlab/log.h"
+#include "term_views.h"
+
+namespace fs = std::filesystem;
+
+namespace pbrlab {
+
+namespace {
+
+// How long the input must be still before the full evaluation runs (the live view until then).
+constexpr std::chrono::milliseconds kSettleDelay{200};
+// The live picture's time budget: its side shrinks (to 128 at least) while a frame of it takes
+// longer, and grows back (to kRenderSize) while it takes much less, so that dragging stays at
+// 30 frames a second or more whatever the step costs per pixel. The settled image is full size.
+constexpr double kLiveBudgetMs = 18;
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+}  // namespace
+
+void Lab::update(GuiState& state, Requests& requests) {
+    if (requests.selectStep >= 0) select(state, requests.selectStep);
+    if (requests.reloadScene) loadScene(state);
+    if (requests.firstLight && !shown_.scene.lights.empty()) {
+        shown_.scene.lights[0] = *requests.firstLight;
+        requests.moved = true;
+    }
+    if (requests.environment) {
+        const std::string& env = *requests.environment;
+        if (env != "sky" && !fs::exists(env)) {
+            shown_.sceneError = env + ": no such file (use \"sky\" or an .hdr/.exr path)";
+        } else {
+            shown_.scene.environment = env;
+            shown_.sceneError.clear();
+            dirty_ = true;
+        }
+    }
+    if (requests.moved) moved();
+    if (requests.recompose) compose(state);
+    requests = {};
+
+    // Hot reload: a saved student file, or a file it includes, marks the view dirty; the
+    // renderer recompiles it.
+    if (!studentFile(state).empty() && studentWatch_.changed(studentFile(state), submission_))
+        dirty_ = true;
+    const ModuleDesc& m = module(state);
+    // The first render of an environment precomputes for seconds: show a frame that says so.
+    if (dirty_ && (m.needs & NeedsEnvironment) &&
+        !renderer_->hasEnvironmentMaps(currentScene(state), iblFor(currentScene(state))) &&
+        !precomputeNoticeShown_) {
+        precomputeNoticeShown_ = true;
+        return;
+    }
+    precomputeNoticeShown_ = false;
+    if (m.needs & NeedsEnvironment) useBudgetSettings(currentScene(state));
+    // While the input moves, only the picture is drawn (on the GPU, mapped for display there,
+    // nothing read back): 30 frames a second at least. The evaluation against the CPU
+    // reference, the probes and the statistics follow once it has been still for a moment
+    // (dirty_ stays set until then).
+    const bool moving = std::chrono::steady_clock::now() - lastMove_ < kSettleDelay;
+    if (dirty_ && moving)
+        drawLive(state);
+    else if (dirty_)
+        render(state);
+    const std::string graded = badges_->update(*registry_);
+    dirty_ = dirty_ || graded == m.id;
+}
+
+// An input changed what is drawn (camera, parameter, light): a live frame now, the full
+// evaluation when it stops.
+void Lab::moved() {
+    dirty_ = true;
+    lastMove_ = std::chrono::steady_clock::now();
+}
+
+// The picture the student is looking at (theirs when their file has compiled, else the
+// solution's), rendered at the live size (kLiveBudgetMs) and mapped for display on the GPU.
+void Lab::drawLive(const GuiState& state) {
+    const auto start = std::chrono::steady_clock::now();
+    const Scene scene = currentScene(state);
+    const bool student = state.view != View::Solution && !shown_.studentValue.pixels.empty();
+    const ModuleDesc& m = module(state);
+    try {
+        RenderRequest request{
+            &loaded(state), &state.params.at(m.id),
+            &scene,         student ? StudentSource{submission_, false} : StudentSource{},
+            nullptr,        liveSize_,
+            liveSize_};
+        request.seamlessCubes = false;  // as the settled picture: no jump when it lands
+        request.readValue = false;
+        request.ibl = iblFor(scene);
+        const RenderResult r = renderer_->render(request);
+        shown_.liveTexture =
+            displayPass_->run(r.valueTexture, liveSize_, liveSize_, m.display, m.components);
+        shown_.liveWho = student ? "your" : "the solution's";
+    } catch (const Error& e) {
+        render(state);  // a program that does not compile: the full path says why
+        return;
+    }
+    shown_.renderMs = millisecondsSince(start);
+    liveSizes_.push_back(liveSize_);
+    // Resized at most every 4 frames, from the slowest of them (a new size reallocates the
+    // targets; one slow frame is not a trend), with a gap between shrink and grow.
+    liveWindow_.push_back(shown_.renderMs);
+    if (liveWindow_.size() < 4) return;
+    const double slowest = *std::max_element(liveWindow_.begin(), liveWindow_.end());
+    liveWindow_.clear();
+    if (slowest > kLiveBudgetMs)
+        liveSize_ = std::max(128, int(liveSize_ * 0.8) / 8 * 8);
+    else if (slowest < 0.4 * kLiveBudgetMs)
+        liveSize_ = std::min(kRenderSize, int(liveSize_ * 1.25) / 8 * 8);
+}
+
+void Lab::render(const GuiState& state) {
+    dirty_ = false;
+    shown_.liveTexture = 0;
+    const LoadedModule& m = loaded(state);
+    const ModuleDesc& d = *m.desc;
+    const ParamValues& params = state.params.at(d.id);
+    const StudentSource studentSource{submission_, false};
+    Scene scene = currentScene(state);
+    auto start = std::chrono::steady_clock::now();
+    // Views read cube maps as the CPU reference does (RenderRequest::seamlessCubes off), so
+    // the statistics under the image are the ones `pbrlab check` grades with.
+    try {
+        EvalRequest request;
+        request.render = {&m, &params, &scene, {}, nullptr, kRenderSize, kRenderSize};
+        request.render.readSurfaces = true;
+        request.render.seamlessCubes = false;
+        request.render.ibl = iblFor(scene);
+        Evaluation solution = evaluate(*renderer_, request);
+        shown_.solutionValue = solution.render.value;
+        shown_.surfaces = solution.render.surfaces;
+        band_ = solution.band;
+        shown_.solutionStats = solution.comparison;
+        shown_.referenceValue = solution.render.value;
+        for (size_t i = 0; i < band_.expected.size(); ++i)
+            for (int c = 0; c < 3; ++c)
+                shown_.referenceValue.pixels[i * 4 + size_t(c)] = float(band_.expected[i][c]);
+        request.render.surfaces = nullptr;
+        const std::vector<Surface> probe = probeSurfaces(d.probe);
+        RenderRequest probeRequest{&m, &params, &scene, {}, &probe, d.probe.width, d.probe.height};
+        probeRequest.seamlessCubes = false;
+        probeRequest.ibl = iblFor(scene);
+        shown_.probeSolution = renderer_->render(probeRequest).value;
+        shown_.renderError.clear();
+    } catch (const Error& e) {
+        shown_.renderError = e.what();
+    }
+    updatePermutation(state, applyParamBindings(scene, d, params));
+    shown_.hasStudent = !studentFile(state).empty() && fs::exists(studentFile(state));
+    bool rendered = false;
+    if (shown_.hasStudent) {
+        for (int attempt = 0; attempt < 2; ++attempt) {
+            try {
+                RenderRequest request{&m,      &params,     &scene,     studentSource,
+                                      nullptr, kRenderSize, kRenderSize};
+                request.seamlessCubes = false;
+                request.ibl = iblFor(scene);
+                shown_.studentValue = renderer_->render(request).value;
+                shown_.studentStats =
+                    compareWithBand(shown_.studentValue, shown_.surfaces, band_, d.components,
+                                    d.nonNegative, d.tolerance.outlierFraction);
+                const std::vector<Surface> probe = probeSurfaces(d.probe);
+                RenderRequest probeRequest{&m,     &params,       &scene,        studentSource,
+                                           &probe, d.probe.width, d.probe.height};
+                probeRequest.seamlessCubes = false;
+                probeRequest.ibl = iblFor(scene);
+                shown_.probeStudent = renderer_->render(probeRequest).value;
+                if (attempt == 0) shown_.compileLog.clear();
+                rendered = true;
+                break;
+            } catch (const ShaderError& e) {
+                // The new file does not compile: show the log, and render once more with the
+                // last good program (the cache kept it).
+                shown_.compileLog = e.what();
+                badges_->markCompileError(d.id);
+            } catch (const Error& e) {
+                shown_.compileLog = e.what();
+                break;
+            }
+        }
+    }
+    // No version of the student's file has compiled yet: nothing of theirs to show.
+    if (!rendered) shown_.studentValue = Image();
+    shown_.renderMs = millisecondsSince(start);
+    logLine("gui", "evaluated " + d.id + " against the CPU reference in " +
+                       std::to_string(int(shown_.renderMs)) + " ms");
+    compose(state);
+}
+
+// The programs this step needs for the scene on screen, as `pbrlab permutations` lists them:
+// one G-buffer define set per kind of material drawn (a map adds a HAS_*_MAP define), and the
+// view's (the student's file compiles with the same defines).
+void Lab::updatePermutation(const GuiState& state, const Scene& scene) {
+    shown_.permutation.clear();
+    std::set<std::string> gbuffers;
+    for (const DrawItem& item : drawItems(scene))
+        gbuffers.insert(definesText(
+            renderer_->gbufferRecipe(scene.materials.at(size_t(item.material)), module(state).needs)
+                .defines));
+    for (const std::string& d : gbuffers) shown_.permutation.insert({"G-buffer", d});
+    ProgramRecipe view = renderer_->viewRecipe(loaded(state), {}, false, int(scene.lights.size()));
+    shown_.permutation.insert({view.label, definesText(view.defines)});
+}
+
+// The view the state asks for, from the values of the last evaluation, into imageTexture.
+void Lab::compose(const GuiState& state) {
+    if (shown_.solutionValue.pixels.empty()) return;
+    const ModuleDesc& d = module(state);
+    const Image& student =
+        shown_.studentValue.pixels.empty() ? shown_.solutionValue : shown_.studentValue;
+    Image shown;
+    switch (state.view) {
+        case View::Student:
+            shown = displayImage(student, d.display, d.components);
+            break;
+        case View::Solution:
+            shown = displayImage(shown_.solutionValue, d.display, d.components);
+            break;
+        case View::Reference:
+            shown = displayImage(shown_.referenceValue, d.display, d.components);
+            break;
+        case View::Difference:
+            shown = differenceImage(student, shown_.referenceValue, d.components,
+                                    state.differenceRange);
+            break;
+        case View::Split: {
+            shown = displayImage(student, d.display, d.components);
+            Image ref = displayImage(shown_.referenceValue, d.display, d.components);
+            int split = int(state.split * shown.width);
+            for (int y = 0; y < shown.height; ++y)
+                for (int x = split; x < shown.width; ++x)
+                    for (int c = 0; c < 4; ++c)
+                        shown.at(x, y, c) = x == split ? 1.0f : ref.at(x, y, c);
+            break;
+        }
+        case View::Term:
+            shown =
+                termImage(kTermViews[size_t(state.term)], shown_.solutionValue, shown_.surfaces);
+            break;
+    }
+    // Count what cannot be shown honestly, for the warning line.
+    shown_.nanCount = shown_.infCount = 0;
+    for (size_t i = 0; i + 3 < student.pixels.size(); i += 4)
+        for (int c = 0; c < d.components; ++c) {
+            shown_.nanCount += std::isnan(student.pixels[i + size_t(c)]);
+            shown_.infCount += std::isinf(student.pixels[i + size_t(c)]);
+        }
+    gl::BindTexture(GL_TEXTURE_2D, shown_.imageTexture.id());
+    gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    // Row 0 of the image is its top; ImGui draws uv (0,0) at the top-left: no flip.
+    gl::TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, shown.width, shown.height, 0, GL_RGBA, GL_FLOAT,
+                   shown.pixels.data());
+    gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    shown_.imageWidth = shown.width;
+    shown_.imageHeight = shown.height;
+}
+
+}  // namespace pbrlab

@@ -1,0 +1,129 @@
+// The GUI's working half, without drawing: the services (step libraries, renderer), what the
+// last evaluation produced (Shown), and the frame function that turns the student's choices
+// (GuiState) into images. Panels (panels.h) read a const Lab and write only GuiState and
+// Requests; the next frame's update() carries the requests out.
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "badges.h"
+#include "compare.h"
+#include "display_pass.h"
+#include "gui.h"
+#include "paths.h"
+#include "plugins.h"
+#include "renderer.h"
+#include "source_watch.h"
+#include "state.h"
+
+namespace pbrlab {
+
+constexpr int kRenderSize = 512;  // the lab image; scaled to fit the window
+
+// One-shot requests the panels make while drawing; update() carries them out and clears them.
+struct Requests {
+    int selectStep = -1;       // go to this step (index into the registry's modules)
+    bool reloadScene = false;  // the chosen scene or model changed, or "reset camera"
+    bool moved = false;        // camera, parameter or light changed: live frames, then the
+                               // evaluation once the input is still
+    bool recompose = false;    // the view or its settings changed: the same values shown anew
+    bool screenshot = false;   // save the window as pbrlab-screenshot.png
+    std::optional<PointLightDesc> firstLight;  // the scene's first light, edited
+    std::optional<std::string> environment;    // load this environment: "sky" or a file
+};
+
+// What the last evaluation produced, as the panels show it (caches: rebuilt from the state).
+struct Shown {
+    Scene scene;          // as loaded, with the lights and environment as edited; camera: GuiState
+    std::string handout;  // the step's README.md
+    std::string sceneError;   // the scene, model or environment that did not load
+    std::string renderError;  // the solution's render failed
+    std::string compileLog;   // the student's file did not compile (empty: it did)
+    std::string messages;     // start-up notes for the steps panel (modules, font, state)
+    bool hasStudent = false;  // a student file exists for this step
+    Image studentValue, solutionValue, referenceValue, probeSolution, probeStudent;
+    std::vector<Surface> surfaces;  // the G-buffer's inputs, one per pixel of the picture
+    Comparison studentStats, solutionStats;
+    gl::Handle imageTexture;  // the composed view
+    int imageWidth = 1, imageHeight = 1, nanCount = 0, infCount = 0;
+    GLuint liveTexture = 0;    // while the input moves: the live picture (0: the settled image)
+    const char* liveWho = "";  // whose function the live picture is
+    // The step's programs for the scene on screen: (label, defines) as compiled() lists them.
+    std::set<std::pair<std::string, std::string>> permutation;
+    double frameMs = 0, renderMs = 0;
+};
+
+class Lab {
+public:
+    // Loads the step libraries and starts the renderer, then fills `state` from the options
+    // and gui.json. Needs a current GL context. Throws pbrlab::Error on bad options.
+    Lab(const GuiOptions& options, GuiState& state);
+
+    // The frame function: carries out the requests, notices edited student files, and
+    // renders what the state asks for: a live picture while the input moves, the full
+    // evaluation against the CPU reference once it is still.
+    void update(GuiState& state, Requests& requests);
+    // The full evaluation now (also --orbit's baseline).
+    void render(const GuiState& state);
+
+    const LoadedModule& loaded(const GuiState& state) const {
+        return registry_->modules()[size_t(state.step)];
+    }
+    const ModuleDesc& module(const GuiState& state) const { return *loaded(state).desc; }
+    std::filesystem::path studentFile(const GuiState& state) const;
+    // The scene with the state's orbit camera.
+    Scene currentScene(const GuiState& state) const;
+
+    const GuiOptions& options() const { return options_; }
+    const DataPaths& paths() const { return paths_; }
+    const ModuleRegistry& registry() const { return *registry_; }
+    LabRenderer& renderer() const { return *renderer_; }
+    const std::filesystem::path& submission() const { return submission_; }
+    const Badges& badges() const { return *badges_; }
+    const Shown& shown() const { return shown_; }
+    Shown& shown() { return shown_; }
+    const std::vector<int>& liveSizes() const { return liveSizes_; }  // for --orbit's report
+
+private:
+    void select(GuiState& state, int index);
+    void loadScene(GuiState& state);
+    void noteModelWarnings(const Scene& scene);
+    void useBudgetSettings(const Scene& scene);
+    IblSettings iblFor(const Scene& scene) const;
+    void drawLive(const GuiState& state);
+    void compose(const GuiState& state);
+    void updatePermutation(const GuiState& state, const Scene& scene);
+    void moved();
+
+    GuiOptions options_;
+    DataPaths paths_;
+    std::unique_ptr<ModuleRegistry> registry_;
+    std::unique_ptr<LabRenderer> renderer_;
+    std::unique_ptr<DisplayPass> displayPass_;
+    std::filesystem::path submission_;
+    std::unique_ptr<Badges> badges_;
+    Shown shown_;
+    Band band_;                 // the reference's band on the current picture
+    SourceWatch studentWatch_;  // hot reload of the step on screen
+    // What is on screen, for the chooser to return to when a file does not load.
+    std::string shownSceneName_;
+    std::filesystem::path shownModel_;
+    std::set<std::filesystem::path> warnedModels_;
+    std::map<std::string, IblSettings> budgetSettings_;  // --error-budget, per environment
+    // The evaluation is out of date (dirty_) and the input last moved at lastMove_.
+    bool dirty_ = true, precomputeNoticeShown_ = false;
+    std::chrono::steady_clock::time_point lastMove_{};
+    int liveSize_ = kRenderSize;      // the live picture's side (kLiveBudgetMs)
+    std::vector<int> liveSizes_;      // of every live frame, for --orbit's report
+    std::vector<double> liveWindow_;  // the live frames' times since the last resize
+};
+
+}  // namespace pbrlab

@@ -1,0 +1,178 @@
+// The view panel: title, the view chooser and its settings, the picture with the orbit camera
+// and the pixel inspector, the legend, and the statistics line.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "panels.h"
+#include "pbrlab/display.h"
+#include "term_views.h"
+
+namespace pbrlab {
+
+namespace {
+
+void viewChooser(GuiState& state, Requests& requests) {
+    ImGui::SetNextItemWidth(170);
+    if (!ImGui::BeginCombo("view", viewName(state.view, state.term).c_str())) return;
+    for (View v : kImageViews)
+        if (ImGui::Selectable(viewName(v, 0).c_str(), state.view == v)) {
+            state.view = v;
+            requests.recompose = true;
+        }
+    ImGui::Separator();
+    for (size_t i = 0; i < kTermViews.size(); ++i)
+        if (ImGui::Selectable(kTermViews[i].name,
+                              state.view == View::Term && state.term == int(i))) {
+            state.view = View::Term;
+            state.term = int(i);
+            requests.recompose = true;
+        }
+    ImGui::EndCombo();
+}
+
+// Drag: orbit; wheel: zoom; hover: the pixel inspector, on the settled picture.
+void handleCamera(const Lab& lab, GuiState& state, Requests& requests, ImVec2 origin, float side) {
+    if (!ImGui::IsItemHovered()) return;
+    ImGuiIO& io = ImGui::GetIO();
+    OrbitCamera& camera = state.camera;
+    if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
+        camera.yaw -= io.MouseDelta.x * 0.01;
+        camera.pitch = std::clamp(camera.pitch + io.MouseDelta.y * 0.01, -1.5, 1.5);
+        requests.moved = true;
+    }
+    if (io.MouseWheel != 0) {
+        camera.distance = std::clamp(camera.distance * std::pow(0.9, io.MouseWheel), 1.2, 200.0);
+        requests.moved = true;
+    }
+    const Shown& shown = lab.shown();
+    int x = int((io.MousePos.x - origin.x) / side * shown.imageWidth);
+    int y = int((io.MousePos.y - origin.y) / side * shown.imageHeight);
+    if (x < 0 || y < 0 || x >= shown.imageWidth || y >= shown.imageHeight ||
+        shown.solutionValue.pixels.empty() || shown.liveTexture)
+        return;
+    size_t i = size_t(y) * shown.solutionValue.width + x;
+    if (i >= shown.surfaces.size() || !shown.surfaces[i].covered) return;
+    const Surface& s = shown.surfaces[i];
+    auto value = [&](const Image& im) {
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "%.6g %.6g %.6g", im.pixels[i * 4], im.pixels[i * 4 + 1],
+                      im.pixels[i * 4 + 2]);
+        return std::string(buf);
+    };
+    ImGui::BeginTooltip();
+    ImGui::Text("pixel (%d, %d)", x, y);
+    if (!shown.studentValue.pixels.empty())
+        ImGui::Text("student   %s", value(shown.studentValue).c_str());
+    ImGui::Text("solution  %s", value(shown.solutionValue).c_str());
+    ImGui::Text("reference %s", value(shown.referenceValue).c_str());
+    ImGui::Separator();
+    ImGui::Text("N (%.3f %.3f %.3f)  N.V %.3f  N.L %.3f", s.normal.x, s.normal.y, s.normal.z,
+                glm::dot(s.normal, s.view), glm::dot(s.normal, s.light));
+    ImGui::Text("roughness %.3f  metallic %.3f  ao %.3f", s.roughness, s.metallic, s.ao);
+    ImGui::EndTooltip();
+}
+
+void drawLegend(double lo, double hi, bool logScale, float height) {
+    ImVec2 p = ImGui::GetCursorScreenPos();
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const int steps = 64;
+    for (int i = 0; i < steps; ++i) {
+        glm::dvec3 c = falseColor(1.0 - (i + 0.5) / steps);
+        float y0 = p.y + height * i / steps, y1 = p.y + height * (i + 1) / steps;
+        dl->AddRectFilled(ImVec2(p.x, y0), ImVec2(p.x + 14, y1),
+                          IM_COL32(int(c.r * 255), int(c.g * 255), int(c.b * 255), 255));
+    }
+    char top[32], bottom[32];
+    std::snprintf(top, sizeof top, "%.2g", hi);
+    std::snprintf(bottom, sizeof bottom, "%.2g%s", lo, logScale ? " log" : "");
+    dl->AddText(ImVec2(p.x - 2, p.y - 14), IM_COL32(220, 220, 220, 255), top);
+    dl->AddText(ImVec2(p.x - 2, p.y + height + 1), IM_COL32(220, 220, 220, 255), bottom);
+    ImGui::Dummy(ImVec2(28, height));
+}
+
+void drawStats(const Lab& lab, const GuiState& state) {
+    const ModuleDesc& d = lab.module(state);
+    const Shown& shown = lab.shown();
+    auto row = [&](const char* who, const Comparison& s) {
+        bool ok = s.passes(d.nonNegative, d.tolerance.outlierFraction);
+        ImGui::TextColored(ok ? ImVec4(0.4f, 0.9f, 0.45f, 1) : ImVec4(1, 0.5f, 0.3f, 1),
+                           "%-9s worst %.3g x the tolerance  outside %d  NaN %d  Inf %d  "
+                           "neg %d  %s",
+                           who, s.worstExcess, s.outside, s.nanCount, s.infCount, s.negativeCount,
+                           ok ? "within the band" : "outside the band");
+    };
+    if (shown.liveTexture) {
+        ImGui::TextDisabled("vs the CPU reference: follows when the input stops");
+        return;
+    }
+    ImGui::TextDisabled("vs the CPU reference's band on this picture (the badge is the grade):");
+    if (!shown.studentValue.pixels.empty()) row("student", shown.studentStats);
+    row("solution", shown.solutionStats);
+    const Badge& badge = lab.badges().of(d.id);
+    if (badge.status == Status::Fails && !badge.gradeMessage.empty())
+        ImGui::TextWrapped("grade: %s", badge.gradeMessage.c_str());
+}
+
+}  // namespace
+
+void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
+    const ModuleDesc& d = lab.module(state);
+    const Shown& shown = lab.shown();
+    ImGui::Text("%d. %s", d.step, d.title.c_str());
+    ImGui::TextDisabled("%s", d.function.c_str());
+    viewChooser(state, requests);
+    if (state.view == View::Difference) {
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(160);
+        if (ImGui::SliderFloat("range", &state.differenceRange, 1e-6f, 1.0f, "%.1e",
+                               ImGuiSliderFlags_Logarithmic))
+            requests.recompose = true;
+    }
+    if (state.view == View::Split) {
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(160);
+        if (ImGui::SliderFloat("split", &state.split, 0, 1)) requests.recompose = true;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("screenshot")) requests.screenshot = true;
+    ImGui::SameLine();
+    ImGui::TextDisabled("frame %.1f ms, render %.0f ms", shown.frameMs, shown.renderMs);
+
+    if (shown.studentValue.pixels.empty() && showsStudent(state.view))
+        ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "%s",
+                           shown.hasStudent
+                               ? "your file has not compiled yet: showing the solution"
+                               : "no student file for this step: showing the solution");
+    if (!shown.renderError.empty())
+        ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "%s", shown.renderError.c_str());
+    if (shown.nanCount + shown.infCount > 0)
+        ImGui::TextColored(ImVec4(1, 0.3f, 1, 1),
+                           "%d NaN pixels (magenta), %d Inf pixels (cyan) in the student image",
+                           shown.nanCount, shown.infCount);
+
+    const bool difference = state.view == View::Difference;
+    ImVec2 avail = ImGui::GetContentRegionAvail();
+    float legend = (difference || d.display.mode == DisplayMode::FalseColor) ? 28 : 0;
+    float side = std::max(64.0f, std::min(avail.x - legend, avail.y - 150));
+    ImVec2 origin = ImGui::GetCursorScreenPos();
+    const GLuint shownTexture = shown.liveTexture ? shown.liveTexture : shown.imageTexture.id();
+    ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(shownTexture)),
+                 ImVec2(side, side));
+    handleCamera(lab, state, requests, origin, side);
+    // The live picture is the student's (or the solution's): other views follow when still.
+    if (shown.liveTexture && state.view != View::Student && state.view != View::Solution)
+        ImGui::TextDisabled("moving: %s picture; the %s view follows when you stop", shown.liveWho,
+                            viewName(state.view, state.term).c_str());
+    if (legend > 0) {
+        ImGui::SameLine();
+        drawLegend(difference ? 0.0 : d.display.lo,
+                   difference ? state.differenceRange : d.display.hi,
+                   !difference && d.display.logScale, side);
+    }
+    drawStats(lab, state);
+}
+
+}  // namespace pbrlab

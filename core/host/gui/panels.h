@@ -1,0 +1,34 @@
+// The GUI's panels: functions drawn every frame (Dear ImGui), each reading the Lab and the
+// state, and changing only the state and the requests (carried out by the next frame).
+#pragma once
+
+#include <string>
+
+#include "lab.h"
+
+namespace pbrlab {
+
+// The left window: the workspace and the steps with their badges.
+void drawStepsPanel(const Lab& lab, GuiState& state, Requests& requests);
+
+// The middle window: the step's title, the view chooser with its settings, the picture (drag
+// to orbit, wheel to zoom, hover to inspect a pixel) and the statistics under it.
+void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests);
+
+// The right window's top: the step's parameters and the scene (chooser, light, environment).
+void drawModulePanel(const Lab& lab, GuiState& state, Requests& requests);
+
+// What the side tabs remember between frames besides the state.
+struct SideTabsMemory {
+    std::string shownLog;  // the compile log last shown: a new one selects the Log tab once
+};
+
+// The right window's bottom: the Handout, Plot, Log and Programs tabs.
+void drawSideTabs(const Lab& lab, GuiState& state, SideTabsMemory& memory);
+
+// The tabs' contents.
+void drawPlotTab(const Lab& lab, GuiState& state);
+void drawLogTab(const Lab& lab, const GuiState& state);
+void drawProgramsTab(const Lab& lab);
+
+}  // namespace pbrlab

@@ -1,0 +1,45 @@
+#include "source_watch.h"
+
+#include "pbrlab/error.h"
+#include "shader/preprocess.h"
+
+namespace fs = std::filesystem;
+
+namespace pbrlab {
+
+namespace {
+
+// A missing file has the smallest time: its appearance is a change too.
+fs::file_time_type stampOf(const fs::path& file) {
+    std::error_code ec;
+    const fs::file_time_type stamp = fs::last_write_time(file, ec);
+    return ec ? fs::file_time_type::min() : stamp;
+}
+
+}  // namespace
+
+void SourceWatch::scan(const fs::path& file, const fs::path& folder) {
+    std::vector<fs::path> files;
+    try {
+        ShaderPart part(file);
+        part.includeRoots = {folder};  // as the renderer reads a student's file
+        files = ShaderPreprocessor({folder}).expand({part}, {}).files;
+    } catch (const Error&) {
+        // A missing include (or the file itself missing): the renderer says why. The folder
+        // is watched as well, so the file that was missing is noticed when it is created.
+        files = {file, folder};
+    }
+    stamps_.clear();
+    for (const fs::path& f : files) stamps_.emplace_back(f, stampOf(f));
+}
+
+bool SourceWatch::changed(const fs::path& file, const fs::path& folder) {
+    bool changed = file != file_ || stamps_.empty();
+    for (const auto& [f, stamp] : stamps_) changed = changed || stampOf(f) != stamp;
+    if (!changed) return false;
+    file_ = file;
+    scan(file, folder);  // an edit may add or remove an #include
+    return true;
+}
+
+}  // namespace pbrlab

@@ -1,0 +1,25 @@
+// Hot reload: the files a student's step file is made of (the file and every file it
+// #includes, as the shader preprocessor reads them) and their modification times.
+#pragma once
+
+#include <filesystem>
+#include <utility>
+#include <vector>
+
+namespace pbrlab {
+
+class SourceWatch {
+public:
+    // True on the first call for a file, and whenever the file or one it includes changed,
+    // appeared or disappeared since the last call. `folder` is the submission folder, the
+    // only place a student's #include may read from.
+    bool changed(const std::filesystem::path& file, const std::filesystem::path& folder);
+    void forget() { stamps_.clear(); }
+
+private:
+    void scan(const std::filesystem::path& file, const std::filesystem::path& folder);
+    std::filesystem::path file_;
+    std::vector<std::pair<std::filesystem::path, std::filesystem::file_time_type>> stamps_;
+};
+
+}  // namespace pbrlab
