@@ -60,13 +60,11 @@ bool contains(const std::string& text, const std::string& part) {
 TEST(Feedback, ConstantFactorsAreNamed) {
     const ModuleDesc d = module(1);
     auto truth = [](const Surface& s) { return glm::dvec3(0.2 + ndotl(s)); };
-    const std::string pi = classifyError(inputs(d, truth, [&](const Surface& s) {
-        return truth(s) * 3.14159265358979;
-    }));
+    const std::string pi = classifyError(
+        inputs(d, truth, [&](const Surface& s) { return truth(s) * 3.14159265358979; }));
     EXPECT_TRUE(contains(pi, "(= pi)") && contains(pi, "division by PI")) << pi;
-    const std::string quarter = classifyError(inputs(d, truth, [&](const Surface& s) {
-        return truth(s) * (3.14159265358979 / 4);
-    }));
+    const std::string quarter = classifyError(
+        inputs(d, truth, [&](const Surface& s) { return truth(s) * (3.14159265358979 / 4); }));
     EXPECT_TRUE(contains(quarter, "(= pi/4)")) << quarter;
     EXPECT_EQ(nameConstant(0.318309886), "1/pi");
     EXPECT_EQ(nameConstant(1.37), "");
@@ -82,13 +80,14 @@ TEST(Feedback, AStubIsRecognised) {
 
 TEST(Feedback, OffsetsPowersAndTermsAreNamed) {
     const ModuleDesc d = module(3);
-    auto truth = [](const Surface& s) { return s.albedo * (0.1 + ndotl(s)) + 0.03 * s.albedo * s.ao; };
+    auto truth = [](const Surface& s) {
+        return s.albedo * (0.1 + ndotl(s)) + 0.03 * s.albedo * s.ao;
+    };
     const std::string offset = classifyError(
         inputs(d, truth, [&](const Surface& s) { return truth(s) + glm::dvec3(0.01); }));
     EXPECT_TRUE(contains(offset, "the reference + 0.01 everywhere")) << offset;
-    const std::string ambient = classifyError(inputs(d, truth, [&](const Surface& s) {
-        return truth(s) - 0.01 * s.albedo * s.ao;
-    }));
+    const std::string ambient = classifyError(
+        inputs(d, truth, [&](const Surface& s) { return truth(s) - 0.01 * s.albedo * s.ao; }));
     EXPECT_TRUE(contains(ambient, "0.01 x albedo x ao")) << ambient;
     auto unit = [](const Surface& s) { return 0.05 + 0.9 * s.albedo; };  // in (0, 1)
     const std::string power = classifyError(
@@ -113,9 +112,8 @@ TEST(Feedback, SwappedOrSingleWrongComponentsAreNamed) {
         return glm::dvec3(v.y, v.x, v.z);
     }));
     EXPECT_TRUE(contains(swapped, "components are swapped")) << swapped;
-    const std::string one = classifyError(inputs(d, truth, [&](const Surface& s) {
-        return truth(s) + glm::dvec3(0, 0, 2 * s.roughness);
-    }));
+    const std::string one = classifyError(inputs(
+        d, truth, [&](const Surface& s) { return truth(s) + glm::dvec3(0, 0, 2 * s.roughness); }));
     EXPECT_TRUE(contains(one, "third component")) << one;
 }
 

@@ -29,13 +29,13 @@ void PrintTo(const Sampler& s, std::ostream* os) {
 std::vector<Sampler> samplers() {
     std::vector<Sampler> v{{"", true}};
     const fs::path root(PBRLAB_SOURCE_DIR);
-    for (const auto& [dir, correct] :
-         {std::pair{root / "tests/variants/importance", true},
-          std::pair{root / "labs/importance/mistakes", false}})
+    for (const auto& [dir, correct] : {std::pair{root / "tests/variants/importance", true},
+                                       std::pair{root / "labs/importance/mistakes", false}})
         if (fs::exists(dir))
             for (const auto& f : fs::directory_iterator(dir))
                 if (f.path().extension() == ".glsl") v.push_back({f.path().string(), correct});
-    std::sort(v.begin(), v.end(), [](const Sampler& a, const Sampler& b) { return a.file < b.file; });
+    std::sort(v.begin(), v.end(),
+              [](const Sampler& a, const Sampler& b) { return a.file < b.file; });
     return v;
 }
 
@@ -65,10 +65,10 @@ TEST_P(ImportanceChiSquare, CorrectSamplersFollowTheGgxDensityMistakesDoNot) {
         if (c.name.rfind("samples that are not unit vectors", 0) == 0) unit = &c;
     }
     ASSERT_TRUE(chi2 && unit);
-    std::printf("[ measured ] %s: smallest p %.3g (%s), %g samples not unit vectors above N\n",
-                sampler.file.empty() ? "reference solution"
-                                     : fs::path(sampler.file).filename().c_str(),
-                chi2->measured, chi2->expected.c_str(), unit->measured);
+    std::printf(
+        "[ measured ] %s: smallest p %.3g (%s), %g samples not unit vectors above N\n",
+        sampler.file.empty() ? "reference solution" : fs::path(sampler.file).filename().c_str(),
+        chi2->measured, chi2->expected.c_str(), unit->measured);
     if (sampler.correct) {
         EXPECT_TRUE(chi2->passed) << chi2->detail;
         EXPECT_TRUE(unit->passed) << unit->detail;
@@ -94,7 +94,8 @@ TEST(ImportanceChiSquare, TheTestTellsTheGgxDensityFromOthers) {
     DomainRandom random(11);
     auto run = [&](auto sample, const glm::dvec3& N, double roughness) {
         std::vector<glm::dvec3> H;
-        for (int i = 0; i < 4096; ++i) H.push_back(sample(glm::dvec2(random.uniform(), random.uniform()), N, roughness));
+        for (int i = 0; i < 4096; ++i)
+            H.push_back(sample(glm::dvec2(random.uniform(), random.uniform()), N, roughness));
         return ref::ggxHalfVectorChiSquare(H, N, roughness);
     };
     const glm::dvec3 N = glm::normalize(glm::dvec3(0.3, -0.5, 0.8));

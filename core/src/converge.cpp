@@ -1,13 +1,13 @@
 #include "converge.h"
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <future>
 #include <iostream>
+#include <limits>
 #include <thread>
 
 #include "parallel.h"
