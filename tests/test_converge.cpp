@@ -63,7 +63,7 @@ struct SmallSky {
     std::unique_ptr<GlContext> context = createHeadlessContext();
     DataPaths paths{PBRLAB_SOURCE_DIR};
     ProgramCache programs{ShaderPreprocessor({paths.shaders(), paths.labs()})};
-    IblPrecompute precompute{programs, paths.shaders(), paths.labs()};
+    IblPrecompute precompute{programs, paths.shaders()};
     Image sky = generateSkyEnvironment(256);
     IblTruth truth{sky};
 };

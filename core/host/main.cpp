@@ -298,7 +298,7 @@ int runPrecompute(const PrecomputeOptions& p, IblSettings settings) {
     const Image equirect = loadEnvironmentImage(p.envFiles[0]);
     if (p.baseline) settings = IblSettings::learnOpenGl();
     ProgramCache programs(ShaderPreprocessor({paths.shaders(), paths.labs()}));
-    IblPrecompute precompute(programs, paths.shaders(), paths.labs());
+    IblPrecompute precompute(programs, paths.shaders());
     precompute.onPass = [](const std::string& pass) { logLine("precompute", pass); };
     const IblDiskCache cache(IblDiskCache::defaultRoot());
     IblRun run;

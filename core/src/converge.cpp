@@ -506,7 +506,7 @@ bool benchPrecompute(const DataPaths& paths, const PrecomputeBenchOptions& optio
             for (int c = 0; c < 2; ++c) {
                 // A fresh program cache: every run pays for its own compiles.
                 ProgramCache programs(ShaderPreprocessor({paths.shaders(), paths.labs()}));
-                IblPrecompute precompute(programs, paths.shaders(), paths.labs());
+                IblPrecompute precompute(programs, paths.shaders());
                 IblRun r = measurePrecompute(precompute, equirect, configs[c], truth);
                 times[c].push_back(r.milliseconds);
                 errors[c] = r.errors;

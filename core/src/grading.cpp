@@ -11,6 +11,7 @@
 #include <map>
 #include <sstream>
 
+#include "cache_file.h"
 #include "digest.h"
 #include "feedback.h"
 #include "mutants.h"
@@ -81,56 +82,27 @@ void addSurface(Digest& d, const Surface& s) {
     d.add(s.emissive), d.add(s.extra);
 }
 
-// Converged integrals on disk: "PBRLCNV1", their count, (mean, sigma) per point as doubles,
-// and a digest of those bytes (a torn or damaged file is computed again, never read).
-constexpr char kConvergedMagic[8] = {'P', 'B', 'R', 'L', 'C', 'N', 'V', '1'};
+// Converged integrals on disk (cache_file.h): their count, then (mean, sigma) per point as
+// doubles.
+constexpr char kConvergedMagic[8] = {'P', 'B', 'R', 'L', 'C', 'N', 'V', '2'};
 
 bool readConverged(const fs::path& file, std::vector<Estimate>& truth) {
-    std::ifstream in(file, std::ios::binary);
-    char magic[8] = {};
-    std::uint64_t count = 0, stored = 0;
-    if (!in.read(magic, 8) || std::memcmp(magic, kConvergedMagic, 8) != 0 ||
-        !in.read(reinterpret_cast<char*>(&count), sizeof count) || count != truth.size())
-        return false;
+    CacheReader in(file, kConvergedMagic);
+    std::uint64_t count = 0;
+    if (!in.get(count) || count != truth.size()) return false;
     std::vector<Estimate> values(truth.size());
-    Digest digest;
-    for (Estimate& e : values) {
-        double v[6];
-        if (!in.read(reinterpret_cast<char*>(v), sizeof v)) return false;
-        digest.add(v);
-        e.mean = {v[0], v[1], v[2]};
-        e.sigma = {v[3], v[4], v[5]};
-    }
-    if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored) || stored != digest.h ||
-        in.peek() != std::ifstream::traits_type::eof())
-        return false;
+    for (Estimate& e : values)
+        if (!in.get(e.mean) || !in.get(e.sigma)) return false;
+    if (!in.atEnd()) return false;
     truth = std::move(values);
     return true;
 }
 
 void writeConverged(const fs::path& file, const std::vector<Estimate>& truth) {
-    std::error_code ec;
-    fs::create_directories(file.parent_path(), ec);
-    const fs::path tmp = file.string() + ".tmp" + std::to_string(::getpid());
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out.write(kConvergedMagic, 8);
-        const std::uint64_t count = truth.size();
-        out.write(reinterpret_cast<const char*>(&count), sizeof count);
-        Digest digest;
-        for (const Estimate& e : truth) {
-            const double v[6] = {e.mean.x, e.mean.y, e.mean.z, e.sigma.x, e.sigma.y, e.sigma.z};
-            digest.add(v);
-            out.write(reinterpret_cast<const char*>(v), sizeof v);
-        }
-        out.write(reinterpret_cast<const char*>(&digest.h), sizeof digest.h);
-        if (!out) {
-            fs::remove(tmp, ec);
-            return;  // no cache: fine
-        }
-    }
-    fs::rename(tmp, file, ec);  // atomic: a reader sees the whole file or none
-    if (ec) fs::remove(tmp, ec);
+    CacheWriter out(kConvergedMagic);
+    out.put(std::uint64_t(truth.size()));
+    for (const Estimate& e : truth) out.put(e.mean), out.put(e.sigma);
+    out.commit(file);
 }
 
 // A check of values against a band, with what feedback needs if it fails.

@@ -1,6 +1,7 @@
 #include "ibl.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -8,6 +9,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "cache_file.h"
+#include "digest.h"
 #include "parallel.h"
 #include "pbrlab/contract.h"
 #include "pbrlab/cube_sampler.h"
@@ -368,8 +371,8 @@ std::vector<Image> convolveBins(const EnvironmentBins& bins, int size, double ro
 
 }  // namespace
 
-IblPrecompute::IblPrecompute(ProgramCache& programs, fs::path shaders, fs::path labs)
-    : programs_(programs), shaders_(std::move(shaders)), labs_(std::move(labs)) {}
+IblPrecompute::IblPrecompute(ProgramCache& programs, fs::path shaders)
+    : programs_(programs), shaders_(std::move(shaders)) {}
 
 std::shared_ptr<Program> IblPrecompute::program(const std::string& pass,
                                                 const std::string& contractId,
@@ -418,77 +421,41 @@ fs::path IblDiskCache::defaultRoot() {
 
 namespace {
 
-// FNV-1a, 64 bits, taken 8 bytes at a time (an environment is megabytes): stable across runs
-// and compilers (std::hash is not promised to be).
-struct Fnv {
-    std::uint64_t h = 1469598103934665603ull;
-    void add(const void* data, size_t n) {
-        auto p = static_cast<const unsigned char*>(data);
-        size_t i = 0;
-        for (; i + 8 <= n; i += 8) {
-            std::uint64_t word;
-            std::memcpy(&word, p + i, 8);
-            h = (h ^ word) * 1099511628211ull;
+constexpr char kCacheMagic[8] = {'P', 'B', 'R', 'L', 'C', 'U', 'B', '3'};
+
+// levels x faces RGBA32F images (faces: 6, or 1 for the LUT), as read back (cache_file.h).
+bool writeMaps(const fs::path& file, const std::vector<std::vector<Image>>& levels) {
+    CacheWriter out(kCacheMagic);
+    out.put(
+        std::array<std::int32_t, 2>{std::int32_t(levels.size()), std::int32_t(levels[0].size())});
+    for (const auto& faces : levels)
+        for (const Image& im : faces) {
+            out.put(std::array<std::int32_t, 2>{im.width, im.height});
+            out.bytes(im.pixels.data(), im.pixels.size() * sizeof(float));
         }
-        for (; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-    }
-    void add(const std::string& s) { add(s.data(), s.size()); }
-    std::string hex() const {
-        char text[17];
-        std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
-        return text;
-    }
-};
-
-constexpr char kCacheMagic[8] = {'P', 'B', 'R', 'L', 'C', 'U', 'B', '2'};
-
-// levels x faces RGBA32F images (faces: 6, or 1 for the LUT), as read back.
-void writeMaps(const fs::path& file, const std::vector<std::vector<Image>>& levels) {
-    fs::path tmp = file;
-    tmp += ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out.write(kCacheMagic, 8);
-        std::int32_t header[2] = {std::int32_t(levels.size()), std::int32_t(levels[0].size())};
-        out.write(reinterpret_cast<const char*>(header), sizeof header);
-        for (const auto& faces : levels)
-            for (const Image& im : faces) {
-                std::int32_t size[2] = {im.width, im.height};
-                out.write(reinterpret_cast<const char*>(size), sizeof size);
-                out.write(reinterpret_cast<const char*>(im.pixels.data()),
-                          std::streamsize(im.pixels.size() * sizeof(float)));
-            }
-        if (!out) throw Error(tmp.string() + ": cannot write the IBL cache");
-    }
-    fs::rename(tmp, file);
+    return out.commit(file);
 }
 
 bool readMaps(const fs::path& file, std::vector<std::vector<Image>>& levels) {
-    std::ifstream in(file, std::ios::binary);
-    char magic[8];
+    CacheReader in(file, kCacheMagic);
     std::int32_t header[2];
-    if (!in.read(magic, 8) || std::memcmp(magic, kCacheMagic, 8) != 0 ||
-        !in.read(reinterpret_cast<char*>(header), sizeof header) || header[0] < 1 ||
-        header[0] > 16 || (header[1] != 1 && header[1] != 6))
+    if (!in.get(header) || header[0] < 1 || header[0] > 16 || (header[1] != 1 && header[1] != 6))
         return false;
     levels.assign(size_t(header[0]), {});
     for (auto& faces : levels)
         for (int f = 0; f < header[1]; ++f) {
             std::int32_t size[2] = {0, 0};
-            if (!in.read(reinterpret_cast<char*>(size), sizeof size) || size[0] < 1 ||
-                size[0] > 8192 || size[1] < 1 || size[1] > 8192)
+            if (!in.get(size) || size[0] < 1 || size[0] > 8192 || size[1] < 1 || size[1] > 8192)
                 return false;
             Image im;
             im.width = size[0];
             im.height = size[1];
             im.channels = 4;
             im.pixels.resize(size_t(size[0]) * size_t(size[1]) * 4);
-            if (!in.read(reinterpret_cast<char*>(im.pixels.data()),
-                         std::streamsize(im.pixels.size() * sizeof(float))))
-                return false;
+            if (!in.bytes(im.pixels.data(), im.pixels.size() * sizeof(float))) return false;
             faces.push_back(std::move(im));
         }
-    return true;
+    return in.atEnd();
 }
 
 bool sizesAre(const std::vector<std::vector<Image>>& levels, int size, int count) {
@@ -500,12 +467,7 @@ bool sizesAre(const std::vector<std::vector<Image>>& levels, int size, int count
 }
 
 void storeQuietly(const fs::path& file, const std::vector<std::vector<Image>>& levels) {
-    try {
-        fs::create_directories(file.parent_path());
-        writeMaps(file, levels);
-    } catch (const std::exception& e) {
-        logLine("precompute", std::string("cache not written: ") + e.what());
-    }
+    if (!writeMaps(file, levels)) logLine("precompute", "cache not written: " + file.string());
 }
 
 }  // namespace
@@ -523,7 +485,7 @@ std::vector<fs::path> IblPrecompute::sources(const std::vector<std::string>& sha
 
 namespace {
 
-void addFiles(Fnv& f, std::vector<fs::path> files) {
+void addFiles(Digest& f, std::vector<fs::path> files) {
     std::sort(files.begin(), files.end());
     files.erase(std::unique(files.begin(), files.end()), files.end());
     for (const auto& p : files) {
@@ -537,7 +499,7 @@ void addFiles(Fnv& f, std::vector<fs::path> files) {
 }  // namespace
 
 std::string IblPrecompute::mapsKey(const Image& equirect, const IblSettings& s) const {
-    Fnv f;
+    Digest f;
     f.add(equirect.pixels.data(), equirect.pixels.size() * sizeof(float));
     f.add(std::to_string(equirect.width) + "x" + std::to_string(equirect.height) + "x" +
           std::to_string(equirect.channels) + s.key() + kCpuMapsVersion);
@@ -550,7 +512,7 @@ std::string IblPrecompute::mapsKey(const Image& equirect, const IblSettings& s) 
 }
 
 std::string IblPrecompute::lutKey(const IblSettings& s) const {
-    Fnv f;
+    Digest f;
     f.add(s.lutKey());
     addFiles(f, sources({"brdf_lut", "brdf_lut_quadrature"}, providerOf("uBrdfLut")));
     return f.hex();

@@ -108,8 +108,7 @@ private:
 
 class IblPrecompute {
 public:
-    IblPrecompute(ProgramCache& programs, std::filesystem::path shaders,
-                  std::filesystem::path labs);
+    IblPrecompute(ProgramCache& programs, std::filesystem::path shaders);
     // With a cache: the maps come from disk when present (only the environment cube is built),
     // else they are computed and stored.
     std::unique_ptr<IblMaps> build(const Image& equirect, const IblSettings& settings,
@@ -149,7 +148,7 @@ private:
     std::string mapsKey(const Image& equirect, const IblSettings& settings) const;
     std::string lutKey(const IblSettings& settings) const;
     ProgramCache& programs_;
-    std::filesystem::path shaders_, labs_;
+    std::filesystem::path shaders_;
     gl::FullscreenTriangle fullscreen_;
 };
 

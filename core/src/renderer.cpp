@@ -11,6 +11,7 @@
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "cache_file.h"
 #include "digest.h"
 #include "pbrlab/color.h"
 #include "pbrlab/contract.h"
@@ -293,33 +294,25 @@ namespace {
 
 // Cached G-buffers on disk: "PBRLGBF1", width, height, attachment count, the attachments' RGBA
 // floats (row 0 at the top, as read back) and a digest of them (a torn file is drawn again).
-constexpr char kGBufferMagic[8] = {'P', 'B', 'R', 'L', 'G', 'B', 'F', '1'};
+constexpr char kGBufferMagic[8] = {'P', 'B', 'R', 'L', 'G', 'B', 'F', '2'};
 
 }  // namespace
 
 bool LabRenderer::readGBuffer(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    char magic[8] = {};
+    CacheReader in(file, kGBufferMagic);
     std::int32_t size[3] = {0, 0, 0};
-    if (!in.read(magic, 8) || std::memcmp(magic, kGBufferMagic, 8) != 0 ||
-        !in.read(reinterpret_cast<char*>(size), sizeof size) || size[0] != gbuffer_->width() ||
-        size[1] != gbuffer_->height() || size[2] != kGBufferTextures)
+    if (!in.get(size) || size[0] != gbuffer_->width() || size[1] != gbuffer_->height() ||
+        size[2] != kGBufferTextures)
         return false;
     std::vector<Image> images(kGBufferTextures);
-    Digest digest;
     for (Image& image : images) {
         image.width = size[0];
         image.height = size[1];
         image.channels = 4;
         image.pixels.resize(size_t(size[0]) * size_t(size[1]) * 4);
-        const auto bytes = std::streamsize(image.pixels.size() * sizeof(float));
-        if (!in.read(reinterpret_cast<char*>(image.pixels.data()), bytes)) return false;
-        digest.add(image.pixels.data(), size_t(bytes));
+        if (!in.bytes(image.pixels.data(), image.pixels.size() * sizeof(float))) return false;
     }
-    std::uint64_t stored = 0;
-    if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored) || stored != digest.h ||
-        in.peek() != std::ifstream::traits_type::eof())
-        return false;
+    if (!in.atEnd()) return false;
     for (int i = 0; i < kGBufferTextures; ++i) {
         // The attachments' storage is respecified with the same size and format.
         gl::BindTexture(GL_TEXTURE_2D, gbuffer_->colorTexture(i));
@@ -332,29 +325,13 @@ bool LabRenderer::readGBuffer(const fs::path& file) {
 }
 
 void LabRenderer::writeGBuffer(const fs::path& file) const {
-    std::error_code ec;
-    fs::create_directories(file.parent_path(), ec);
-    const fs::path tmp = file.string() + ".tmp" + std::to_string(::getpid());
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out.write(kGBufferMagic, 8);
-        const std::int32_t size[3] = {gbuffer_->width(), gbuffer_->height(), kGBufferTextures};
-        out.write(reinterpret_cast<const char*>(size), sizeof size);
-        Digest digest;
-        for (int i = 0; i < kGBufferTextures; ++i) {
-            const Image image = gbuffer_->read(i);
-            const size_t bytes = image.pixels.size() * sizeof(float);
-            digest.add(image.pixels.data(), bytes);
-            out.write(reinterpret_cast<const char*>(image.pixels.data()), std::streamsize(bytes));
-        }
-        out.write(reinterpret_cast<const char*>(&digest.h), sizeof digest.h);
-        if (!out) {
-            fs::remove(tmp, ec);
-            return;  // no cache: fine
-        }
+    CacheWriter out(kGBufferMagic);
+    out.put(std::array<std::int32_t, 3>{gbuffer_->width(), gbuffer_->height(), kGBufferTextures});
+    for (int i = 0; i < kGBufferTextures; ++i) {
+        const Image image = gbuffer_->read(i);
+        out.bytes(image.pixels.data(), image.pixels.size() * sizeof(float));
     }
-    fs::rename(tmp, file, ec);  // atomic: a reader sees the whole file or none
-    if (ec) fs::remove(tmp, ec);
+    out.commit(file);
 }
 
 bool LabRenderer::mayRead(const ModuleDesc& d, const std::string& sampler) {
@@ -607,38 +584,27 @@ Image loadEnvironmentImage(const std::string& source, const fs::path& cache) {
         return generateSmoothEnvironment(256);
     };
     if (cache.empty()) return generate();
-    // Raw floats with their size; the generator's version is in the name, so an edit to it
-    // never reads a stale image.
+    // Its size and floats (cache_file.h); the generator's version is in the name, so an edit to
+    // it never reads a stale image.
     const fs::path file =
         cache / "environments" / (source + "-v" + std::to_string(kEnvironmentVersion) + ".bin");
-    {
-        std::ifstream in(file, std::ios::binary);
-        std::int32_t size[3] = {0, 0, 0};
-        if (in.read(reinterpret_cast<char*>(size), sizeof size) && size[0] > 0 && size[0] <= 8192 &&
-            size[1] > 0 && size[1] <= 8192 && size[2] == 3) {
-            Image image;
-            image.width = size[0];
-            image.height = size[1];
-            image.channels = 3;
-            image.pixels.resize(size_t(size[0]) * size_t(size[1]) * 3);
-            if (in.read(reinterpret_cast<char*>(image.pixels.data()),
-                        std::streamsize(image.pixels.size() * sizeof(float))))
-                return image;
-        }
+    constexpr char kMagic[8] = {'P', 'B', 'R', 'L', 'E', 'N', 'V', '1'};
+    CacheReader in(file, kMagic);
+    std::int32_t size[2] = {0, 0};
+    if (in.get(size) && size[0] > 0 && size[0] <= 8192 && size[1] > 0 && size[1] <= 8192) {
+        Image image;
+        image.width = size[0];
+        image.height = size[1];
+        image.channels = 3;
+        image.pixels.resize(size_t(size[0]) * size_t(size[1]) * 3);
+        if (in.bytes(image.pixels.data(), image.pixels.size() * sizeof(float)) && in.atEnd())
+            return image;
     }
     Image image = generate();
-    std::error_code ec;
-    fs::create_directories(file.parent_path(), ec);
-    const fs::path tmp = file.string() + ".tmp" + std::to_string(::getpid());
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        const std::int32_t size[3] = {image.width, image.height, image.channels};
-        out.write(reinterpret_cast<const char*>(size), sizeof size);
-        out.write(reinterpret_cast<const char*>(image.pixels.data()),
-                  std::streamsize(image.pixels.size() * sizeof(float)));
-        if (!out) return image;  // no cache: fine
-    }
-    fs::rename(tmp, file, ec);
+    CacheWriter out(kMagic);
+    out.put(std::array<std::int32_t, 2>{image.width, image.height});
+    out.bytes(image.pixels.data(), image.pixels.size() * sizeof(float));
+    out.commit(file);  // no cache: fine
     return image;
 }
 
@@ -647,8 +613,7 @@ LabRenderer::Environment& LabRenderer::environment(const Scene& scene, const Ibl
     Environment& env = environments_[environmentKey(scene, settings)];
     if (!env.maps) {
         if (!precompute_)
-            precompute_ =
-                std::make_unique<IblPrecompute>(programs_, paths_.shaders(), paths_.labs());
+            precompute_ = std::make_unique<IblPrecompute>(programs_, paths_.shaders());
         logLine("environment", scene.environment + " (" + settings.key() + ")");
         precompute_->onPass = options_.onPrecomputePass;
         env.equirect = loadEnvironmentImage(scene.environment, options_.cacheRoot);

@@ -151,7 +151,7 @@ void Lab::useBudgetSettings(const Scene& scene) {
         try {
             const Image equirect = loadEnvironmentImage(scene.environment, renderer_->cacheRoot());
             IblTruth truth(equirect);
-            IblPrecompute precompute(renderer_->programs(), paths_.shaders(), paths_.labs());
+            IblPrecompute precompute(renderer_->programs(), paths_.shaders());
             const IblDiskCache cache(renderer_->cacheRoot());
             const IblChoice choice =
                 chooseIblSettings(precompute, equirect, truth, options_.errorBudget,
