@@ -1,0 +1,387 @@
+// Estimators graded by convergence (step_grader.h): against the converged integral at several
+// sample counts, the error's fall, no systematic error, finite values, the quality report.
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "cache_file.h"
+#include "digest.h"
+#include "parallel.h"
+#include "pbrlab/log.h"
+#include "step_grader.h"
+
+namespace fs = std::filesystem;
+
+namespace pbrlab::step_grading {
+
+namespace {
+
+void addSurface(Digest& d, const Surface& s) {
+    d.add(s.covered);
+    if (!s.covered) return;
+    d.add(s.position), d.add(s.normal), d.add(s.tangent), d.add(s.uv), d.add(s.view);
+    d.add(s.light), d.add(s.lightPosition), d.add(s.lightColor), d.add(s.albedoTexel);
+    d.add(s.albedo), d.add(s.metallic), d.add(s.roughness), d.add(s.ao), d.add(s.normalTexel);
+    d.add(s.emissive), d.add(s.extra);
+}
+
+// Converged integrals on disk (cache_file.h): their count, then (mean, sigma) per point as
+// doubles.
+constexpr char kConvergedMagic[8] = {'P', 'B', 'R', 'L', 'C', 'N', 'V', '2'};
+
+bool readConverged(const fs::path& file, std::vector<Estimate>& truth) {
+    CacheReader in(file, kConvergedMagic);
+    std::uint64_t count = 0;
+    if (!in.get(count) || count != truth.size()) return false;
+    std::vector<Estimate> values(truth.size());
+    for (Estimate& e : values)
+        if (!in.get(e.mean) || !in.get(e.sigma)) return false;
+    if (!in.atEnd()) return false;
+    truth = std::move(values);
+    return true;
+}
+
+void writeConverged(const fs::path& file, const std::vector<Estimate>& truth) {
+    CacheWriter out(kConvergedMagic);
+    out.put(std::uint64_t(truth.size()));
+    for (const Estimate& e : truth) out.put(e.mean), out.put(e.sigma);
+    out.commit(file);
+}
+
+}  // namespace
+
+// Points an estimator is judged on (the subsampled probe, the random inputs) with their
+// converged integrals.
+struct StepGrader::PointSet {
+    std::string name;
+    std::vector<Surface> surfaces;
+    int width, height;
+    const Probe* probe;
+    std::vector<Estimate> truth;
+    Image last;  // the values at the largest count
+};
+
+// Estimators: against the converged integral on an environment where every correct
+// estimator converges, at several sample counts, within a noise-aware band; the error
+// must fall as the count grows. The module's own scene is the quality report.
+void StepGrader::gradeEstimator(const Scene& scene) {
+    const EstimatorSpec& e = *d_.estimator;
+    Scene judged = scene;
+    if (!e.environment.empty()) judged.environment = e.environment;
+    const ParamValues defaults(d_.params);
+    const ReferenceContext context = referenceContext(renderer_, d_, judged, defaults, kGradingIbl);
+    std::vector<PointSet> sets;
+    // The probe at every probeStride-th row and column (its ends kept when the stride
+    // divides size - 1): converged integrals cost thousands of samples per point.
+    Probe probe = d_.probe;
+    probe.width = (probe.width - 1) / e.probeStride + 1;
+    probe.height = (probe.height - 1) / e.probeStride + 1;
+    const double xScale = double(e.probeStride * (probe.width - 1)) / (d_.probe.width - 1),
+                 yScale = double(e.probeStride * (probe.height - 1)) / (d_.probe.height - 1);
+    probe.at = [&, xScale, yScale](double x, double y) {
+        return d_.probe.at(std::min(x * xScale, 1.0), 1.0 - std::min((1.0 - y) * yScale, 1.0));
+    };
+    probe_ = probe;
+    sets.push_back({"probe", probeSurfaces(probe_), probe_.width, probe_.height, &probe_, {}, {}});
+    if (d_.domain) {
+        Grid g = grid(domainSurfaces(d_, settings_.seed, e.domainPoints));
+        sets.push_back(
+            {"random inputs", std::move(g.surfaces), g.width, g.height, nullptr, {}, {}});
+    }
+    stage("converged integrals");
+    std::vector<const Surface*> points;
+    for (const PointSet& set : sets)
+        for (const Surface& surface : set.surfaces) points.push_back(&surface);
+    std::vector<Estimate> truth(points.size());
+    // Seconds of work per step, and a pure function of the reference's code, the
+    // environment's texels, the points and the sample count: kept on disk, keyed by all of
+    // them (a rebuild, another seed or other maps is another file).
+    fs::path cached;
+    // The code: the module's library (its CPU reference, linked in whole: it calls nothing
+    // of pbrlab's executable) and the maths libraries it calls.
+    if (const std::string code =
+            buildIds({m_.library.filename().string(), "libm.so.6", "libstdc++.so.6"});
+        !code.empty() && !renderer_.cacheRoot().empty()) {
+        Digest key;
+        key.add(std::string("converged integrals v1"));
+        key.add(code);
+        key.add(d_.id);
+        key.add(e.truthSamples);
+        if (d_.needs & NeedsEnvironment)
+            key.add(
+                renderer_.environmentDigest(judged, kGradingIbl, d_.needs & NeedsPrecomputedMaps));
+        for (const ParamDecl& p : d_.params) {
+            key.add(p.name);
+            key.add(context.params.vector(p.name));
+        }
+        for (const ref::PointLight& l : context.lights) key.add(l.position), key.add(l.color);
+        key.add(context.cameraPosition);
+        key.add(points.size());
+        for (const Surface* surface : points) addSurface(key, *surface);
+        cached = renderer_.cacheRoot() / "converged" / (d_.id + "-" + key.hex() + ".bin");
+    }
+    const bool fromCache = !cached.empty() && readConverged(cached, truth);
+    if (!fromCache) {
+        // Thousands of samples per point, on every core (the references are pure).
+        parallelFor(points.size(), [&](size_t i) {
+            if (points[i]->covered) truth[i] = e.converged(*points[i], context, e.truthSamples);
+        });
+        if (!cached.empty()) writeConverged(cached, truth);
+    }
+    logLine("grade", d_.id + ": converged integrals " +
+                         (fromCache ? "read from " : "computed, kept in ") +
+                         (cached.empty() ? std::string("no cache") : cached.string()));
+    for (size_t k = 0; PointSet & set : sets) {
+        set.truth.assign(truth.begin() + long(k), truth.begin() + long(k + set.surfaces.size()));
+        k += set.surfaces.size();
+    }
+    const std::vector<int> counts = e.sampleCounts.empty() ? std::vector<int>{0} : e.sampleCounts;
+    std::vector<double> meanError;  // per count, over every point set
+    for (int n : counts) {
+        const ParamValues params =
+            n > 0 ? withSets(d_, {e.samplesParam + "=" + std::to_string(n)}) : defaults;
+        const double noise = n > 0 ? e.sigmas / std::sqrt(double(n)) : 0.0;
+        double errorSum = 0;
+        int errorCount = 0;
+        for (PointSet& set : sets) {
+            const std::string name =
+                set.name + (n > 0 ? " with " + e.samplesParam + " = " + std::to_string(n) : "") +
+                (e.environment.empty() ? "" : " (" + e.environment + ")");
+            stage(name);
+            RenderRequest request{&m_,           &params,   &judged,   source_,
+                                  &set.surfaces, set.width, set.height};
+            request.seamlessCubes = false;
+            request.isolatePoints = true;
+            RenderResult r = renderer_.render(request);
+            if (e.scaleTolerance > 0) rescale(set.name, r.value, set.surfaces, set.truth);
+            Band band;
+            band.resize(set.surfaces.size());
+            for (size_t i = 0; i < set.surfaces.size(); ++i) {
+                if (!set.surfaces[i].covered) continue;
+                const Estimate& t = set.truth[i];
+                band.expected[i] = band.lo[i] = band.hi[i] = t.mean;
+                for (int c = 0; c < d_.components; ++c)
+                    band.slack[i][c] = std::max(e.systematic.absolute,
+                                                e.systematic.relative * std::abs(t.mean[c])) +
+                                       noise * t.sigma[c];
+                for (int c = 0; c < d_.components; ++c) {
+                    const double v = r.value.pixels[i * 4 + size_t(c)];
+                    if (!std::isfinite(v)) continue;
+                    errorSum += std::abs(v - t.mean[c]) /
+                                std::max(std::abs(t.mean[c]), e.systematic.absolute);
+                    ++errorCount;
+                }
+            }
+            const Comparison c = compareWithBand(r.value, set.surfaces, band, d_.components,
+                                                 d_.nonNegative, e.systematic.outlierFraction);
+            ValuesRun run;
+            if (n == counts.back()) set.last = r.value;
+            run.report = reportFor(name, d_, c, set.surfaces, e.systematic.outlierFraction,
+                                   set.probe, set.width);
+            run.report.detail += "; band: converged integral +- (" + number(e.systematic.relative) +
+                                 " of it + " + number(e.sigmas) + " sigma / sqrt(n))";
+            run.surfaces = set.surfaces;
+            run.value = std::move(r.value);
+            run.band = std::move(band);
+            run.scene = judged;
+            run.params = params;
+            run.width = set.width;
+            run.height = set.height;
+            run.worstIndex = c.worstIndex;
+            keep(std::move(run));
+        }
+        meanError.push_back(errorCount ? errorSum / errorCount : 0);
+    }
+    if (counts.size() > 1) {
+        CheckReport fall;
+        fall.name = "the error falls as the sample count grows";
+        fall.kind = "convergence";
+        const double ratio = meanError.front() / std::max(meanError.back(), 1e-12);
+        fall.measured = ratio;
+        fall.expected = ">= " + number(e.minimumFall);
+        fall.passed = ratio >= e.minimumFall;
+        fall.detail = "mean relative error " + number(meanError.front(), 3) + " at " +
+                      std::to_string(counts.front()) + " samples, " + number(meanError.back(), 3) +
+                      " at " + std::to_string(counts.back()) + ": it fell " + number(ratio, 3) +
+                      "x (an estimator of n samples: >= " + number(e.minimumFall) + "x)";
+        record(fall);
+    }
+    if (counts.back() > 0) biasTest(sets, counts.back());
+    // NaN, Inf and negatives are never excused: the module's own scene (64^2) at the
+    // smallest count (other samples than the default's; the quality report below checks
+    // that one).
+    std::vector<int> finiteCounts;
+    if (counts.front() > 0) finiteCounts.push_back(counts.front());
+    for (int n : finiteCounts) {
+        const ParamValues params = withSets(d_, {e.samplesParam + "=" + std::to_string(n)});
+        stage("finite values with " + e.samplesParam + " = " + std::to_string(n));
+        RenderRequest request{&m_, &params, &scene, source_, nullptr, 64, 64};
+        request.seamlessCubes = false;
+        request.readSurfaces = true;
+        request.cacheGBuffer = true;
+        const RenderResult r = renderer_.render(request);
+        CheckReport finite;
+        finite.name = "finite values on the scene " + scene.file.stem().string() + " with " +
+                      e.samplesParam + " = " + std::to_string(n);
+        for (size_t i = 0; i < r.surfaces.size(); ++i) {
+            if (!r.surfaces[i].covered) continue;
+            ++finite.points;
+            bool nan = false, inf = false, negative = false;
+            for (int c = 0; c < d_.components; ++c) {
+                const double v = r.value.pixels[i * 4 + size_t(c)];
+                nan = nan || std::isnan(v);
+                inf = inf || std::isinf(v);
+                negative = negative || (d_.nonNegative && v < 0);
+            }
+            finite.nan += nan;
+            finite.inf += inf;
+            finite.negative += negative;
+        }
+        finite.passed = finite.nan + finite.inf + finite.negative == 0;
+        finite.detail = std::to_string(finite.nan) + " NaN, " + std::to_string(finite.inf) +
+                        " Inf, " + std::to_string(finite.negative) + " negative of " +
+                        std::to_string(finite.points) + " pixels";
+        record(finite);
+    }
+    // The module's own scene, with its own sampling, against the same-sample reference:
+    // how the picture compares, not a grade (a sub-degree sun decides it).
+    ValuesRun quality = runValues(
+        "quality: scene " + scene.file.stem().string() + " against the same-sample reference",
+        scene, defaults, nullptr, settings_.size, settings_.size, nullptr);
+    // Reported as a measurement: an estimator with other samples differs from this
+    // picture as much as its noise, by design.
+    CheckReport& q = quality.report;
+    q.kind = "quality";
+    q.deducted = false;
+    double sum = 0;
+    int count = 0;
+    for (size_t i = 0; i < quality.surfaces.size(); ++i) {
+        if (!quality.surfaces[i].covered) continue;
+        for (int c = 0; c < d_.components; ++c) {
+            const double v = quality.value.pixels[i * 4 + size_t(c)];
+            const double r = quality.band.expected[i][c];
+            if (!std::isfinite(v)) continue;
+            sum += std::abs(v - r) / std::max(std::abs(r), e.systematic.absolute);
+            ++count;
+        }
+    }
+    q.measured = count ? sum / count : 0;
+    q.detail = "mean relative difference " + number(q.measured, 3) +
+               " from the reference solution's own picture (" + q.detail +
+               "): how the picture looks, not a grade";
+    q.passed = q.nan + q.inf + q.negative == 0;
+    record(q);
+    // Whatever the picture's differences, NaN, Inf and negatives are never excused.
+    if (!q.passed) {
+        CheckReport finite = q;
+        finite.name = "finite, non-negative values on the scene " + scene.file.stem().string();
+        finite.kind = "values";
+        finite.deducted = true;
+        finite.detail = std::to_string(q.nan) + " NaN, " + std::to_string(q.inf) + " Inf, " +
+                        std::to_string(q.negative) + " negative of " + std::to_string(q.points) +
+                        " pixels";
+        record(finite);
+    }
+}
+
+// EstimatorSpec::scaleTolerance: the overall factor between the value and the converged
+// integral (the median ratio) is checked on its own, and divided out before the band.
+void StepGrader::rescale(const std::string& name, Image& value,
+                         const std::vector<Surface>& surfaces, const std::vector<Estimate>& truth) {
+    const EstimatorSpec& e = *d_.estimator;
+    std::vector<double> ratios;
+    for (size_t i = 0; i < surfaces.size(); ++i) {
+        if (!surfaces[i].covered) continue;
+        for (int c = 0; c < d_.components; ++c) {
+            const double v = value.pixels[i * 4 + size_t(c)], t = truth[i].mean[c];
+            if (std::isfinite(v) && std::abs(t) > e.systematic.absolute) ratios.push_back(v / t);
+        }
+    }
+    double k = 1;
+    if (!ratios.empty()) {
+        std::nth_element(ratios.begin(), ratios.begin() + long(ratios.size() / 2), ratios.end());
+        k = ratios[ratios.size() / 2];
+    }
+    CheckReport c;
+    c.name = name + ": overall scale";
+    c.kind = "convergence";
+    c.measured = k;
+    c.expected = "1 +- " + number(e.scaleTolerance);
+    c.passed = std::abs(k - 1) <= e.scaleTolerance;
+    c.detail = "your values are " + number(k, 4) +
+               " x the converged integral overall (median ratio); a correct quadrature's "
+               "normalisation is within " +
+               number(e.scaleTolerance * 100) + "%";
+    const std::string constant = nameConstant(k);
+    if (!c.passed && !constant.empty()) c.detail += ": off by " + constant + "?";
+    record(c);
+    if (k > 0 && std::isfinite(k))
+        for (size_t i = 0; i < surfaces.size(); ++i)
+            for (int ch = 0; ch < d_.components; ++ch) value.pixels[i * 4 + size_t(ch)] /= float(k);
+}
+
+// At the largest count a correct estimator's error is noise of scale sigma / sqrt(n),
+// independent from point to point or (for one low-discrepancy set shared by every point)
+// far smaller than that; a mistake's is a bias that keeps its sign over a region of
+// inputs. Per region (4 x 4 blocks of the probe, the random points by roughness), the sum
+// of the errors in units of sigma / sqrt(n), beyond the systematic allowance, over the
+// square root of their number must stay within 5 (a correct estimator: |z| > 5 with
+// probability 6e-7 per region).
+void StepGrader::biasTest(const std::vector<PointSet>& sets, int n) {
+    const EstimatorSpec& e = *d_.estimator;
+    struct Region {
+        double sum = 0;
+        int count = 0;
+    };
+    std::map<std::string, Region> regions;
+    for (const auto& set : sets)
+        for (size_t i = 0; i < set.surfaces.size(); ++i) {
+            const Surface& s = set.surfaces[i];
+            if (!s.covered) continue;
+            std::string region;
+            if (set.probe) {
+                const int x = int(i % size_t(set.width)), y = int(i / size_t(set.width));
+                region = "probe x " + std::to_string(4 * x / set.width) + "/4, y " +
+                         std::to_string(3 - 4 * y / set.height) + "/4";
+            } else {
+                region = "random inputs, roughness " +
+                         std::to_string(std::min(3, int(s.roughness * 4))) + "/4";
+            }
+            const Estimate& t = set.truth[i];
+            for (int c = 0; c < d_.components; ++c) {
+                const double v = set.last.pixels[i * 4 + size_t(c)];
+                const double scale = t.sigma[c] / std::sqrt(double(n));
+                if (!std::isfinite(v) || scale <= 0) continue;
+                const double allowed =
+                    std::max(e.systematic.absolute, e.systematic.relative * std::abs(t.mean[c]));
+                const double error = v - t.mean[c];
+                const double beyond =
+                    std::copysign(std::max(std::abs(error) - allowed, 0.0), error);
+                Region& r = regions[region];
+                r.sum += beyond / scale;
+                ++r.count;
+            }
+        }
+    CheckReport c;
+    c.name = "no systematic error at " + std::to_string(n) + " samples";
+    c.kind = "convergence";
+    std::string worst;
+    double worstZ = 0;
+    for (const auto& [name, r] : regions) {
+        const double z = r.count ? r.sum / std::sqrt(double(r.count)) : 0;
+        if (std::abs(z) > std::abs(worstZ)) worstZ = z, worst = name;
+    }
+    c.measured = worstZ;
+    c.expected = "|z| <= 5";
+    c.passed = std::abs(worstZ) <= 5;
+    c.detail = "the errors at " + std::to_string(n) + " samples sum to z = " + number(worstZ, 3) +
+               " noise units in " + (worst.empty() ? "no region" : worst) +
+               (c.passed ? " (noise: |z| <= 5)"
+                         : ": a bias that keeps its sign there, " +
+                               std::string(worstZ < 0 ? "too low" : "too high") +
+                               " (noise alone stays within |z| <= 5)");
+    record(c);
+}
+
+}  // namespace pbrlab::step_grading

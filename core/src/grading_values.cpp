@@ -1,0 +1,108 @@
+// Values checks of gradeStep (step_grader.h): the step against its reference's band on the
+// probe, its scenes, random inputs, every exercised parameter value and coloured lights.
+
+#include <algorithm>
+
+#include "step_grader.h"
+
+namespace pbrlab::step_grading {
+
+namespace {
+
+// Three lights of distinct colours and intensities at distances 3 to 10 from the scene's
+// centre: steps that sum the scene's lights are graded with lights unlike the defaults.
+Scene colouredLights(Scene scene) {
+    const glm::dvec3 c = scene.camera.target;
+    const double r = std::max(1.0, 0.3 * glm::length(scene.camera.position - c));
+    scene.lights = {{c + r * glm::dvec3(1.2, 0.9, 1.5), {120, 45, 6}},
+                    {c + r * glm::dvec3(-2.5, 0.4, 0.8), {2, 18, 60}},
+                    {c + r * glm::dvec3(0.3, -1.0, 0.9), {0.9, 0.9, 0.9}}};
+    return scene;
+}
+
+}  // namespace
+
+ValuesRun StepGrader::runValues(const std::string& name, const Scene& scene,
+                                const ParamValues& params, const std::vector<Surface>* surfaces,
+                                int width, int height, const Probe* probe) {
+    stage(name);
+    EvalRequest request;
+    request.render = {&m_, &params, &scene, source_, surfaces, width, height};
+    request.render.seamlessCubes = false;
+    request.render.isolatePoints = surfaces != nullptr;
+    request.render.cacheGBuffer = true;
+    Evaluation e = evaluate(renderer_, request);
+    ValuesRun run;
+    run.report = reportFor(name, d_, e.comparison, e.render.surfaces, d_.tolerance.outlierFraction,
+                           probe, width);
+    run.surfaces = std::move(e.render.surfaces);
+    run.value = std::move(e.render.value);
+    run.band = std::move(e.band);
+    run.scene = scene;
+    run.params = params;
+    run.fromScene = surfaces == nullptr;
+    run.width = width;
+    run.height = height;
+    run.worstIndex = e.comparison.worstIndex;
+    return run;
+}
+
+void StepGrader::keep(ValuesRun&& run) {
+    const CheckReport report = run.report;
+    if (!run.report.passed && run.report.deducted &&
+        (!failed_ || run.report.worstExcess > failed_->report.worstExcess))
+        failed_ = std::make_unique<ValuesRun>(std::move(run));
+    record(report);
+}
+
+void StepGrader::gradeCase(const std::string& name, GradeCase::Inputs inputs, const Scene& scene,
+                           const ParamValues& params) {
+    switch (inputs) {
+        case GradeCase::Inputs::Probe: {
+            const Probe& p = d_.probe;
+            const std::vector<Surface> s = probeSurfaces(p);
+            keep(runValues(name, scene, params, &s, p.width, p.height, &p));
+            return;
+        }
+        case GradeCase::Inputs::Domain: {
+            if (!d_.domain) return;
+            const Grid g = grid(domainSurfaces(d_, settings_.seed, settings_.domainPoints));
+            keep(runValues(name, scene, params, &g.surfaces, g.width, g.height, nullptr));
+            return;
+        }
+        case GradeCase::Inputs::Scene:
+            keep(runValues(name, scene, params, nullptr, settings_.size, settings_.size, nullptr));
+            return;
+    }
+}
+
+void StepGrader::gradeValues(const Scene& scene) {
+    const ParamValues defaults(d_.params);
+    gradeCase("probe", GradeCase::Inputs::Probe, scene, defaults);
+    gradeCase("scene " + scene.file.stem().string(), GradeCase::Inputs::Scene, scene, defaults);
+    gradeCase("random inputs", GradeCase::Inputs::Domain, scene, defaults);
+    for (const GradeCase& c : d_.cases) {
+        const Scene s = c.scene.empty() ? scene : loadScene(paths_.scene(c.scene));
+        gradeCase(c.name, c.inputs, s, withSets(d_, c.set));
+    }
+    for (const ParamDecl& p : d_.params)
+        for (const std::string& assignment : exercisedValues(p)) {
+            const ParamValues params = withSets(d_, {assignment});
+            if (p.binding == ParamBinding::LightDirection) {
+                gradeCase("scene with " + assignment, GradeCase::Inputs::Scene, scene, params);
+                continue;
+            }
+            gradeCase("probe with " + assignment, GradeCase::Inputs::Probe, scene, params);
+            gradeCase("scene with " + assignment, GradeCase::Inputs::Scene, scene, params);
+            gradeCase("random inputs with " + assignment, GradeCase::Inputs::Domain, scene, params);
+        }
+    // The reference's view or the student's (a student's sum may read the lights itself).
+    if (readsSceneLights(renderer_, m_, {}, 3) || readsSceneLights(renderer_, m_, source_, 3)) {
+        const Scene lit = colouredLights(scene);
+        gradeCase("scene with three coloured lights", GradeCase::Inputs::Scene, lit, defaults);
+        gradeCase("random inputs with three coloured lights", GradeCase::Inputs::Domain, lit,
+                  defaults);
+    }
+}
+
+}  // namespace pbrlab::step_grading
