@@ -186,6 +186,8 @@ private:
     // too.
     struct Environment;
     Environment& environment(const Scene& scene, const IblSettings& settings, bool derived);
+    // The prefiltered map's largest LOD once the derived maps are built, else 0 (none bound).
+    float prefilterMaxLod(const Scene& scene, const IblSettings& settings) const;
     GLuint blackTexture(GLenum target);  // 1 x 1 black, for samplers a view may not read
 
     DataPaths paths_;
