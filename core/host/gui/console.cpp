@@ -120,7 +120,11 @@ public:
         cmd.add_option("command", command_, "A command: its options");
     }
     int run(const GlobalOptions&) override {
-        output_ += command_.empty() ? app->help() : app->get_subcommand(command_)->help();
+        // As `pbrlab --help` and `pbrlab COMMAND --help` print it (App::help would show the
+        // help of the command parsed: this one).
+        output_ += command_.empty() ? app->get_formatter()->make_help(app, app->get_name(),
+                                                                      CLI::AppFormatMode::Normal)
+                                    : app->get_subcommand(command_)->help(app->get_name());
         return 0;
     }
     const CLI::App* app = nullptr;
