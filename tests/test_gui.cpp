@@ -16,7 +16,7 @@ bool haveXvfb() {
     return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
 }
 
-// Runs `pbrlab --verbose gui ARGS --size 1200x760 --frames 4 --screenshot SHOT` from dir/kit
+// Runs `pbrlab --verbose gui ARGS --window 1200x760 --frames 4 --screenshot SHOT` from dir/kit
 // with HOME=dir (so the remembered state is the test's own); stdout and stderr go to dir/log.txt.
 // Returns the exit status.
 int runGui(const test::TempDir& dir, const std::string& args, const std::filesystem::path& shot) {
@@ -24,7 +24,7 @@ int runGui(const test::TempDir& dir, const std::string& args, const std::filesys
     std::string cmd = "cd " + (dir.path / "kit").string() + " && HOME=" + dir.path.string() +
                       " xvfb-run -a -s '-screen 0 1280x800x24' " PBRLAB_EXECUTABLE
                       " --verbose gui " +
-                      args + " --size 1200x760 --frames 4 --screenshot " + shot.string() + " > " +
+                      args + " --window 1200x760 --frames 4 --screenshot " + shot.string() + " > " +
                       (dir.path / "log.txt").string() + " 2>&1";
     return std::system(cmd.c_str());
 }
@@ -53,7 +53,7 @@ TEST(Gui, ScriptedRunUnderXvfbWritesTheWindow) {
     test::TempDir dir;
     dir.write("kit/ndotl.glsl", "float lambertCosine(vec3 N, vec3 L) { return dot(N, L); }\n");
     auto shot = dir.path / "s.png";
-    ASSERT_EQ(runGui(dir, "--module ndotl", shot), 0) << readText(dir.path / "log.txt");
+    ASSERT_EQ(runGui(dir, "ndotl", shot), 0) << readText(dir.path / "log.txt");
     expectWindowShot(shot);
     // Still input: the picture was evaluated against the CPU reference (the statistics).
     EXPECT_NE(readText(dir.path / "log.txt").find("evaluated ndotl against the CPU reference"),
@@ -78,7 +78,7 @@ TEST(Gui, ShowsAGltfModelWithTheProgramsTabAndRemembersIt) {
     // The choice is remembered, and the next start shows the model again without --model.
     EXPECT_NE(readText(dir.path / ".config/pbrlab/gui.json").find("textured-sphere.glb"),
               std::string::npos);
-    ASSERT_EQ(runGui(dir, "--module reflectance", shot), 0) << readText(dir.path / "log.txt");
+    ASSERT_EQ(runGui(dir, "reflectance", shot), 0) << readText(dir.path / "log.txt");
     log = readText(dir.path / "log.txt");
     EXPECT_NE(log.find("textured-sphere.glb#image"), std::string::npos) << log;
 }
@@ -88,7 +88,7 @@ TEST(Gui, ABrokenModelShowsItsErrorInsteadOfCrashing) {
     test::TempDir dir;
     auto broken = dir.write("broken.glb", "0123456789");
     auto shot = dir.path / "broken.png";
-    ASSERT_EQ(runGui(dir, "--model " + broken.string() + " --module reflectance", shot), 0)
+    ASSERT_EQ(runGui(dir, "--model " + broken.string() + " reflectance", shot), 0)
         << readText(dir.path / "log.txt");
     // The step's own scene stays on screen; the error names the file (in the window, and in
     // the host log that --verbose prints).
@@ -115,7 +115,7 @@ TEST(Gui, OrbitDrawsLiveFramesAndPrintsTheirTimes) {
     if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
     test::TempDir dir;
     auto shot = dir.path / "orbit.png";
-    ASSERT_EQ(runGui(dir, "--module ndf --orbit", shot), 0) << readText(dir.path / "log.txt");
+    ASSERT_EQ(runGui(dir, "ndf --orbit", shot), 0) << readText(dir.path / "log.txt");
     expectWindowShot(shot);
     const std::string log = readText(dir.path / "log.txt");
     EXPECT_NE(log.find("frame: 1 frames at 1200x760"), std::string::npos) << log;
@@ -137,7 +137,7 @@ TEST(Gui, AnErrorBudgetChoosesTheEnvironmentsSettingsAsPrecomputeDoes) {
     if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
     test::TempDir dir;
     auto shot = dir.path / "budget.png";
-    ASSERT_EQ(runGui(dir, "--module split_sum --error-budget 0.05", shot), 0)
+    ASSERT_EQ(runGui(dir, "split_sum --error-budget 0.05", shot), 0)
         << readText(dir.path / "log.txt");
     expectWindowShot(shot);
     const std::string log = readText(dir.path / "log.txt");
@@ -146,4 +146,49 @@ TEST(Gui, AnErrorBudgetChoosesTheEnvironmentsSettingsAsPrecomputeDoes) {
     EXPECT_NE(log.find("error budget 0.05 on sky: met"), std::string::npos) << log;
     EXPECT_NE(log.find("by bins 8"), std::string::npos) << log;
     EXPECT_NE(log.find("[environment] sky (src64_irr16 bins 8"), std::string::npos) << log;
+}
+
+// The console, scripted: a GUI-local line changes the state as the parameter's widget does, a
+// shell command runs as on the shell (its file written, its output in the console), and a
+// wrong one gets the shell's message. The run waits for the commands before its last frame.
+TEST(Gui, ConsoleLinesChangeTheStateAndRunTheShellsCommands) {
+    if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+    test::TempDir dir;
+    auto shot = dir.path / "console.png", picture = dir.path / "ndf.png";
+    ASSERT_EQ(runGui(dir,
+                     "hammersley --command 'set samples=32' --command 'render ndf --size 40x24 "
+                     "--out " +
+                         picture.string() + "' --command 'render ndf --bogus'",
+                     shot),
+              0)
+        << readText(dir.path / "log.txt");
+    expectWindowShot(shot);
+    // hammersley's samples (default 64) as `set` left them, saved with the state on exit.
+    const std::string saved = readText(dir.path / ".config/pbrlab/gui.json");
+    EXPECT_NE(saved.find("\"samples\": \"32\""), std::string::npos) << saved;
+    const Image image = readImage(picture);
+    EXPECT_EQ(image.width, 40);
+    EXPECT_EQ(image.height, 24);
+    const std::string log = readText(dir.path / "log.txt");
+    EXPECT_NE(log.find("wrote " + picture.string() + " (40x24"), std::string::npos) << log;
+    EXPECT_NE(log.find("(exit status 0)"), std::string::npos) << log;
+    EXPECT_NE(log.find("> render ndf --bogus\n--out is required"), std::string::npos) << log;
+}
+
+// Scripts written for earlier versions: gui --module ID and gui --size WxH (the window) still
+// work; --size says that it is deprecated.
+TEST(Gui, TheOlderSpellingsStillWork) {
+    if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+    test::TempDir dir;
+    const auto shot = dir.path / "old.png";
+    const std::string cmd = "cd " + dir.path.string() + " && HOME=" + dir.path.string() +
+                            " xvfb-run -a -s '-screen 0 1280x800x24' " PBRLAB_EXECUTABLE
+                            " gui --module ndf --size 640x480 --frames 2 --screenshot " +
+                            shot.string() + " > log.txt 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << readText(dir.path / "log.txt");
+    EXPECT_EQ(readImage(shot).width, 640);
+    EXPECT_EQ(readImage(shot).height, 480);
+    EXPECT_NE(readText(dir.path / "log.txt").find("gui --size is deprecated"), std::string::npos);
+    EXPECT_NE(readText(dir.path / ".config/pbrlab/gui.json").find("\"module\": \"ndf\""),
+              std::string::npos);
 }

@@ -107,7 +107,10 @@ public:
     explicit GuiApp(const GuiOptions& options)
         : options_(options),
           context_(createWindowContext(options.width, options.height, "pbrlab")),
-          lab_(options, state_) {
+          lab_(options, state_),
+          console_(options.globalArguments, options.frames > 0) {
+        for (const std::string& line : options.commands) console_.submit(line);
+        if (!options.commands.empty() && options.tab.empty()) state_.openTab = "console";
         IMGUI_CHECKVERSION();
         ImGui::CreateContext();
         ImGui::GetIO().IniFilename = nullptr;  // the layout is computed, not saved
@@ -136,6 +139,7 @@ public:
                 state_.camera.yaw += 0.02;
                 requests_.moved = true;
             }
+            console_.poll({&lab_, &state_, &requests_});
             lab_.update(state_, requests_);
             ImGui_ImplOpenGL3_NewFrame();
             ImGui_ImplGlfw_NewFrame();
@@ -149,7 +153,8 @@ public:
             gl::Clear(GL_COLOR_BUFFER_BIT);
             ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
             ++frame;
-            bool last = options_.frames > 0 && frame >= options_.frames;
+            // Scripted: the frames asked for, and the console's lines have finished.
+            bool last = options_.frames > 0 && frame >= options_.frames && console_.idle();
             if (requests_.screenshot || (last && !options_.screenshot.empty())) {
                 fs::path file = last && !options_.screenshot.empty()
                                     ? options_.screenshot
@@ -216,7 +221,7 @@ private:
         ImGui::BeginChild("parameters", ImVec2(0, ImGui::GetContentRegionAvail().y * 0.42f), true);
         drawModulePanel(lab_, state_, requests_);
         ImGui::EndChild();
-        drawSideTabs(lab_, state_, tabs_);
+        drawSideTabs(lab_, state_, tabs_, console_);
         ImGui::End();
     }
 
@@ -226,6 +231,7 @@ private:
     Lab lab_;  // after context_ (it needs GL) and state_ (it fills it)
     Requests requests_;
     SideTabsMemory tabs_;
+    Console console_;
 };
 
 }  // namespace

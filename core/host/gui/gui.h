@@ -13,10 +13,12 @@ struct GuiOptions {
     std::string module;                // start on this module id
     std::string view;                  // student|solution|reference|difference|split or a term
     std::string scene;
-    std::filesystem::path model;       // a glTF model (.glb/.gltf), lit like the step's scene
-    std::string tab;                   // open this side tab: handout|plot|log|programs
-    std::vector<std::string> sets;     // name=value for the start module
-    int frames = 0;                    // > 0: render this many frames, then exit (scripted runs)
+    std::filesystem::path model;        // a glTF model (.glb/.gltf), lit like the step's scene
+    std::string tab;                    // open this side tab: handout|plot|log|programs
+    std::vector<std::string> sets;      // name=value for the start module
+    std::vector<std::string> commands;  // console lines to run from the first frame (--command)
+    std::vector<std::string> globalArguments;  // --modules/--verbose, for the console's commands
+    int frames = 0;  // > 0: render this many frames and until the commands end, then exit
     std::filesystem::path screenshot;  // with frames: save the window here before exiting
     // With frames: turn the camera a step every frame, as a mouse drag does, and print the
     // frame times (median, 95th percentile): how interactive the lab is, scripted.

@@ -32,7 +32,7 @@ int indexOf(const ModuleRegistry& registry, const std::string& id) {
 }
 
 // The side tabs, as --tab names them.
-const std::vector<std::string> kTabs = {"handout", "plot", "log", "programs"};
+const std::vector<std::string> kTabs = {"handout", "plot", "log", "programs", "console"};
 
 }  // namespace
 
@@ -72,7 +72,8 @@ Lab::Lab(const GuiOptions& options, GuiState& state) : options_(options) {
         applyAssignment(module(state).params, state.params[module(state).id], s);
     if (!options.view.empty()) parseView(options.view, state.view, state.term);
     if (!options.tab.empty() && std::find(kTabs.begin(), kTabs.end(), options.tab) == kTabs.end())
-        throw Error("--tab " + options.tab + ": unknown tab; one of handout, plot, log, programs");
+        throw Error("--tab " + options.tab +
+                    ": unknown tab; one of handout, plot, log, programs, console");
     state.openTab = options.tab;
     if (options.view.empty())  // no student file: show the solution
         state.view = !studentFile(state).empty() && fs::exists(studentFile(state)) ? View::Student

@@ -1,4 +1,4 @@
-// The side tabs under the parameters: Handout, Plot, Log and Programs.
+// The side tabs under the parameters: Handout, Plot, Log, Programs and Console.
 #include <imgui.h>
 
 #include <sstream>
@@ -9,7 +9,7 @@
 
 namespace pbrlab {
 
-void drawSideTabs(const Lab& lab, GuiState& state, SideTabsMemory& memory) {
+void drawSideTabs(const Lab& lab, GuiState& state, SideTabsMemory& memory, Console& console) {
     if (!ImGui::BeginTabBar("tabs")) return;
     // --tab opens one tab on the first frame; after that the student's clicks decide.
     auto opened = [&](const char* tab) {
@@ -41,6 +41,10 @@ void drawSideTabs(const Lab& lab, GuiState& state, SideTabsMemory& memory) {
         ImGui::BeginChild("programs");
         drawProgramsTab(lab);
         ImGui::EndChild();
+        ImGui::EndTabItem();
+    }
+    if (ImGui::BeginTabItem("Console", nullptr, opened("console"))) {
+        drawConsoleTab(console);
         ImGui::EndTabItem();
     }
     ImGui::EndTabBar();

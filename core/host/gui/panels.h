@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "console.h"
 #include "lab.h"
 
 namespace pbrlab {
@@ -23,12 +24,13 @@ struct SideTabsMemory {
     std::string shownLog;  // the compile log last shown: a new one selects the Log tab once
 };
 
-// The right window's bottom: the Handout, Plot, Log and Programs tabs.
-void drawSideTabs(const Lab& lab, GuiState& state, SideTabsMemory& memory);
+// The right window's bottom: the Handout, Plot, Log, Programs and Console tabs.
+void drawSideTabs(const Lab& lab, GuiState& state, SideTabsMemory& memory, Console& console);
 
 // The tabs' contents.
 void drawPlotTab(const Lab& lab, GuiState& state);
 void drawLogTab(const Lab& lab, const GuiState& state);
 void drawProgramsTab(const Lab& lab);
+void drawConsoleTab(Console& console);
 
 }  // namespace pbrlab

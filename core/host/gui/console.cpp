@@ -1,0 +1,339 @@
+#include "console.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <iostream>
+#include <sstream>
+
+#include "lab.h"
+#include "pbrlab/error.h"
+
+extern char** environ;
+
+namespace pbrlab {
+
+namespace {
+
+// A command that runs in the GUI's process and changes its state, as a panel does.
+class LocalCommand : public Command {
+public:
+    LocalCommand(std::string name, std::string summary, const ConsoleTarget& target,
+                 std::string& output)
+        : Command(std::move(name), std::move(summary)), target_(target), output_(output) {}
+
+protected:
+    const Lab& lab() const { return *target_.lab; }
+    GuiState& state() const { return *target_.state; }
+    Requests& requests() const { return *target_.requests; }
+
+    const ConsoleTarget& target_;
+    std::string& output_;
+};
+
+// As clicking a step in the steps panel.
+class StepCommand : public LocalCommand {
+public:
+    using LocalCommand::LocalCommand;
+    void declare(CLI::App& cmd) override {
+        cmd.add_option("step", id_, "Step id (see `list`)")->required();
+    }
+    int run(const GlobalOptions&) override {
+        const auto& modules = lab().registry().modules();
+        for (size_t i = 0; i < modules.size(); ++i)
+            if (modules[i].desc->id == id_) requests().selectStep = int(i);
+        if (requests().selectStep < 0) lab().registry().find(id_);  // throws, listing the ids
+        return 0;
+    }
+
+private:
+    std::string id_;
+};
+
+// As moving a parameter's widget; the syntax of --set.
+class SetCommand : public LocalCommand {
+public:
+    using LocalCommand::LocalCommand;
+    void declare(CLI::App& cmd) override {
+        cmd.add_option("assignments", sets_, "Parameter name=value of the step shown, as --set")
+            ->required();
+    }
+    int run(const GlobalOptions&) override {
+        const ModuleDesc& m = lab().module(state());
+        ParamValues values = state().params.at(m.id);
+        for (const std::string& s : sets_) applyAssignment(m.params, values, s);
+        state().params[m.id] = values;  // all or nothing: a bad one changes none
+        requests().moved = true;
+        return 0;
+    }
+
+private:
+    std::vector<std::string> sets_;
+};
+
+// As the scene chooser: a scene, or a glTF model lit like the step's scene (or NAME).
+class SceneCommand : public LocalCommand {
+public:
+    using LocalCommand::LocalCommand;
+    void declare(CLI::App& cmd) override {
+        cmd.add_option("scene", scene_, "Scene name in assets/scenes (default: the step's own)");
+        cmd.add_option("--model", model_, "A glTF model (.glb/.gltf), lit like the scene");
+    }
+    int run(const GlobalOptions&) override {
+        state().sceneName = scene_;
+        state().model = model_.empty() ? std::filesystem::path() : canonicalFile(model_);
+        requests().reloadScene = true;
+        return 0;
+    }
+
+private:
+    std::string scene_, model_;
+};
+
+// As the view chooser; the names of --view.
+class ViewCommand : public LocalCommand {
+public:
+    using LocalCommand::LocalCommand;
+    void declare(CLI::App& cmd) override {
+        cmd.add_option("view", view_, "student|solution|reference|difference|split or a term")
+            ->required();
+    }
+    int run(const GlobalOptions&) override {
+        parseView(view_, state().view, state().term);
+        requests().recompose = true;
+        return 0;
+    }
+
+private:
+    std::string view_;
+};
+
+class HelpCommand : public LocalCommand {
+public:
+    using LocalCommand::LocalCommand;
+    void declare(CLI::App& cmd) override {
+        cmd.add_option("command", command_, "A command: its options");
+    }
+    int run(const GlobalOptions&) override {
+        // As `pbrlab --help` and `pbrlab COMMAND --help` print it (App::help would show the
+        // help of the command parsed: this one).
+        output_ += command_.empty() ? app->get_formatter()->make_help(app, app->get_name(),
+                                                                      CLI::AppFormatMode::Normal)
+                                    : app->get_subcommand(command_)->help(app->get_name());
+        return 0;
+    }
+    const CLI::App* app = nullptr;
+
+private:
+    std::string command_;
+};
+
+class ClearCommand : public LocalCommand {
+public:
+    using LocalCommand::LocalCommand;
+    void declare(CLI::App&) override {}
+    int run(const GlobalOptions&) override { return 0; }  // Console::runLine clears
+};
+
+template <typename T>
+T* addLocal(Commands& commands, const char* name, const char* summary, const ConsoleTarget& target,
+            std::string& output) {
+    auto command = std::make_unique<T>(name, summary, target, output);
+    T* raw = command.get();
+    commands.push_back(std::move(command));
+    return raw;
+}
+
+}  // namespace
+
+std::unique_ptr<CommandLine> consoleCommandLine(const ConsoleTarget& target, std::string& output) {
+    Commands c = shellCommands();
+    addLocal<StepCommand>(c, "step", "GUI: show this step", target, output);
+    addLocal<SetCommand>(c, "set", "GUI: set the step's parameters (name=value, as --set)", target,
+                         output);
+    addLocal<SceneCommand>(c, "scene", "GUI: show this scene or --model (as the chooser)", target,
+                           output);
+    addLocal<ViewCommand>(c, "view", "GUI: show this view (as --view)", target, output);
+    HelpCommand* help = addLocal<HelpCommand>(
+        c, "help", "GUI: list the commands, or one command's options", target, output);
+    addLocal<ClearCommand>(c, "clear", "GUI: clear the console", target, output);
+    auto line = std::make_unique<CommandLine>(std::move(c));
+    help->app = &line->app;
+    return line;
+}
+
+namespace {
+
+// Parses `words`; on a CLI11 error, returns what the shell would print (else empty).
+std::string parseWords(CommandLine& line, const std::vector<std::string>& words) {
+    try {
+        line.parse(words);
+        return {};
+    } catch (const CLI::ParseError& e) {
+        std::ostringstream out, err;
+        line.app.exit(e, out, err);
+        return out.str() + err.str();
+    }
+}
+
+}  // namespace
+
+ConsoleParse parseConsoleLine(const std::string& text) {
+    ConsoleParse parsed;
+    try {
+        parsed.words = splitWords(text);
+    } catch (const Error& e) {
+        parsed.message = std::string("error: ") + e.what() + "\n";
+        return parsed;
+    }
+    std::string output;
+    auto line = consoleCommandLine({}, output);
+    parsed.message = parseWords(*line, parsed.words);
+    if (Command* c = line->chosen(); c && parsed.message.empty()) {
+        parsed.command = c->name;
+        parsed.local = dynamic_cast<LocalCommand*>(c) != nullptr;
+        parsed.given = line->given();
+    }
+    return parsed;
+}
+
+Console::Console(std::vector<std::string> globalArguments, bool echo)
+    : globalArguments_(std::move(globalArguments)), echo_(echo) {}
+
+Console::~Console() {
+    if (child_ > 0) kill(-child_, SIGTERM);  // its process group: grade's children too
+    if (reader_.joinable()) reader_.join();
+}
+
+void Console::submit(const std::string& line) {
+    queue_.push_back(line);
+}
+
+bool Console::idle() const {
+    return queue_.empty() && child_ <= 0;
+}
+
+std::string Console::text() const {
+    std::lock_guard lock(mutex_);
+    return text_;
+}
+
+void Console::clear() {
+    std::lock_guard lock(mutex_);
+    text_.clear();
+}
+
+void Console::append(const std::string& text) {
+    if (text.empty()) return;
+    std::lock_guard lock(mutex_);
+    text_ += text;
+    if (echo_) std::cout << text << std::flush;
+}
+
+void Console::poll(const ConsoleTarget& target) {
+    bool done = false;
+    {
+        std::lock_guard lock(mutex_);
+        done = childDone_;
+    }
+    if (done) finishChild();
+    // One line a frame: a local command's requests (a step chosen) are carried out by the
+    // frame before the next line reads the state.
+    if (child_ <= 0 && !queue_.empty()) {
+        const std::string line = queue_.front();
+        queue_.pop_front();
+        runLine(line, target);
+    }
+}
+
+void Console::runLine(const std::string& text, const ConsoleTarget& target) {
+    append("> " + text + "\n");
+    std::vector<std::string> words;
+    try {
+        words = splitWords(text);
+    } catch (const Error& e) {
+        append(std::string("error: ") + e.what() + "\n");
+        return;
+    }
+    if (words.empty()) return;
+    std::string output;
+    auto line = consoleCommandLine(target, output);
+    const std::string parseError = parseWords(*line, words);
+    if (!parseError.empty()) return append(parseError);
+    Command* command = line->chosen();
+    if (!command) return;
+    if (command->name == "clear") return clear();
+    if (command->name == "gui") return append("gui: this is the lab, open already\n");
+    if (!dynamic_cast<LocalCommand*>(command)) return startChild(words);
+    try {
+        command->run(line->global);
+    } catch (const std::exception& e) {
+        output += std::string("error: ") + e.what() + "\n";
+    }
+    append(output);
+}
+
+// The command runs as `pbrlab ARGS` would on the shell, in its own process group, its stdout
+// and stderr into one pipe that a thread reads (stdout is block-buffered in a pipe, so the two
+// may interleave differently than on a terminal).
+void Console::startChild(const std::vector<std::string>& words) {
+    int fds[2];
+    if (pipe2(fds, O_CLOEXEC) != 0) return append("error: cannot make a pipe\n");
+    std::vector<std::string> args = {"pbrlab"};
+    args.insert(args.end(), globalArguments_.begin(), globalArguments_.end());
+    args.insert(args.end(), words.begin(), words.end());
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, fds[1], 1);
+    posix_spawn_file_actions_adddup2(&actions, fds[1], 2);
+    posix_spawnattr_t attributes;
+    posix_spawnattr_init(&attributes);
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&attributes, 0);
+    pid_t pid = -1;
+    const int failed =
+        posix_spawn(&pid, "/proc/self/exe", &actions, &attributes, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    posix_spawnattr_destroy(&attributes);
+    close(fds[1]);
+    if (failed) {
+        close(fds[0]);
+        return append(std::string("error: cannot start pbrlab: ") + strerror(failed) + "\n");
+    }
+    child_ = pid;
+    pipe_ = fds[0];
+    childDone_ = false;
+    reader_ = std::thread([this, pid, fd = fds[0]] {
+        char buffer[4096];
+        for (ssize_t n; (n = read(fd, buffer, sizeof buffer)) != 0;) {
+            if (n < 0 && errno == EINTR) continue;
+            if (n < 0) break;
+            append(std::string(buffer, size_t(n)));
+        }
+        int status = 0;
+        waitpid(pid, &status, 0);
+        append(WIFEXITED(status)
+                   ? "(exit status " + std::to_string(WEXITSTATUS(status)) + ")\n"
+                   : "(stopped by signal " + std::to_string(WTERMSIG(status)) + ")\n");
+        std::lock_guard lock(mutex_);
+        childDone_ = true;
+    });
+}
+
+void Console::finishChild() {
+    if (reader_.joinable()) reader_.join();
+    close(pipe_);
+    pipe_ = -1;
+    child_ = -1;
+    childDone_ = false;
+}
+
+}  // namespace pbrlab
