@@ -56,4 +56,20 @@ echo "== gallery"
 "$pbrlab" --modules "$modules" gallery --out "$work/gallery" --size 48x48 > /dev/null
 test -s "$work/gallery/05-half_lambert.png"
 test -s "$work/gallery/06-ndf.png"
-echo "out-of-tree step: listed, rendered, checked, in the kit, graded and in the gallery"
+echo "== gui: the step's term view is in the view chooser"
+if command -v xvfb-run > /dev/null; then
+    gui() {
+        (cd "$work" && HOME="$work" xvfb-run -a -s '-screen 0 1280x800x24' "$pbrlab" \
+            --modules "$modules" gui --module ndotl --size 640x400 --frames 2 "$@")
+    }
+    gui --view half_lambert --screenshot "$work/term.png" > "$work/gui.log" 2>&1
+    test -s "$work/term.png"
+    # An unknown view is refused with the known ones listed: the step's among them.
+    if gui --view nonsense --screenshot "$work/none.png" > "$work/gui-bad.log" 2>&1; then
+        echo "gui --view nonsense did not fail"; exit 1
+    fi
+    grep -q 'N.L, half_lambert, D' "$work/gui-bad.log"
+else
+    echo "(xvfb-run not installed: the GUI part is left out)"
+fi
+echo "out-of-tree step: listed, rendered, checked, in the kit, graded, in the gallery and the GUI"

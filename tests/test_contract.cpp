@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cctype>
 #include <fstream>
 #include <set>
@@ -127,7 +128,64 @@ TEST(Contract, BrokenStepFoldersAreErrorsNamingTheFile) {
         EXPECT_NE(error.find(c.says), std::string::npos) << c.members << "\n" << error;
         EXPECT_NE(error.find("step.json"), std::string::npos) << error;
     }
+    // A step's precompute pass: a kind the host runs, a shader of the step's own folder, the
+    // sampler its map is bound to.
+    const std::string x = R"j("id": "x", "lab": "ibl", "order": 205, "function": "float f()", )j";
+    const std::vector<Case> passes = {
+        {x + R"j("precompute": "pass.frag")j", "\"precompute\" must be an object"},
+        {x + R"j("precompute": {"kind": "sphere", "shader": "pass.frag", "sampler": "uX"})j",
+         "\"kind\" is \"sphere\"; one of cube, cube_mips, square"},
+        {x + R"j("precompute": {"kind": "cube", "sampler": "uX"})j", "missing field \"shader\""},
+        {x + R"j("precompute": {"kind": "cube", "shader": "pass.frag"})j",
+         "missing field \"sampler\""},
+        {x + R"j("precompute": {"kind": "cube", "shader": "none.frag", "sampler": "uX"})j",
+         "none.frag does not exist"},
+        {x + R"j("precompute": {"kind": "cube", "shader": "../pass.frag", "sampler": "uX"})j",
+         "must name a file in the step folder"},
+        {x + R"j("precompute": {"kind": "cube", "shader": "pass.frag", "sampler": "u X"})j",
+         "\"sampler\" is not a GLSL name"},
+    };
+    for (const Case& c : passes) {
+        test::TempDir extra;
+        stepFolder(extra, "x", c.members);
+        extra.write("x/pass.frag", "void main() {}\n");
+        extra.write("pass.frag", "void main() {}\n");
+        const std::string error = errorOf({builtIn, extra.path});
+        EXPECT_NE(error.find(c.says), std::string::npos) << c.members << "\n" << error;
+        EXPECT_NE(error.find("step.json: \"precompute\""), std::string::npos) << error;
+    }
     test::TempDir notJson;
     notJson.write("x/step.json", "{ id: ");
     EXPECT_NE(errorOf({builtIn, notJson.path}).find("not valid JSON"), std::string::npos);
+}
+
+// A step declares the pass that computes its map in its own folder; the map's sampler is what
+// it provides.
+TEST(Contract, APrecomputePassIsDeclaredInTheStepFolder) {
+    test::TempDir extra;
+    stepFolder(extra, "x",
+               R"j("id": "x", "lab": "ibl", "order": 205, "function": "float f()",
+                  "precompute": {"kind": "cube_mips", "shader": "pass.frag",
+                                 "sampler": "uOtherMap"})j");
+    extra.write("x/pass.frag", "void main() {}\n");
+    const auto builtIn = std::filesystem::path(PBRLAB_SOURCE_DIR) / "labs";
+    const std::vector<ContractStep> steps = readStepFolders({builtIn, extra.path});
+    const auto x =
+        std::find_if(steps.begin(), steps.end(), [](const ContractStep& s) { return s.id == "x"; });
+    ASSERT_NE(x, steps.end());
+    ASSERT_TRUE(x->precompute.has_value());
+    EXPECT_EQ(x->precompute->kind, ContractStep::PrecomputePass::Kind::CubeMips);
+    EXPECT_EQ(x->precompute->shader, extra.path / "x" / "pass.frag");
+    EXPECT_EQ(x->provides, std::vector<std::string>{"uOtherMap"});
+    // The built-in map steps declare theirs the same way.
+    for (const auto& [id, sampler] : {std::pair{"irradiance", "uIrradianceMap"},
+                                      {"prefilter", "uPrefilterMap"},
+                                      {"brdf_lut", "uBrdfLut"}}) {
+        const auto s = std::find_if(steps.begin(), steps.end(),
+                                    [&](const ContractStep& t) { return t.id == id; });
+        ASSERT_NE(s, steps.end());
+        ASSERT_TRUE(s->precompute.has_value()) << id;
+        EXPECT_EQ(s->precompute->sampler, sampler);
+        EXPECT_TRUE(std::filesystem::is_regular_file(s->precompute->shader)) << id;
+    }
 }

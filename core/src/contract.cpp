@@ -44,6 +44,48 @@ fs::path builtInRoot() {
     return DataPaths::locate().labs();
 }
 
+// Letters, digits and _: what GLSL names and file stems may hold.
+bool isIdChar(char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
+
+// step.json "precompute": {"kind": "cube" | "cube_mips" | "square", "shader": "<file in the
+// step folder>", "sampler": "<contract sampler>"}.
+ContractStep::PrecomputePass readPrecompute(const fs::path& file, const json& j) {
+    using Pass = ContractStep::PrecomputePass;
+    const std::string where = file.string() + ": \"precompute\"";
+    if (!j.is_object())
+        throw Error(where + " must be an object with \"kind\", \"shader\" and \"sampler\"");
+    auto text = [&](const char* name) {
+        if (!j.contains(name) || !j.at(name).is_string() || j.at(name).get<std::string>().empty())
+            throw Error(where + ": missing field \"" + name + "\" (a string)");
+        return j.at(name).get<std::string>();
+    };
+    Pass pass;
+    const std::string kind = text("kind");
+    if (kind == "cube")
+        pass.kind = Pass::Kind::Cube;
+    else if (kind == "cube_mips")
+        pass.kind = Pass::Kind::CubeMips;
+    else if (kind == "square")
+        pass.kind = Pass::Kind::Square;
+    else
+        throw Error(where + ": \"kind\" is \"" + kind + "\"; one of cube, cube_mips, square");
+    const std::string shader = text("shader");
+    // A file of the step's own folder, so the folder is the whole step.
+    if (fs::path(shader).has_parent_path() || shader == "." || shader == "..")
+        throw Error(where + ": \"shader\" must name a file in the step folder, not a path (" +
+                    shader + ")");
+    pass.shader = file.parent_path() / shader;
+    std::error_code ec;
+    if (!fs::is_regular_file(pass.shader, ec))
+        throw Error(where + ": \"shader\" " + pass.shader.string() + " does not exist");
+    pass.sampler = text("sampler");
+    if (!std::all_of(pass.sampler.begin(), pass.sampler.end(), isIdChar))
+        throw Error(where + ": \"sampler\" is not a GLSL name (" + pass.sampler + ")");
+    return pass;
+}
+
 ContractStep readStep(const fs::path& file) {
     std::ifstream in(file);
     if (!in) throw Error(file.string() + ": cannot read");
@@ -66,6 +108,10 @@ ContractStep readStep(const fs::path& file) {
         s.function = field("function").get<std::string>();
         s.calls = j.value("calls", std::vector<std::string>());
         s.provides = j.value("provides", std::vector<std::string>());
+        if (j.contains("precompute")) s.precompute = readPrecompute(file, j.at("precompute"));
+        if (s.precompute && std::find(s.provides.begin(), s.provides.end(),
+                                      s.precompute->sampler) == s.provides.end())
+            s.provides.push_back(s.precompute->sampler);
         for (const json& view : j.value("gallery", json::array())) {
             ContractStep::GalleryView v{view.value("scene", ""), view.value("model", "")};
             if (v.scene.empty() == v.model.empty())
@@ -77,7 +123,6 @@ ContractStep readStep(const fs::path& file) {
     } catch (const json::exception& e) {
         throw Error(file.string() + ": a field has the wrong type (" + e.what() + ")");
     }
-    auto isIdChar = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
     if (s.id.empty() || !std::all_of(s.id.begin(), s.id.end(), isIdChar))
         throw Error(file.string() + ": \"id\" must be letters, digits and _ (it names <id>.glsl)");
     if (s.lab.empty()) throw Error(file.string() + ": \"lab\" is empty");

@@ -209,7 +209,7 @@ std::vector<ConvergeRow> runConverge(const DataPaths& paths, const ConvergeOptio
         for (int samples : prefilterSamples) {
             IblSettings s = defaults;
             s.prefilterSamples = samples;
-            s.prefilter = fis ? PrefilterMethod::Filtered : PrefilterMethod::Plain;
+            s.prefilter = fis ? PrefilterMethod::Filtered : PrefilterMethod::StepPass;
             splitSumRow(s,
                         std::string("prefilter=") + std::to_string(samples) +
                             (fis ? " fis=on" : " fis=off"),

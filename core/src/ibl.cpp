@@ -1,21 +1,19 @@
+// The precompute: the environment cube, then the maps derived from it, each by the method its
+// settings choose: the host's own (CPU bins, a quadrature, a Riemann sum, filtered importance
+// sampling) or the pass that the step providing the map declares in its folder (step.json
+// "precompute": a kind of pass the host knows how to run, and the step's shader). The host
+// names maps (samplers), never steps. Settings: ibl_settings.cpp; CPU maps: ibl_cpu_maps.cpp;
+// disk cache and keys: ibl_cache.cpp.
 #include "ibl.h"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
-#include <cstring>
-#include <fstream>
-#include <sstream>
 
-#include "cache_file.h"
-#include "digest.h"
-#include "parallel.h"
+#include "ibl_cache.h"
+#include "ibl_cpu_maps.h"
 #include "pbrlab/contract.h"
-#include "pbrlab/cube_sampler.h"
 #include "pbrlab/error.h"
-#include "pbrlab/ibl_reference.h"
 #include "pbrlab/log.h"
 
 namespace fs = std::filesystem;
@@ -24,98 +22,48 @@ namespace pbrlab {
 
 const char* const kCubeFaceNames[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
 
-const DerivedMap kDerivedMaps[3] = {{"uIrradianceMap"}, {"uPrefilterMap"}, {"uBrdfLut"}};
+using PassKind = ContractStep::PrecomputePass::Kind;
 
-// The id of the step whose reference solution a pass for this map links (step.json "provides"),
-// "" when no step declares the map.
-static std::string providerOf(const char* sampler) {
+const DerivedMap kDerivedMaps[3] = {{"uIrradianceMap", PassKind::Cube},
+                                    {"uPrefilterMap", PassKind::CubeMips},
+                                    {"uBrdfLut", PassKind::Square}};
+
+namespace {
+
+const char* kindName(PassKind kind) {
+    switch (kind) {
+        case PassKind::Cube:
+            return "cube";
+        case PassKind::CubeMips:
+            return "cube_mips";
+        case PassKind::Square:
+            return "square";
+    }
+    return "";
+}
+
+// The step whose reference solutions compute the map, with its declared pass checked against
+// the kind of map the host binds to that sampler. Throws when no step provides the map: the
+// settings then ask for a method that only a step can supply.
+const ContractStep& providerOf(const char* sampler, bool needsPass) {
     const ContractStep* step = findProvider(sampler);
-    return step ? step->id : std::string();
-}
-
-namespace {
-
-// Names what the CPU code of this file computes (cube resampling, irradiance bins) in the
-// cache keys: bump it when that code changes what it writes.
-constexpr const char* kCpuMapsVersion = "cpu-maps-1";
-
-std::string number(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
-
-}  // namespace
-
-namespace {
-
-std::string irradianceText(const IblSettings& s) {
-    switch (s.irradiance) {
-        case IrradianceMethod::Bins:
-            return "bins " + std::to_string(s.bins);
-        case IrradianceMethod::Step18:
-            return "step 18";
-        case IrradianceMethod::Riemann:
-            return "Riemann " + number(s.riemannStep);
-    }
-    return "";
-}
-
-std::string prefilterText(const IblSettings& s) {
-    switch (s.prefilter) {
-        case PrefilterMethod::Bins:
-            return "bins " + std::to_string(s.bins);
-        case PrefilterMethod::Filtered:
-            return std::to_string(s.prefilterSamples) + " filtered samples (bias " +
-                   number(s.filteredLodBias) + ")";
-        case PrefilterMethod::Plain:
-            return std::to_string(s.prefilterSamples) + " samples";
-    }
-    return "";
+    if (!step)
+        throw Error(std::string("no step provides ") + sampler +
+                    " (step.json \"precompute\"): choose one of the host's own methods for it");
+    const DerivedMap* map = nullptr;
+    for (const DerivedMap& m : kDerivedMaps)
+        if (std::string(m.sampler) == sampler) map = &m;
+    if (needsPass && !step->precompute)
+        throw Error((step->folder / "step.json").string() + ": provides " + sampler +
+                    " but declares no \"precompute\" pass for it");
+    if (step->precompute && map && step->precompute->kind != map->kind)
+        throw Error((step->folder / "step.json").string() + ": \"precompute\" \"kind\" is " +
+                    kindName(step->precompute->kind) + ", but " + sampler + " is a " +
+                    kindName(map->kind) + " map");
+    return *step;
 }
 
 }  // namespace
-
-std::string IblSettings::key() const {
-    return "src" + std::to_string(source()) + "_irr" + std::to_string(irradianceSize) + " " +
-           irradianceText(*this) + "_pre" + std::to_string(prefilterSize) + "x" +
-           std::to_string(prefilterMips) + (prefilterMirrorExact ? "m" : "") +
-           std::to_string(mirrorSupersample) + " " + prefilterText(*this);
-}
-
-std::string IblSettings::lutKey() const {
-    return std::string(lut == LutMethod::Quadrature ? "quad" : "mc" + std::to_string(lutSamples)) +
-           "_" + std::to_string(lutWidth) + "x" + std::to_string(lutHeight);
-}
-
-std::string IblSettings::describe() const {
-    return "irradiance " + std::to_string(irradianceSize) + "^2 by " + irradianceText(*this) +
-           "; prefilter " + std::to_string(prefilterSize) + "^2 x " +
-           std::to_string(prefilterMips) + " by " + prefilterText(*this) +
-           (prefilterMirrorExact ? ", mip 0 resampled" : "") + " (source " +
-           std::to_string(source()) + "^2); LUT " + std::to_string(lutWidth) + " x " +
-           std::to_string(lutHeight) + " by " +
-           (lut == LutMethod::Quadrature ? std::string("quadrature")
-                                         : std::to_string(lutSamples) + " samples");
-}
-
-IblSettings IblSettings::learnOpenGl() {
-    IblSettings s;
-    s.environmentSize = 512;
-    s.sourceSize = 512;
-    s.irradiance = IrradianceMethod::Riemann;
-    s.irradianceSize = 32;
-    s.riemannStep = 0.025;
-    s.prefilterSize = 128;
-    s.prefilterMips = 5;
-    s.prefilterMirrorExact = false;
-    s.prefilter = PrefilterMethod::Plain;
-    s.prefilterSamples = 1024;
-    s.lut = LutMethod::Step20;
-    s.lutWidth = s.lutHeight = 512;
-    s.lutSamples = 1024;
-    return s;
-}
 
 double IblMaps::milliseconds(const std::string& map) const {
     double ms = 0;
@@ -123,55 +71,6 @@ double IblMaps::milliseconds(const std::string& map) const {
         if (p.map == map) ms += p.milliseconds;
     return ms;
 }
-
-glm::dvec3 cubeTexelDirection(int face, double x, double y, int size) {
-    // As pbrlab_cubeDirection in shaders/ibl/cube_face.glsl.
-    const double s = (x + 0.5) / size * 2.0 - 1.0, t = (y + 0.5) / size * 2.0 - 1.0;
-    return glm::normalize(cubeFaceDirection(face, s, t));
-}
-
-std::vector<std::vector<Image>> equirectToCube(const Image& equirect, int size, int levels) {
-    auto square = [](int n) {
-        Image im;
-        im.width = im.height = n;
-        im.channels = 4;
-        im.pixels.assign(size_t(n) * size_t(n) * 4, 1.0f);
-        return im;
-    };
-    std::vector<std::vector<Image>> out(static_cast<size_t>(levels));
-    for (int f = 0; f < 6; ++f) out[0].push_back(square(size));
-    parallelFor(size_t(6 * size), [&](size_t row) {
-        const int face = int(row) / size, y = int(row) % size;
-        Image& im = out[0][size_t(face)];
-        for (int x = 0; x < size; ++x) {
-            const glm::dvec3 L =
-                ref::equirectRadiance(equirect, cubeTexelDirection(face, x, y, size));
-            for (int c = 0; c < 3; ++c) im.at(x, y, c) = float(L[c]);
-        }
-    });
-    // Mips: each texel the mean of the 2 x 2 below it (sizes are powers of two here; an odd
-    // size keeps its last row and column out, as a box filter that GL may also use).
-    for (int level = 1; level < levels; ++level) {
-        const int n = std::max(size >> level, 1);
-        for (int f = 0; f < 6; ++f) {
-            const Image& fine = out[size_t(level) - 1][size_t(f)];
-            Image im = square(n);
-            for (int y = 0; y < n; ++y)
-                for (int x = 0; x < n; ++x)
-                    for (int c = 0; c < 3; ++c) {
-                        const int x0 = std::min(2 * x, fine.width - 1),
-                                  x1 = std::min(2 * x + 1, fine.width - 1);
-                        const int y0 = std::min(2 * y, fine.height - 1),
-                                  y1 = std::min(2 * y + 1, fine.height - 1);
-                        im.at(x, y, c) = 0.25f * (fine.at(x0, y0, c) + fine.at(x1, y0, c) +
-                                                  fine.at(x0, y1, c) + fine.at(x1, y1, c));
-                    }
-            out[size_t(level)].push_back(std::move(im));
-        }
-    }
-    return out;
-}
-
 namespace {
 
 int fullMipCount(int size) {
@@ -243,148 +142,36 @@ private:
     std::chrono::steady_clock::time_point start_;
 };
 
-// The cube bin (face, i, j) a direction falls in, for bins of n texels a side, as a cube map
-// of n x n texels selects it. `d` is never zero here (texel directions of the sphere).
-int binOf(const glm::dvec3& d, int n) {
-    const CubeFacePoint p = cubeFacePoint(d);
-    const int i = std::clamp(int(0.5 * (p.s + 1.0) * n), 0, n - 1);
-    const int j = std::clamp(int(0.5 * (p.t + 1.0) * n), 0, n - 1);
-    return (p.face * n + j) * n + i;
-}
-
-// Four floats processed as one (GCC and Clang vector extensions: SSE on any x86-64).
-typedef float Float4 __attribute__((vector_size(16)));
-
-// The environment binned per texel of a cube of n x n texels a face (IrradianceMethod::Bins,
-// PrefilterMethod::Bins): every texel of the equirectangular image adds its power, L times its
-// exact solid angle, to the bin its centre falls in; per bin, the grey power weighs the mean
-// direction m and the mean of d d^T. Stored four bins to a pack, one component per Float4.
-struct EnvironmentBins {
-    struct Pack {
-        Float4 power[3], mean[3], second[6];  // second: xx yy zz xy yz xz
-    };
-    std::vector<Pack> packs;
-};
-
-EnvironmentBins binEnvironment(const Image& equirect, int n) {
-    const int W = equirect.width, H = equirect.height, count = 6 * n * n;
-    std::vector<double> sinPhi(static_cast<size_t>(W)), cosPhi(static_cast<size_t>(W));
-    for (int x = 0; x < W; ++x) {
-        const double phi = ((x + 0.5) / W - 0.5) * 2.0 * ref::kPi;
-        sinPhi[size_t(x)] = std::sin(phi);
-        cosPhi[size_t(x)] = std::cos(phi);
-    }
-    struct Sums {
-        glm::dvec3 power{0.0}, mean{0.0};
-        double grey = 0, second[6] = {};
-    };
-    std::vector<Sums> bins(static_cast<size_t>(count));
-    for (int y = 0; y < H; ++y) {
-        const double t = ref::kPi * (y + 0.5) / H, st = std::sin(t), ct = std::cos(t);
-        const double omega =
-            2.0 * ref::kPi / W * (std::cos(ref::kPi * y / H) - std::cos(ref::kPi * (y + 1) / H));
-        for (int x = 0; x < W; ++x) {
-            const glm::dvec3 d(st * sinPhi[size_t(x)], ct, -st * cosPhi[size_t(x)]);
-            Sums& b = bins[size_t(binOf(d, n))];
-            const glm::dvec3 p = ref::equirectTexel(equirect, x, y) * omega;
-            const double g = std::max((p.x + p.y + p.z) / 3.0, 0.0);
-            b.power += p;
-            b.grey += g;
-            b.mean += g * d;
-            const double dd[6] = {d.x * d.x, d.y * d.y, d.z * d.z, d.x * d.y, d.y * d.z, d.x * d.z};
-            for (int k = 0; k < 6; ++k) b.second[k] += g * dd[k];
-        }
-    }
-    EnvironmentBins out;
-    out.packs.resize(size_t(count + 3) / 4, EnvironmentBins::Pack{});
-    for (int i = 0; i < count; ++i) {
-        const Sums& b = bins[size_t(i)];
-        EnvironmentBins::Pack& p = out.packs[size_t(i) / 4];
-        const int lane = i % 4;
-        const double g = b.grey > 0.0 ? 1.0 / b.grey : 0.0;
-        for (int k = 0; k < 3; ++k) {
-            p.power[k][lane] = float(b.power[k]);
-            p.mean[k][lane] = float(b.mean[k] * g);
-        }
-        for (int k = 0; k < 6; ++k) p.second[k][lane] = float(b.second[k] * g);
-    }
-    return out;
-}
-
-// The integral over the sphere of the prefilter weight c / u^2, u = 1 + b (1 + c),
-// b = (alpha^2 - 1) / 2 (see convolveBins): 2 pi integral_0^1 c / (A + b c)^2 dc with
-// A = 1 + b, in closed form (1 / b^2) (ln((A + b) / A) + A / (A + b) - 1), or its Taylor
-// series near alpha^2 = 1 where that cancels. pi at alpha = 1 (the cosine).
-double lobeIntegral(double alpha2) {
-    const double b = 0.5 * (alpha2 - 1.0), A = 1.0 + b;
-    const double integral = std::abs(b) < 1e-3
-                                ? 0.5 - 5.0 / 3.0 * b + 17.0 / 4.0 * b * b
-                                : (std::log((A + b) / A) + A / (A + b) - 1.0) / (b * b);
-    return 2.0 * ref::kPi * integral;
-}
-
-// One cube map level of the environment convolved with the prefilter's lobe, from its bins.
-// The prefiltered value at R is  sum over l of L(l) w(R.l) / integral of w  with the weight
-// of Karis' estimator, w(c) = c D(h) (N = V = R, (N.h)^2 = (1 + c) / 2), up to a constant
-// c / u^2, u = 1 + b (1 + c), b = (alpha^2 - 1) / 2. At roughness 1 (alpha^2 = 1) the weight
-// is the cosine and the result is E / pi: the irradiance map is this convolution too.
-// A bin stands for its texels through their moments: expanding w around c = R.m to second
-// order, it adds  P (w(c) + w''(c) Var(R.d) / 2),  Var(R.d) = R^T S R - c^2.  That is exact
-// for the cosine, and a small bright sun inside a bin stays exactly where it is (m is its
-// direction); bins below R's horizon (c <= 0) add nothing. Accuracy in docs/ibl.md.
-std::vector<Image> convolveBins(const EnvironmentBins& bins, int size, double roughness) {
-    const double a = roughness * roughness, alpha2 = std::max(a * a, 1e-7);
-    const float b = float(0.5 * (alpha2 - 1.0)), scale = float(1.0 / lobeIntegral(alpha2));
-    std::vector<Image> faces(6);
-    for (Image& im : faces) {
-        im.width = im.height = size;
-        im.channels = 4;
-        im.pixels.assign(size_t(size) * size_t(size) * 4, 1.0f);
-    }
-    parallelFor(size_t(6 * size), [&](size_t row) {
-        const int face = int(row) / size, y = int(row) % size;
-        const Float4 zero = {0, 0, 0, 0};
-        for (int x = 0; x < size; ++x) {
-            const glm::vec3 R(cubeTexelDirection(face, x, y, size));
-            const float xx = R.x * R.x, yy = R.y * R.y, zz = R.z * R.z;
-            const float xy = 2 * R.x * R.y, yz = 2 * R.y * R.z, xz = 2 * R.x * R.z;
-            Float4 sum[3] = {zero, zero, zero};
-            for (const EnvironmentBins::Pack& p : bins.packs) {
-                const Float4 c = R.x * p.mean[0] + R.y * p.mean[1] + R.z * p.mean[2];
-                const Float4 RSR = xx * p.second[0] + yy * p.second[1] + zz * p.second[2] +
-                                   xy * p.second[3] + yz * p.second[4] + xz * p.second[5];
-                const Float4 variance = RSR - c * c;
-                const Float4 inv = 1.0f / (1.0f + b * (1.0f + c));
-                const Float4 w = c * inv * inv;
-                const Float4 w2 = (6.0f * b * b * c * inv - 4.0f * b) * inv * inv * inv;
-                Float4 k = w + 0.5f * w2 * (variance > 0.0f ? variance : zero);
-                k = c > 0.0f && k > 0.0f ? k : zero;
-                for (int ch = 0; ch < 3; ++ch) sum[ch] += p.power[ch] * k;
-            }
-            for (int ch = 0; ch < 3; ++ch)
-                faces[size_t(face)].at(x, y, ch) =
-                    (sum[ch][0] + sum[ch][1] + sum[ch][2] + sum[ch][3]) * scale;
-        }
-    });
-    return faces;
-}
-
 }  // namespace
 
 IblPrecompute::IblPrecompute(ProgramCache& programs, fs::path shaders)
     : programs_(programs), shaders_(std::move(shaders)) {}
 
-std::shared_ptr<Program> IblPrecompute::program(const std::string& pass,
-                                                const std::string& contractId,
-                                                const Defines& extra) {
+// A host shader of shaders/ibl/ (by its stem), linked with the reference solutions of the
+// step that provides `linkedSampler` ("" none: the shader calls no contract function).
+std::shared_ptr<Program> IblPrecompute::hostProgram(const std::string& shader,
+                                                    const char* linkedSampler,
+                                                    const Defines& extra) {
+    const ContractStep* linked = linkedSampler ? &providerOf(linkedSampler, false) : nullptr;
+    return program("precompute " + shader, shaders_ / "ibl" / (shader + ".frag"), linked, extra);
+}
+
+// The pass the step that provides `sampler` declares, linked with that step's solutions.
+std::shared_ptr<Program> IblPrecompute::stepProgram(const char* sampler) {
+    const ContractStep& step = providerOf(sampler, true);
+    return program("precompute " + step.id, step.precompute->shader, &step, {});
+}
+
+std::shared_ptr<Program> IblPrecompute::program(const std::string& label, const fs::path& fragment,
+                                                const ContractStep* linked, const Defines& extra) {
     ProgramRecipe r;
-    r.label = "precompute " + pass;
+    r.label = label;
     r.vertex = {shaders_ / "fullscreen.vert"};
     r.fragment.push_back(shaders_ / "common.glsl");
-    if (!contractId.empty())
-        for (const ContractStep* step : contractClosure(contractId, {}))
+    if (linked)
+        for (const ContractStep* step : contractClosure(linked->id, {}))
             r.fragment.push_back(step->folder / "solution.glsl");
-    r.fragment.push_back(shaders_ / "ibl" / (pass + ".frag"));
+    r.fragment.push_back(fragment);
     r.defines = extra;
     r.defines["PBRLAB_IBL"] = "1";
     return programs_.get(r);
@@ -410,112 +197,6 @@ void IblPrecompute::renderCube(GLuint cube, int size, int mip, const Program& pr
     }
     gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl::checkError(pass.c_str());
-}
-
-fs::path IblDiskCache::defaultRoot() {
-    if (const char* c = std::getenv("PBRLAB_CACHE"); c && *c) return c;
-    if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return fs::path(x) / "pbrlab";
-    const char* home = std::getenv("HOME");
-    return fs::path(home ? home : ".") / ".cache" / "pbrlab";
-}
-
-namespace {
-
-constexpr char kCacheMagic[8] = {'P', 'B', 'R', 'L', 'C', 'U', 'B', '3'};
-
-// levels x faces RGBA32F images (faces: 6, or 1 for the LUT), as read back (cache_file.h).
-bool writeMaps(const fs::path& file, const std::vector<std::vector<Image>>& levels) {
-    CacheWriter out(kCacheMagic);
-    out.put(
-        std::array<std::int32_t, 2>{std::int32_t(levels.size()), std::int32_t(levels[0].size())});
-    for (const auto& faces : levels)
-        for (const Image& im : faces) {
-            out.put(std::array<std::int32_t, 2>{im.width, im.height});
-            out.bytes(im.pixels.data(), im.pixels.size() * sizeof(float));
-        }
-    return out.commit(file);
-}
-
-bool readMaps(const fs::path& file, std::vector<std::vector<Image>>& levels) {
-    CacheReader in(file, kCacheMagic);
-    std::int32_t header[2];
-    if (!in.get(header) || header[0] < 1 || header[0] > 16 || (header[1] != 1 && header[1] != 6))
-        return false;
-    levels.assign(size_t(header[0]), {});
-    for (auto& faces : levels)
-        for (int f = 0; f < header[1]; ++f) {
-            std::int32_t size[2] = {0, 0};
-            if (!in.get(size) || size[0] < 1 || size[0] > 8192 || size[1] < 1 || size[1] > 8192)
-                return false;
-            Image im;
-            im.width = size[0];
-            im.height = size[1];
-            im.channels = 4;
-            im.pixels.resize(size_t(size[0]) * size_t(size[1]) * 4);
-            if (!in.bytes(im.pixels.data(), im.pixels.size() * sizeof(float))) return false;
-            faces.push_back(std::move(im));
-        }
-    return in.atEnd();
-}
-
-bool sizesAre(const std::vector<std::vector<Image>>& levels, int size, int count) {
-    if (int(levels.size()) != count) return false;
-    for (size_t l = 0; l < levels.size(); ++l)
-        for (const Image& im : levels[l])
-            if (im.width != std::max(size >> l, 1) || im.height != im.width) return false;
-    return levels[0].size() == 6;
-}
-
-void storeQuietly(const fs::path& file, const std::vector<std::vector<Image>>& levels) {
-    if (!writeMaps(file, levels)) logLine("precompute", "cache not written: " + file.string());
-}
-
-}  // namespace
-
-std::vector<fs::path> IblPrecompute::sources(const std::vector<std::string>& shaders,
-                                             const std::string& contractId) const {
-    std::vector<fs::path> files = {shaders_ / "common.glsl", shaders_ / "fullscreen.vert",
-                                   shaders_ / "ibl" / "cube_face.glsl"};
-    for (const std::string& s : shaders) files.push_back(shaders_ / "ibl" / (s + ".frag"));
-    if (!contractId.empty())
-        for (const ContractStep* step : contractClosure(contractId, {}))
-            files.push_back(step->folder / "solution.glsl");
-    return files;
-}
-
-namespace {
-
-void addFiles(Digest& f, std::vector<fs::path> files) {
-    std::sort(files.begin(), files.end());
-    files.erase(std::unique(files.begin(), files.end()), files.end());
-    for (const auto& p : files) {
-        std::ifstream in(p, std::ios::binary);
-        std::stringstream text;
-        text << in.rdbuf();
-        f.add(p.filename().string() + text.str());
-    }
-}
-
-}  // namespace
-
-std::string IblPrecompute::mapsKey(const Image& equirect, const IblSettings& s) const {
-    Digest f;
-    f.add(equirect.pixels.data(), equirect.pixels.size() * sizeof(float));
-    f.add(std::to_string(equirect.width) + "x" + std::to_string(equirect.height) + "x" +
-          std::to_string(equirect.channels) + s.key() + kCpuMapsVersion);
-    // Every file that can compute the irradiance or the prefiltered map.
-    std::vector<fs::path> files =
-        sources({"prefilter", "irradiance", "irradiance_riemann"}, providerOf("uPrefilterMap"));
-    for (const auto& p : sources({}, providerOf("uIrradianceMap"))) files.push_back(p);
-    addFiles(f, files);
-    return f.hex();
-}
-
-std::string IblPrecompute::lutKey(const IblSettings& s) const {
-    Digest f;
-    f.add(s.lutKey());
-    addFiles(f, sources({"brdf_lut", "brdf_lut_quadrature"}, providerOf("uBrdfLut")));
-    return f.hex();
 }
 
 std::unique_ptr<IblMaps> IblPrecompute::makeMaps(const IblSettings& settings) {
@@ -596,7 +277,7 @@ void IblPrecompute::buildDerived(IblMaps& maps, const Image& equirect, const Ibl
         {
             PassTimer timer(maps, "prefilter",
                             "prefilter " + std::to_string(s.prefilterSize) + " x" +
-                                std::to_string(s.prefilterMips) + " by " + prefilterText(s) +
+                                std::to_string(s.prefilterMips) + " by " + s.prefilterBy() +
                                 (s.prefilterMirrorExact ? ", mip 0 resampled" : ""),
                             onPass);
             buildPrefilter(maps, inputs);
@@ -604,7 +285,7 @@ void IblPrecompute::buildDerived(IblMaps& maps, const Image& equirect, const Ibl
         {
             PassTimer timer(
                 maps, "irradiance",
-                "irradiance " + std::to_string(s.irradianceSize) + " by " + irradianceText(s),
+                "irradiance " + std::to_string(s.irradianceSize) + " by " + s.irradianceBy(),
                 onPass);
             buildIrradiance(maps, inputs);
         }
@@ -665,9 +346,9 @@ void IblPrecompute::buildPrefilter(IblMaps& maps, Inputs& inputs) {
                 mip);
         return;
     }
-    Defines defines;
-    if (s.prefilter == PrefilterMethod::Filtered) defines["PBRLAB_FILTERED_IS"] = "1";
-    auto p = program("prefilter", providerOf("uPrefilterMap"), defines);
+    auto p = s.prefilter == PrefilterMethod::Filtered
+                 ? hostProgram(kFilteredPrefilterShader, "uPrefilterMap")
+                 : stepProgram("uPrefilterMap");
     const GLuint source = inputs.sourceCube();
     p->use();
     gl::ActiveTexture(GL_TEXTURE0);
@@ -690,8 +371,8 @@ void IblPrecompute::buildIrradiance(IblMaps& maps, Inputs& inputs) {
         return;
     }
     auto p = s.irradiance == IrradianceMethod::Riemann
-                 ? program("irradiance_riemann", "")
-                 : program("irradiance", providerOf("uIrradianceMap"));
+                 ? hostProgram(kRiemannIrradianceShader, nullptr)
+                 : stepProgram("uIrradianceMap");
     const GLuint source = inputs.sourceCube();
     p->use();
     gl::ActiveTexture(GL_TEXTURE0);
@@ -710,22 +391,28 @@ void IblPrecompute::buildLut(IblMaps& maps) {
                                             : ", " + std::to_string(s.lutSamples) + " samples"),
         onPass);
     maps.lut = makeLutTexture(s.lutWidth, s.lutHeight);
+    auto p = s.lut == LutMethod::Quadrature ? hostProgram(kQuadratureLutShader, "uBrdfLut")
+                                            : stepProgram("uBrdfLut");
+    p->use();
+    p->setUnsigned("uSampleCount", unsigned(s.lutSamples));
+    renderSquare(maps.lut.id(), s.lutWidth, s.lutHeight, *p, "brdf lut");
+}
+
+void IblPrecompute::renderSquare(GLuint texture, int width, int height, const Program& program,
+                                 const std::string& pass) {
     gl::Handle fbo = gl::makeFramebuffer();
     gl::BindFramebuffer(GL_FRAMEBUFFER, fbo.id());
-    gl::FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, maps.lut.id(), 0);
+    gl::FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
     if (gl::CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw Error("brdf lut: target incomplete");
+        throw Error(pass + ": target incomplete");
     GLenum buffer = GL_COLOR_ATTACHMENT0;
     gl::DrawBuffers(1, &buffer);
-    gl::Viewport(0, 0, s.lutWidth, s.lutHeight);
-    auto p = s.lut == LutMethod::Quadrature ? program("brdf_lut_quadrature", providerOf("uBrdfLut"))
-                                            : program("brdf_lut", providerOf("uBrdfLut"));
-    p->use();
-    p->set("uSize", glm::vec2(float(s.lutWidth), float(s.lutHeight)));
-    p->setUnsigned("uSampleCount", unsigned(s.lutSamples));
+    gl::Viewport(0, 0, width, height);
+    program.use();
+    program.set("uSize", glm::vec2(float(width), float(height)));
     fullscreen_.draw();
     gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
-    gl::checkError("brdf lut");
+    gl::checkError(pass.c_str());
 }
 
 namespace {
@@ -787,7 +474,7 @@ std::vector<glm::dvec3> IblPrecompute::sampleCube(GLuint cube, float lod,
     gl::RenderTarget target(packed.width, 1, 1, false);
     target.bind();
     gl::Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-    auto p = program("probe_cube", "");
+    auto p = hostProgram("probe_cube", nullptr);
     p->use();
     gl::ActiveTexture(GL_TEXTURE0);
     gl::BindTexture(GL_TEXTURE_2D, source.id());

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "gl/objects.h"
+#include "pbrlab/contract.h"
 #include "pbrlab/image.h"
 #include "shader/program.h"
 
@@ -22,21 +23,21 @@ namespace pbrlab {
 
 // How the irradiance map and the rough prefiltered mips are computed (docs/ibl.md).
 enum class IrradianceMethod {
-    Bins,     // the environment binned per texel of a small cube (power, mean direction and
-              // spread of each bin), convolved with the cosine (ibl.cpp, convolveBins)
-    Step18,   // the step 18 reference solution (texel sum over a 32 x 32 mip)
-    Riemann,  // LearnOpenGL's Riemann sum over the hemisphere
+    Bins,      // the environment binned per texel of a small cube (power, mean direction and
+               // spread of each bin), convolved with the cosine (ibl.cpp, convolveBins)
+    StepPass,  // the pass the step providing uIrradianceMap declares (step 18's texel sum)
+    Riemann,   // LearnOpenGL's Riemann sum over the hemisphere
 };
 
 enum class PrefilterMethod {
     Bins,      // the same bins convolved with the prefilter's lobe
     Filtered,  // filtered importance sampling (each sample reads the mip of its solid angle)
-    Plain,     // the step 19 reference solution (GGX importance sampling)
+    StepPass,  // the pass the step providing uPrefilterMap declares (GGX importance sampling)
 };
 
 enum class LutMethod {
     Quadrature,  // Gauss-Legendre over the half vector, the exact range where N.L > 0 (GPU)
-    Step20,      // the step 20 reference solution (Hammersley Monte Carlo), on the GPU
+    StepPass,    // the pass the step providing uBrdfLut declares (Hammersley Monte Carlo)
 };
 
 struct IblSettings {
@@ -60,9 +61,12 @@ struct IblSettings {
     LutMethod lut = LutMethod::Quadrature;
     int lutWidth = 1024;  // N.V: the LUT changes fastest at grazing angles
     int lutHeight = 32;   // roughness
-    int lutSamples = 64;  // Step20: Monte Carlo samples (Quadrature: fixed, 64 nodes)
+    int lutSamples = 64;  // StepPass: Monte Carlo samples (Quadrature: fixed, 64 nodes)
 
     int source() const { return sourceSize > 0 ? sourceSize : prefilterSize; }
+    // How each map is computed, for labels: "bins 16", "64 filtered samples (bias 1)".
+    std::string irradianceBy() const;
+    std::string prefilterBy() const;
     std::string key() const;     // what the environment's maps depend on, for caches
     std::string lutKey() const;  // what the LUT depends on
     // One line for people: "irradiance bins 16 -> 32, prefilter 128 x5 64 samples FIS ...".
@@ -135,16 +139,29 @@ public:
                                        const std::vector<glm::dvec3>& directions);
 
 private:
-    std::shared_ptr<Program> program(const std::string& pass, const std::string& contractId,
-                                     const Defines& extra = {});
+    // The host's own method shaders (shaders/ibl/<stem>.frag).
+    static constexpr const char* kFilteredPrefilterShader = "prefilter_filtered";
+    static constexpr const char* kRiemannIrradianceShader = "irradiance_riemann";
+    static constexpr const char* kQuadratureLutShader = "lut_quadrature";
+    std::shared_ptr<Program> hostProgram(const std::string& shader, const char* linkedSampler,
+                                         const Defines& extra = {});
+    std::shared_ptr<Program> stepProgram(const char* sampler);
+    std::shared_ptr<Program> program(const std::string& label,
+                                     const std::filesystem::path& fragment,
+                                     const ContractStep* linked, const Defines& extra);
+    // The generic passes: every face of one cube mip, or one 2D texture, drawn full screen.
     void renderCube(GLuint cube, int size, int mip, const Program& program,
                     const std::string& pass);
+    void renderSquare(GLuint texture, int width, int height, const Program& program,
+                      const std::string& pass);
     struct Inputs;
     void buildIrradiance(IblMaps& maps, Inputs& inputs);
     void buildPrefilter(IblMaps& maps, Inputs& inputs);
     void buildLut(IblMaps& maps);
-    std::vector<std::filesystem::path> sources(const std::vector<std::string>& shaders,
-                                               const std::string& contractId) const;
+    // The files a map's programs read: the host's shaders and, for each sampler, the pass of
+    // the step that provides it and every solution that pass links.
+    std::vector<std::filesystem::path> sources(const std::vector<std::string>& hostShaders,
+                                               const std::vector<const char*>& samplers) const;
     std::string mapsKey(const Image& equirect, const IblSettings& settings) const;
     std::string lutKey(const IblSettings& settings) const;
     ProgramCache& programs_;
@@ -152,12 +169,13 @@ private:
     gl::FullscreenTriangle fullscreen_;
 };
 
-// The maps the precompute derives from the environment, by their contract sampler names. The
-// step each stands in for declares it (step.json "provides", findProvider): a view may read a
-// map only when that step comes before its own (no step sees what its own or a later step
-// computes).
+// The maps the precompute derives from the environment, by their contract sampler names, and
+// the kind of pass that fills each. The step each stands in for declares it (step.json
+// "precompute" or "provides", findProvider): a view may read a map only when that step comes
+// before its own (no step sees what its own or a later step computes).
 struct DerivedMap {
     const char* sampler;  // the contract's uniform name
+    ContractStep::PrecomputePass::Kind kind;
 };
 extern const DerivedMap kDerivedMaps[3];
 

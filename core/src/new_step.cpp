@@ -90,6 +90,10 @@ ModuleDesc describeModule() {
     d.reference = [](const Surface& s, const ReferenceContext&) {
         return glm::dvec3(halfLambert(s.normal, s.light));
     };
+    // What the GUI can show over any picture (its view chooser, `gui --view @ID@`).
+    d.termViews = {{"@ID@", TermView::Encode::None, [](const Surface& s) {
+                        return glm::dvec3(halfLambert(s.normal, s.light));
+                    }}};
     // x: angle between N and L, 0 to 180 degrees; y: azimuth of L around N.
     d.probe.xAxis = "angle(N, L) 0..180 deg";
     d.probe.yAxis = "azimuth of L 0..360 deg";

@@ -86,6 +86,19 @@ ModuleDesc describeModule() {
             {"reciprocity max |f(V,L) - f(L,V)| / f", worst, "<= 1e-4", worst <= 1e-4,
              "f_r(V, L) = f_r(L, V) for any BRDF: something treats V and L differently"}};
     };
+    // The diffuse weight kD = (1 - F)(1 - metallic) and the Lambert half of the BRDF
+    // (kD albedo / pi) have no function of their own: they are written inside
+    // ref::cookTorranceBRDF, as here.
+    auto diffuseWeight = [](const Surface& s) {
+        const glm::dvec3 F = ref::fresnelSchlick(
+            std::max(glm::dot(ref::halfwayVector(s.light, s.view), s.view), 0.0),
+            ref::baseReflectivity(s.albedo, s.metallic));
+        return (1.0 - F) * (1.0 - s.metallic);
+    };
+    d.termViews = {{"kD", TermView::Encode::None, diffuseWeight},
+                   {"diffuse", TermView::Encode::Radiance, [diffuseWeight](const Surface& s) {
+                        return diffuseWeight(s) * s.albedo / ref::kPi * incidentIrradiance(s);
+                    }}};
     return d;
 }
 

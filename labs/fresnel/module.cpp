@@ -84,6 +84,14 @@ ModuleDesc describeModule() {
             {"|F(0 deg) - F0|", e0, "<= 1e-3", e0 <= 1e-3, "head-on, Schlick's F is F0"},
             {"|F(90 deg) - 1|", e90, "<= 1e-3", e90 <= 1e-3, "at grazing incidence F is 1"}};
     };
+    // F on V.H, as the BRDF uses it; the specular weight kS is F itself.
+    auto fresnelOnHalfway = [](const Surface& s) {
+        return ref::fresnelSchlick(
+            std::max(glm::dot(ref::halfwayVector(s.light, s.view), s.view), 0.0),
+            ref::baseReflectivity(s.albedo, s.metallic));
+    };
+    d.termViews = {{"F", TermView::Encode::None, fresnelOnHalfway},
+                   {"kS", TermView::Encode::None, fresnelOnHalfway}};
     return d;
 }
 

@@ -81,6 +81,11 @@ ModuleDesc describeModule() {
         }
         return out;
     };
+    d.termViews = {{"D", TermView::Encode::None, [](const Surface& s) {
+                        const double D = ref::distributionGGX(
+                            s.normal, ref::halfwayVector(s.light, s.view), s.roughness);
+                        return glm::dvec3(D / (1 + D));  // compresses the peak for display
+                    }}};
     return d;
 }
 

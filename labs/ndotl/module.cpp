@@ -42,6 +42,9 @@ ModuleDesc describeModule() {
                    std::cos(theta)};
         return s;
     };
+    d.termViews = {{"N.L", TermView::Encode::None, [](const Surface& s) {
+                        return glm::dvec3(ref::lambertCosine(s.normal, s.light));
+                    }}};
     return d;
 }
 

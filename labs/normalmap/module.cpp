@@ -58,6 +58,9 @@ ModuleDesc describeModule() {
         s.normalTexel = {r, y, 0.5 + 0.5 * std::sqrt(std::max(1 - nx * nx - ny * ny, 0.0))};
         return s;
     };
+    d.termViews = {{"mapped normal", TermView::Encode::None, [](const Surface& s) {
+                        return 0.5 + 0.5 * ref::normalFromMap(s.normal, s.tangent, s.normalTexel);
+                    }}};
     return d;
 }
 

@@ -66,6 +66,10 @@ ModuleDesc describeModule() {
             {"smallest G", lo, ">= 0", lo >= 0, "G is a visible fraction"},
             {"largest G", hi, "<= 1 (+1e-5)", hi <= 1 + 1e-5, "G is a visible fraction"}};
     };
+    d.termViews = {{"G", TermView::Encode::None, [](const Surface& s) {
+                        return glm::dvec3(
+                            ref::geometrySmith(s.normal, s.view, s.light, s.roughness));
+                    }}};
     return d;
 }
 

@@ -94,6 +94,12 @@ ModuleDesc describeModule() {
         }
         return out;
     };
+    d.termViews = {{"specular", TermView::Encode::Radiance, [](const Surface& s) {
+                        return ref::cookTorranceSpecular(
+                                   s.normal, s.view, s.light,
+                                   ref::baseReflectivity(s.albedo, s.metallic), s.roughness) *
+                               incidentIrradiance(s);
+                    }}};
     return d;
 }
 

@@ -247,7 +247,7 @@ void Lab::compose(const GuiState& state) {
         }
         case View::Term:
             shown =
-                termImage(kTermViews[size_t(state.term)], shown_.solutionValue, shown_.surfaces);
+                termImage(termViews_.at(size_t(state.term)), shown_.solutionValue, shown_.surfaces);
             break;
     }
     // Count what cannot be shown honestly, for the warning line.

@@ -39,6 +39,7 @@ const std::vector<std::string> kTabs = {"handout", "plot", "log", "programs", "c
 Lab::Lab(const GuiOptions& options, GuiState& state) : options_(options) {
     paths_ = DataPaths::locate();
     registry_ = std::make_unique<ModuleRegistry>(options.modulesDirs);
+    termViews_ = pbrlab::termViews(*registry_);
     for (const auto& f : registry_->failures())
         shown_.messages += "module " + f.library.string() + " not loaded: " + f.reason + "\n";
     if (registry_->modules().empty())
@@ -70,7 +71,7 @@ Lab::Lab(const GuiOptions& options, GuiState& state) : options_(options) {
     if (!state.sceneName.empty() || !state.model.empty()) loadScene(state);
     for (const auto& s : options.sets)
         applyAssignment(module(state).params, state.params[module(state).id], s);
-    if (!options.view.empty()) parseView(options.view, state.view, state.term);
+    if (!options.view.empty()) parseView(options.view, termViews_, state.view, state.term);
     if (!options.tab.empty() && std::find(kTabs.begin(), kTabs.end(), options.tab) == kTabs.end())
         throw Error("--tab " + options.tab +
                     ": unknown tab; one of handout, plot, log, programs, console");

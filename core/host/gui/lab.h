@@ -91,6 +91,8 @@ public:
     const Shown& shown() const { return shown_; }
     Shown& shown() { return shown_; }
     const std::vector<int>& liveSizes() const { return liveSizes_; }  // for --orbit's report
+    // The term views of the loaded steps (term_views.h), in the view chooser's order.
+    const std::vector<TermView>& termViews() const { return termViews_; }
 
 private:
     void select(GuiState& state, int index);
@@ -106,6 +108,7 @@ private:
     GuiOptions options_;
     DataPaths paths_;
     std::unique_ptr<ModuleRegistry> registry_;
+    std::vector<TermView> termViews_;
     std::unique_ptr<LabRenderer> renderer_;
     std::unique_ptr<DisplayPass> displayPass_;
     std::filesystem::path submission_;

@@ -14,17 +14,18 @@ namespace pbrlab {
 
 namespace {
 
-void viewChooser(GuiState& state, Requests& requests) {
+void viewChooser(const Lab& lab, GuiState& state, Requests& requests) {
+    const std::vector<TermView>& terms = lab.termViews();
     ImGui::SetNextItemWidth(170);
-    if (!ImGui::BeginCombo("view", viewName(state.view, state.term).c_str())) return;
+    if (!ImGui::BeginCombo("view", viewName(state.view, state.term, terms).c_str())) return;
     for (View v : kImageViews)
         if (ImGui::Selectable(viewName(v, 0).c_str(), state.view == v)) {
             state.view = v;
             requests.recompose = true;
         }
     ImGui::Separator();
-    for (size_t i = 0; i < kTermViews.size(); ++i)
-        if (ImGui::Selectable(kTermViews[i].name,
+    for (size_t i = 0; i < terms.size(); ++i)
+        if (ImGui::Selectable(terms[i].name.c_str(),
                               state.view == View::Term && state.term == int(i))) {
             state.view = View::Term;
             state.term = int(i);
@@ -123,7 +124,7 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
     const Shown& shown = lab.shown();
     ImGui::Text("%d. %s", d.step, d.title.c_str());
     ImGui::TextDisabled("%s", d.function.c_str());
-    viewChooser(state, requests);
+    viewChooser(lab, state, requests);
     if (state.view == View::Difference) {
         ImGui::SameLine();
         ImGui::SetNextItemWidth(160);
@@ -165,7 +166,7 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
     // The live picture is the student's (or the solution's): other views follow when still.
     if (shown.liveTexture && state.view != View::Student && state.view != View::Solution)
         ImGui::TextDisabled("moving: %s picture; the %s view follows when you stop", shown.liveWho,
-                            viewName(state.view, state.term).c_str());
+                            viewName(state.view, state.term, lab.termViews()).c_str());
     if (legend > 0) {
         ImGui::SameLine();
         drawLegend(difference ? 0.0 : d.display.lo,

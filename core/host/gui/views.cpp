@@ -1,11 +1,10 @@
 #include "views.h"
 
 #include "pbrlab/error.h"
-#include "term_views.h"
 
 namespace pbrlab {
 
-std::string viewName(View view, int term) {
+std::string viewName(View view, int term, const std::vector<TermView>& terms) {
     switch (view) {
         case View::Student:
             return "student";
@@ -20,10 +19,10 @@ std::string viewName(View view, int term) {
         case View::Term:
             break;
     }
-    return kTermViews[size_t(term)].name;
+    return terms.at(size_t(term)).name;
 }
 
-void parseView(const std::string& name, View& view, int& term) {
+void parseView(const std::string& name, const std::vector<TermView>& terms, View& view, int& term) {
     std::string known;
     for (View v : kImageViews) {
         if (viewName(v, 0) == name) {
@@ -32,13 +31,13 @@ void parseView(const std::string& name, View& view, int& term) {
         }
         known += (known.empty() ? "" : ", ") + viewName(v, 0);
     }
-    for (size_t i = 0; i < kTermViews.size(); ++i) {
-        if (kTermViews[i].name == name) {
+    for (size_t i = 0; i < terms.size(); ++i) {
+        if (terms[i].name == name) {
             view = View::Term;
             term = int(i);
             return;
         }
-        known += std::string(", ") + kTermViews[i].name;
+        known += ", " + terms[i].name;
     }
     throw Error("--view " + name + ": unknown view; one of " + known);
 }

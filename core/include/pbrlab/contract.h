@@ -5,6 +5,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,21 @@ struct ContractStep {
     // The host's precomputed maps (contract samplers) that hold this step's quantity: a view may
     // read one only when this step comes before its own.
     std::vector<std::string> provides;
+    // The pass that computes such a map with this step's reference solution (step.json
+    // "precompute"): the host knows how to run a kind of pass, the step says which shader and
+    // which sampler. Its sampler is in `provides` too.
+    struct PrecomputePass {
+        enum class Kind {
+            Cube,      // one cube map level: uFace, uSize (the face's side) set per face
+            CubeMips,  // a cube map's mips, one draw per mip and face: uRoughness = mip / (mips -
+                       // 1)
+            Square,    // one 2D texture: uSize (width, height)
+        };
+        Kind kind = Kind::Cube;
+        std::filesystem::path shader;  // a fragment shader in the step folder
+        std::string sampler;           // the contract sampler its map is bound to
+    };
+    std::optional<PrecomputePass> precompute;
     // More pictures of the step in the gallery, besides its default view: on a generated model
     // (assets/models) or a scene (assets/scenes), each one of the two.
     struct GalleryView {

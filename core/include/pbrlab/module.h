@@ -22,7 +22,7 @@
 namespace pbrlab {
 
 // Bump when ModuleDesc or anything it contains changes layout.
-constexpr int kModuleAbiVersion = 5;
+constexpr int kModuleAbiVersion = 6;
 
 // Everything a contract function may take, per pixel. The GPU fills the same fields in
 // GLSL (shaders/surface.glsl) from the G-buffer (scene) or from uploaded textures (probe), so
@@ -50,6 +50,24 @@ inline double grazingBand(const Surface& s) {
     double t = std::clamp((d - 0.05) / 0.05, 0.0, 1.0);
     return t * t * (3 - 2 * t);
 }
+
+// The light arriving at the point from the first light, times N.L: what a BRDF term is
+// multiplied by to show its share of the picture (the term views of the BRDF's steps).
+inline glm::dvec3 incidentIrradiance(const Surface& s) {
+    return ref::pointLightRadiance(s.lightColor, s.lightPosition, s.position) *
+           ref::lambertCosine(s.normal, s.light);
+}
+
+// One quantity of a step's lesson shown over the picture (the GUI's term views): computed per
+// pixel with the CPU references from the surfaces the G-buffer held, so a student sees where a
+// term is large or small on the object itself.
+struct TermView {
+    std::string name;  // as the view chooser and --view name it ("D", "kD")
+    // How the value is shown: linear colours and radiance are display-encoded; the rest
+    // (factors in [0, 1], directions mapped to [0, 1]) are shown as they are.
+    enum class Encode { None, LinearColor, Radiance } encode = Encode::None;
+    std::function<glm::dvec3(const Surface&)> value;
+};
 
 // What a CPU reference may read besides the surface.
 struct ReferenceContext {
@@ -328,6 +346,9 @@ struct ModuleDesc {
     // invariants that need other outputs than the picture's (the raw sample of a sampler).
     std::vector<std::string> extraViews;
     InvariantsFn invariants;  // optional
+    // The quantities of this step's lesson the GUI can show over any picture, after the scene
+    // inputs and the earlier steps' (in step order).
+    std::vector<TermView> termViews;
 
     const Tolerance& toleranceFor(int component) const {
         return componentTolerances.empty() ? tolerance

@@ -1,9 +1,10 @@
-// Precompute: one mip of the prefiltered environment, from the source cube bound as
-// uEnvironment. By default with the step `prefilter` function; with PBRLAB_FILTERED_IS, filtered
-// importance sampling (Krivanek and Colbert, GPU Gems 3, ch. 20): each sample reads the source
-// mip whose texel covers about the solid angle the sample stands for, 1 / (n pdf), plus
-// uLodBias mips, so a small bright sun is averaged instead of hit or missed (no fireflies on
-// rough surfaces at modest sample counts). The bias is chosen by measured error (docs/ibl.md).
+// Precompute, a method of the host's (IblSettings::prefilter = Filtered): one mip of the
+// prefiltered environment by filtered importance sampling (Krivanek and Colbert, GPU Gems 3,
+// ch. 20), from the source cube bound as uEnvironment. Each sample reads the source mip whose
+// texel covers about the solid angle the sample stands for, 1 / (n pdf), plus uLodBias mips,
+// so a small bright sun is averaged instead of hit or missed (no fireflies on rough surfaces at
+// modest sample counts). The bias is chosen by measured error (docs/ibl.md). Linked with the
+// reference solutions of the step that provides uPrefilterMap (its samplers and D).
 #include "ibl/cube_face.glsl"
 
 uniform int uFace;
@@ -13,7 +14,6 @@ uniform uint uSampleCount;
 uniform float uLodBias;
 layout(location = 0) out vec4 outColor;
 
-#ifdef PBRLAB_FILTERED_IS
 vec3 pbrlab_prefilterFiltered(vec3 R, float roughness, uint sampleCount)
 {
     vec3 N = R, V = R;
@@ -37,14 +37,9 @@ vec3 pbrlab_prefilterFiltered(vec3 R, float roughness, uint sampleCount)
     }
     return weight > 0.0 ? sum / weight : textureLod(uEnvironment, R, 0.0).rgb;
 }
-#endif
 
 void main()
 {
     vec3 R = pbrlab_cubeDirection(uFace, gl_FragCoord.xy, uSize);
-#ifdef PBRLAB_FILTERED_IS
     outColor = vec4(pbrlab_prefilterFiltered(R, uRoughness, uSampleCount), 1.0);
-#else
-    outColor = vec4(prefilterEnvironment(R, uRoughness, uSampleCount), 1.0);
-#endif
 }

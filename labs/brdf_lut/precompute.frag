@@ -1,5 +1,5 @@
-// Precompute: the split-sum BRDF LUT with the step `brdf_lut` function (Monte Carlo); texel centres map
-// to x = N.V and y = roughness.
+// Precompute (step.json "precompute", kind square): the split-sum BRDF LUT with this step's
+// integrateBRDF (Monte Carlo); texel centres map to x = N.V and y = roughness.
 uniform vec2 uSize;
 uniform uint uSampleCount;
 layout(location = 0) out vec4 outColor;

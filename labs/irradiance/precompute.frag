@@ -1,4 +1,5 @@
-// Precompute: the irradiance cube (stores E/PI) with the step `irradiance` function.
+// Precompute (step.json "precompute", kind cube): the irradiance cube (stores E/PI) with this
+// step's irradianceAt.
 #include "ibl/cube_face.glsl"
 
 uniform int uFace;

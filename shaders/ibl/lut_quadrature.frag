@@ -1,5 +1,6 @@
-// Precompute: the split-sum BRDF LUT (the step `brdf_lut` integrals, scale A and bias B) by
-// deterministic quadrature instead of Monte Carlo; texel centres map to x = N.V and
+// Precompute, the host's default method for uBrdfLut (IblSettings::lut = Quadrature): the
+// split-sum BRDF LUT (the integrals of the step that provides uBrdfLut, scale A and bias B)
+// by deterministic quadrature instead of Monte Carlo; texel centres map to x = N.V and
 // y = roughness. The integral over half vectors H of ((1 - Fc), Fc) G_vis pdf(H) becomes,
 // with u the GGX distribution function of the half vector's angle theta (as in importance
 // sampling, so the lobe's peak is spread evenly over u) and the azimuth phi,
