@@ -7,7 +7,6 @@
 #include <fstream>
 #include <future>
 #include <iostream>
-#include <limits>
 #include <thread>
 
 #include "parallel.h"
@@ -23,15 +22,14 @@ namespace pbrlab {
 
 namespace {
 
-// A host-made module: one of shaders/converge/<name>/view.glsl with every step's reference
-// solution linked in (as every view is), placed after every step so that it may read every
-// precomputed map.
+// A view of the host's own, not a step: shaders/converge/<name>/view.glsl with every step's
+// reference solution linked in (as every view is). Its id names no contract step, so the
+// renderer lets it read every precomputed map (LabRenderer::mayRead).
 struct Method {
     ModuleDesc desc;
     LoadedModule module;
     Method(const DataPaths& paths, const std::string& name, std::vector<ParamDecl> params = {}) {
-        desc.id = "converge_" + name;
-        desc.step = std::numeric_limits<int>::max();
+        desc.id = name;
         desc.components = 3;
         desc.needs = NeedsMaterial | NeedsEnvironment;
         desc.params = std::move(params);

@@ -151,12 +151,15 @@ std::uint64_t LabRenderer::environmentDigest(const Scene& scene, const IblSettin
 bool LabRenderer::mayRead(const ModuleDesc& d, const std::string& sampler) {
     if (!(d.needs & NeedsEnvironment)) return false;
     if (sampler == "uEnvironment") return true;
+    // A view that is no step of the contract is the host's own (the error-against-run-time
+    // study's methods): it compares every map, so it may read them all.
+    const ContractStep* self = findContractStep(d.id);
     for (const DerivedMap& map : kDerivedMaps)
         if (sampler == map.sampler) {
             // A map no step declares is the host's alone: any step that needs the environment
             // may read it.
             const ContractStep* producer = findProvider(sampler);
-            return !producer || producer->step < d.step;
+            return !self || !producer || producer->step < self->step;
         }
     return false;
 }

@@ -104,7 +104,7 @@ public:
             ->required();
     }
     int run(const GlobalOptions&) override {
-        parseView(view_, state().view, state().term);
+        parseView(view_, lab().termViews(), state().view, state().term);
         requests().recompose = true;
         return 0;
     }
