@@ -13,6 +13,8 @@
 #include <set>
 #include <thread>
 
+#include "batch.h"
+#include "classroom.h"
 #include "converge.h"
 #include "evaluate.h"
 #include "gl/context.h"
@@ -523,12 +525,21 @@ int main(int argc, char** argv) {
     auto* gradeCmd = app.add_subcommand(
         "grade",
         "Grade a submission folder: every module isolated, stepwise; exit 0 when "
-        "grading ran, whatever the score");
+        "grading ran, whatever the score (unless --fail-unless-passed)");
     std::string batchDir, batchOut;
     gradeCmd->add_option("submission", gradeOptions.submission, "Folder with <id>.glsl files");
     gradeCmd->add_option("--batch", batchDir,
                          "Grade every sub-folder of this folder (one submission each)");
-    gradeCmd->add_option("--out", batchOut, "With --batch: where the reports go");
+    gradeCmd->add_option("--out", batchOut, "With --batch or --merge: where the reports go");
+    std::string batchShard;
+    std::vector<std::string> mergeDirs;
+    bool failUnlessPassed = false;
+    gradeCmd->add_option("--shard", batchShard,
+                         "With --batch: grade only shard I of N (I/N, 0-based, by name)");
+    gradeCmd->add_option("--merge", mergeDirs,
+                         "Merge the outputs of --batch --shard runs into one class report");
+    gradeCmd->add_flag("--fail-unless-passed", failUnlessPassed,
+                       "Exit 1 unless every graded step passed (a CI points row per step)");
     gradeCmd->add_option("--steps", gradeModules, "Comma-separated step ids (default: all)");
     gradeCmd->add_option("--json", gradeJsonFile, "Write pbrlab's JSON report here");
     gradeCmd->add_option("--gradescope", gradescopeFile, "Write Gradescope's results.json here");
@@ -538,10 +549,29 @@ int main(int argc, char** argv) {
     gradeCmd->add_option("--timeout", gradeOptions.timeoutSeconds, "Seconds per module (60)");
     gradeOptions.jobs = int(std::max(1u, std::thread::hardware_concurrency()));
     gradeCmd->add_option("--jobs", gradeOptions.jobs,
-                         "Modules graded at once (default: one per core)");
+                         "Grading processes at once (default: one per core; --batch shares them "
+                         "between submissions)");
     gradeCmd->add_option("--seed", gradeOptions.settings.seed,
                          "Seed of the random domain points (default 1: instructors may keep "
                          "their own)");
+    std::string classroomAssignment, classroomSteps, classroomOut;
+    ClassroomOptions classroom;
+    int classroomPoints = 1;
+    auto* classroomCmd = app.add_subcommand(
+        "classroom",
+        "Write .github/workflows/classroom.yml: GitHub Classroom's command grader, one points "
+        "row per step (student-controlled feedback, not a grade)");
+    classroomCmd->add_option("--assignment", classroomAssignment,
+                             "Steps and points from this assignment.json");
+    classroomCmd->add_option("--steps", classroomSteps,
+                             "Without --assignment: comma-separated step ids (default: all)");
+    classroomCmd->add_option("--points", classroomPoints,
+                             "Without --assignment: whole points per step (default 1)");
+    classroomCmd->add_option("--repository", classroom.pbrlabRepository,
+                             "GitHub repository the workflow builds pbrlab from (OWNER/NAME)");
+    classroomCmd
+        ->add_option("--out", classroomOut, "Folder that gets .github/workflows/classroom.yml")
+        ->required();
     ConvergeOptions converge;
     auto* convergeCmd = app.add_subcommand(
         "converge", "Error against run time of the IBL approximations: CSV, table and plot");
@@ -680,48 +710,23 @@ int main(int argc, char** argv) {
             for (std::string id; std::getline(ids, id, ',');)
                 if (!id.empty()) gradeOptions.modules.push_back(id);
         }
+        if (*gradeCmd && !mergeDirs.empty()) {
+            if (batchOut.empty()) throw Error("--merge needs --out DIR for the class report");
+            mergeBatches({mergeDirs.begin(), mergeDirs.end()}, batchOut);
+            std::cout << "wrote " << (fs::path(batchOut) / "class.html").string() << "\n";
+            return 0;
+        }
         if (*gradeCmd && !batchDir.empty()) {
             Session session(o, false);
-            if (batchOut.empty()) throw Error("--batch needs --out DIR for the reports");
-            std::vector<fs::path> subs;
-            for (const auto& e : fs::directory_iterator(batchDir)) {
-                std::error_code ec;
-                if (e.is_directory(ec)) subs.push_back(e.path());
-            }
-            std::sort(subs.begin(), subs.end());
-            std::ofstream summary;
-            fs::create_directories(batchOut);
-            std::string table = "submission,score,max_score,seconds\n";
-            for (size_t i = 0; i < subs.size(); ++i) {
-                // A progress bar on stderr: [#####.....] 5/10 name
-                const int width = 30;
-                int filled = int(width * i / std::max<size_t>(subs.size(), 1));
-                std::cerr << "\r[" << std::string(size_t(filled), '#')
-                          << std::string(size_t(width - filled), '.') << "] " << i << "/"
-                          << subs.size() << " " << subs[i].filename().string() << "   "
-                          << std::flush;
-                GradeOptions each = gradeOptions;
-                fs::path out = fs::path(batchOut) / subs[i].filename();
-                each.html = out / "html";
-                try {
-                    each.submission = fs::canonical(subs[i]);
-                    GradeReport report = gradeSubmission(*session.modules, session.paths, each);
-                    writeFileAtomically(out / "report.json", jsonText(toJson(report)));
-                    writeFileAtomically(out / "results.json", jsonText(toGradescope(report)));
-                    writeHtml(report, each.html);
-                    table += subs[i].filename().string() + "," + std::to_string(report.score) +
-                             "," + std::to_string(report.maxScore) + "," +
-                             std::to_string(report.seconds) + "\n";
-                } catch (const std::exception& e) {
-                    // One unreadable submission folder stops nothing: it is listed with why.
-                    std::cerr << "\nerror: " << subs[i].string() << ": " << e.what() << "\n";
-                    table += subs[i].filename().string() + ",0,0,0\n";
-                }
-            }
-            std::cerr << "\r[" << std::string(30, '#') << "] " << subs.size() << "/" << subs.size()
-                      << " done" << std::string(20, ' ') << "\n";
-            writeFileAtomically(fs::path(batchOut) / "summary.csv", table);
-            std::cout << table;
+            BatchOptions batch;
+            batch.batch = batchDir;
+            batch.out = batchOut;
+            batch.grade = gradeOptions;
+            if (!batchShard.empty()) std::tie(batch.shard, batch.shards) = parseShard(batchShard);
+            BatchSummary done = gradeBatch(*session.modules, session.paths, batch);
+            std::cout << done.students << " submissions: " << done.graded << " graded, "
+                      << done.skipped << " unchanged, " << done.errors << " not graded; "
+                      << (fs::path(batchOut) / "class.html").string() << "\n";
             return 0;
         }
         if (*gradeCmd) {
@@ -742,6 +747,9 @@ int main(int argc, char** argv) {
             if (!gradescopeFile.empty())
                 writeFileAtomically(gradescopeFile, jsonText(toGradescope(report)));
             if (!gradeOptions.html.empty()) writeHtml(report, gradeOptions.html);
+            if (failUnlessPassed)
+                for (const auto& g : report.modules)
+                    if (g.status != "passed") return 1;
             return 0;
         }
         if (*convergeCmd) {
@@ -759,6 +767,16 @@ int main(int argc, char** argv) {
                             r.precomputeMs, r.rmse, r.maxError, r.displayRmse);
             std::cout << "wrote " << (converge.out / "converge.csv").string() << " and "
                       << (converge.out / "converge.png").string() << "\n";
+            return 0;
+        }
+        if (*classroomCmd) {
+            Session session(o, false);
+            classroom.steps = classroomAssignment.empty()
+                                  ? listedSteps(*session.modules, classroomSteps, classroomPoints)
+                                  : assignmentSteps(*session.modules, classroomAssignment);
+            const fs::path file = fs::path(classroomOut) / ".github/workflows/classroom.yml";
+            writeFileAtomically(file, classroomWorkflow(classroom));
+            std::cout << "wrote " << file.string() << " (" << classroom.steps.size() << " steps)\n";
             return 0;
         }
         if (*kitCmd) {
