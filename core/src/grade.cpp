@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -83,9 +84,52 @@ void writeImages(LabRenderer& renderer, const LoadedModule& m, const DataPaths& 
     for (const auto& v : e.band.expected)
         for (int c = 0; c < d.components; ++c)
             if (std::isfinite(v[c])) peak = std::max(peak, std::abs(v[c]));
+    const double range = std::max(0.5 * peak, 1e-6);
     writeImage(dir / "difference.png",
-               differenceImage(e.render.value, reference, d.components, std::max(0.5 * peak, 1e-6)),
-               FileDepth::Uint8, true);
+               differenceImage(e.render.value, reference, d.components, range), FileDepth::Uint8,
+               true);
+    // The scale the report's colour bar shows beside the difference image.
+    writeFileAtomically(dir / "difference.json", json{{"range", range}}.dump() + "\n");
+}
+
+// The difference image's colour bar: the false-colour map from 0 to the image's range (errors
+// beyond it saturate), and the colours of NaN and Inf.
+std::string colourBar(const fs::path& scaleFile) {
+    double range = 0;
+    try {
+        std::ifstream in(scaleFile);
+        range = json::parse(in).at("range").get<double>();
+    } catch (const std::exception&) {
+        return "";
+    }
+    auto hex = [](const glm::dvec3& c) {
+        char text[8];
+        std::snprintf(text, sizeof text, "#%02x%02x%02x", int(std::lround(c.r * 255)),
+                      int(std::lround(c.g * 255)), int(std::lround(c.b * 255)));
+        return std::string(text);
+    };
+    auto label = [](double v) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.3g", v);
+        return std::string(text);
+    };
+    const std::string id = "scale-" + scaleFile.parent_path().filename().string();  // the step
+    std::ostringstream s;
+    s << "<br><svg width=160 height=44 role=img><title>|student - reference| per pixel (largest "
+         "channel): dark 0, bright "
+      << label(range) << " or more</title><defs><linearGradient id=" << id << ">";
+    for (int i = 0; i <= 8; ++i)
+        s << "<stop offset=" << i * 12.5 << "% stop-color=" << hex(falseColor(i / 8.0)) << " />";
+    s << "</linearGradient></defs><rect width=160 height=10 fill=url(#" << id << ") />"
+      << "<text x=0 y=22 fill=#999 font-size=10>0</text><text x=80 y=22 fill=#999 font-size=10 "
+         "text-anchor=middle>"
+      << label(range / 2) << "</text><text x=160 y=22 fill=#999 font-size=10 text-anchor=end>&ge;"
+      << label(range) << "</text><rect x=0 y=31 width=9 height=9 fill=" << hex(kNanColor)
+      << " /><text x=12 y=40 fill=#999 font-size=10>NaN</text><rect x=42 y=31 width=9 height=9 "
+         "fill="
+      << hex(kInfColor) << " /><text x=54 y=40 fill=#999 font-size=10>Inf</text>"
+      << "<text x=160 y=40 fill=#999 font-size=10 text-anchor=end>|error|</text></svg>";
+    return s.str();
 }
 
 // One module graded in a child process: what the parent keeps while it runs.
@@ -470,8 +514,9 @@ void writeHtml(const GradeReport& r, const fs::path& folder) {
         h << "<tr><td>" << escape(g.id) << "<br><small>" << escape(g.title)
           << "</small></td><td class=" << g.status << ">" << g.status << "<br>" << g.score << " / "
           << g.maxScore << "</td>";
-        for (const char* img : {"student", "reference", "difference"})
+        for (const std::string img : {"student", "reference", "difference"})
             h << "<td>" << (images ? "<img width=160 src=\"" + g.id + "/" + img + ".png\">" : "")
+              << (images && img == "difference" ? colourBar(folder / g.id / "difference.json") : "")
               << "</td>";
         h << "<td><pre>" << escape(g.message) << "</pre>";
         if (!g.checks.empty()) {

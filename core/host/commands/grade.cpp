@@ -8,6 +8,8 @@
 #include <iostream>
 #include <thread>
 
+#include "batch.h"
+#include "classroom.h"
 #include "kit.h"
 #include "mutation.h"
 #include "new_step.h"
@@ -31,7 +33,7 @@ public:
     GradeCommand()
         : Command("grade",
                   "Grade a submission folder: every module isolated, stepwise; exit 0 when "
-                  "grading ran, whatever the score") {
+                  "grading ran, whatever the score (unless --fail-unless-passed)") {
         options_.jobs = defaultJobs();
     }
     void declare(CLI::App& cmd) override {
@@ -40,7 +42,13 @@ public:
                        "Folder with <id>.glsl files");
         cmd.add_option("--batch", batchDir_,
                        "Grade every sub-folder of this folder (one submission each)");
-        cmd.add_option("--out", batchOut_, "With --batch: where the reports go");
+        cmd.add_option("--out", batchOut_, "With --batch or --merge: where the reports go");
+        cmd.add_option("--shard", batchShard_,
+                       "With --batch: grade only shard I of N (I/N, 0-based, by name)");
+        cmd.add_option("--merge", mergeDirs_,
+                       "Merge the outputs of --batch --shard runs into one class report");
+        cmd.add_flag("--fail-unless-passed", failUnlessPassed_,
+                     "Exit 1 unless every graded step passed (a CI points row per step)");
         cmd.add_option("--steps", options_.modules,
                        "Step ids, comma-separated or repeated (default: all)")
             ->delimiter(',');
@@ -49,14 +57,17 @@ public:
         cmd.add_option("--html", options_.html, "Write an HTML report with images here");
         cmd.add_flag("--cumulative", options_.cumulative, help::cumulative);
         cmd.add_option("--timeout", options_.timeoutSeconds, "Seconds per module (60)");
-        cmd.add_option("--jobs", options_.jobs, "Modules graded at once (default: one per core)");
+        cmd.add_option("--jobs", options_.jobs,
+                       "Grading processes at once (default: one per core; --batch shares them "
+                       "between submissions)");
         cmd.add_option("--seed", options_.settings.seed,
                        "Seed of the random domain points (default 1: instructors may keep "
                        "their own)");
     }
     int run(const GlobalOptions& global) override {
         std::erase(options_.modules, std::string());  // "--steps a,,b"
-        return batchDir_.empty() ? gradeOne(global) : gradeBatch(global);
+        if (!mergeDirs_.empty()) return merge();
+        return batchDir_.empty() ? gradeOne(global) : gradeClass(global);
     }
 
 private:
@@ -76,54 +87,70 @@ private:
         if (!gradescopeFile_.empty())
             writeFileAtomically(gradescopeFile_, jsonText(toGradescope(report)));
         if (!options_.html.empty()) writeHtml(report, options_.html);
+        if (failUnlessPassed_)
+            for (const auto& g : report.modules)
+                if (g.status != "passed") return 1;
         return 0;
     }
 
-    int gradeBatch(const GlobalOptions& global) {
+    int merge() {
+        if (batchOut_.empty()) throw Error("--merge needs --out DIR for the class report");
+        mergeBatches({mergeDirs_.begin(), mergeDirs_.end()}, batchOut_);
+        std::cout << "wrote " << (fs::path(batchOut_) / "class.html").string() << "\n";
+        return 0;
+    }
+
+    int gradeClass(const GlobalOptions& global) {
         Session session(global, false);
-        if (batchOut_.empty()) throw Error("--batch needs --out DIR for the reports");
-        std::vector<fs::path> subs;
-        for (const auto& e : fs::directory_iterator(batchDir_)) {
-            std::error_code ec;
-            if (e.is_directory(ec)) subs.push_back(e.path());
-        }
-        std::sort(subs.begin(), subs.end());
-        fs::create_directories(batchOut_);
-        std::string table = "submission,score,max_score,seconds\n";
-        for (size_t i = 0; i < subs.size(); ++i) {
-            // A progress bar on stderr: [#####.....] 5/10 name
-            const int width = 30;
-            int filled = int(width * i / std::max<size_t>(subs.size(), 1));
-            std::cerr << "\r[" << std::string(size_t(filled), '#')
-                      << std::string(size_t(width - filled), '.') << "] " << i << "/" << subs.size()
-                      << " " << subs[i].filename().string() << "   " << std::flush;
-            GradeOptions each = options_;
-            fs::path out = fs::path(batchOut_) / subs[i].filename();
-            each.html = out / "html";
-            try {
-                each.submission = fs::canonical(subs[i]);
-                GradeReport report = gradeSubmission(*session.modules, session.paths, each);
-                writeFileAtomically(out / "report.json", jsonText(toJson(report)));
-                writeFileAtomically(out / "results.json", jsonText(toGradescope(report)));
-                writeHtml(report, each.html);
-                table += subs[i].filename().string() + "," + std::to_string(report.score) + "," +
-                         std::to_string(report.maxScore) + "," + std::to_string(report.seconds) +
-                         "\n";
-            } catch (const std::exception& e) {
-                // One unreadable submission folder stops nothing: it is listed with why.
-                std::cerr << "\nerror: " << subs[i].string() << ": " << e.what() << "\n";
-                table += subs[i].filename().string() + ",0,0,0\n";
-            }
-        }
-        std::cerr << "\r[" << std::string(30, '#') << "] " << subs.size() << "/" << subs.size()
-                  << " done" << std::string(20, ' ') << "\n";
-        writeFileAtomically(fs::path(batchOut_) / "summary.csv", table);
-        std::cout << table;
+        BatchOptions batch;
+        batch.batch = batchDir_;
+        batch.out = batchOut_;
+        batch.grade = options_;
+        if (!batchShard_.empty()) std::tie(batch.shard, batch.shards) = parseShard(batchShard_);
+        BatchSummary done = gradeBatch(*session.modules, session.paths, batch);
+        std::cout << done.students << " submissions: " << done.graded << " graded, " << done.skipped
+                  << " unchanged, " << done.errors << " not graded; "
+                  << (fs::path(batchOut_) / "class.html").string() << "\n";
         return 0;
     }
 
     GradeOptions options_;
-    std::string batchDir_, batchOut_, jsonFile_, gradescopeFile_;
+    std::string batchDir_, batchOut_, jsonFile_, gradescopeFile_, batchShard_;
+    std::vector<std::string> mergeDirs_;
+    bool failUnlessPassed_ = false;
+};
+
+class ClassroomCommand : public Command {
+public:
+    ClassroomCommand()
+        : Command("classroom",
+                  "Write .github/workflows/classroom.yml: GitHub Classroom's command grader, one "
+                  "points row per step (student-controlled feedback, not a grade)") {}
+    void declare(CLI::App& cmd) override {
+        cmd.add_option("--assignment", assignment_, "Steps and points from this assignment.json");
+        cmd.add_option("--steps", steps_,
+                       "Without --assignment: comma-separated step ids (default: all)");
+        cmd.add_option("--points", points_,
+                       "Without --assignment: whole points per step (default 1)");
+        cmd.add_option("--repository", classroom_.pbrlabRepository,
+                       "GitHub repository the workflow builds pbrlab from (OWNER/NAME)");
+        cmd.add_option("--out", out_, "Folder that gets .github/workflows/classroom.yml")
+            ->required();
+    }
+    int run(const GlobalOptions& global) override {
+        Session session(global, false);
+        classroom_.steps = assignment_.empty() ? listedSteps(*session.modules, steps_, points_)
+                                               : assignmentSteps(*session.modules, assignment_);
+        const fs::path file = fs::path(out_) / ".github/workflows/classroom.yml";
+        writeFileAtomically(file, classroomWorkflow(classroom_));
+        std::cout << "wrote " << file.string() << " (" << classroom_.steps.size() << " steps)\n";
+        return 0;
+    }
+
+private:
+    ClassroomOptions classroom_;
+    std::string assignment_, steps_, out_;
+    int points_ = 1;
 };
 
 class KitCommand : public Command {
@@ -251,6 +278,10 @@ private:
 std::unique_ptr<Command> gradeCommand() {
     return std::make_unique<GradeCommand>();
 }
+std::unique_ptr<Command> classroomCommand() {
+    return std::make_unique<ClassroomCommand>();
+}
+
 std::unique_ptr<Command> kitCommand() {
     return std::make_unique<KitCommand>();
 }

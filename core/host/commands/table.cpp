@@ -19,6 +19,7 @@ Commands shellCommands() {
     c.push_back(modelsCommand());
     c.push_back(environmentCommand());
     c.push_back(gradeCommand());
+    c.push_back(classroomCommand());
     c.push_back(convergeCommand());
     c.push_back(kitCommand());
     c.push_back(newStepCommand());

@@ -15,6 +15,7 @@ std::unique_ptr<Command> checkCommand();
 std::unique_ptr<Command> permutationsCommand();
 // grade.cpp: grading and the kit.
 std::unique_ptr<Command> gradeCommand();
+std::unique_ptr<Command> classroomCommand();
 std::unique_ptr<Command> kitCommand();
 std::unique_ptr<Command> mutantsCommand();
 std::unique_ptr<Command> newStepCommand();
