@@ -17,6 +17,7 @@
 #include "evaluate.h"
 #include "gl/context.h"
 #include "grade.h"
+#include "gradescope.h"
 #include "grading.h"
 #include "gui/gui.h"
 #include "ibl.h"
@@ -539,6 +540,10 @@ int main(int argc, char** argv) {
     gradeOptions.jobs = int(std::max(1u, std::thread::hardware_concurrency()));
     gradeCmd->add_option("--jobs", gradeOptions.jobs,
                          "Modules graded at once (default: one per core)");
+    std::string gradeAssignmentFile;
+    gradeCmd->add_option("--assignment", gradeAssignmentFile,
+                         "Grade by this assignment file: its steps, points, partial credit and "
+                         "time limit (docs/assignment.md)");
     gradeCmd->add_option("--seed", gradeOptions.settings.seed,
                          "Seed of the random domain points (default 1: instructors may keep "
                          "their own)");
@@ -559,6 +564,21 @@ int main(int argc, char** argv) {
     kitCmd->add_option("--release-through", kit.releaseThrough,
                        "Give the solutions of the steps up to this id (after due dates)");
     kitCmd->add_flag("--force", kit.force, "Write into a non-empty folder");
+    std::string kitAssignment, kitDate;
+    kitCmd->add_option("--assignment", kitAssignment,
+                       "Only the assignment's steps released by --date (docs/assignment.md)");
+    kitCmd->add_option("--date", kitDate, "With --assignment: YYYY-MM-DD (default: today, UTC)");
+    AutograderOptions autograder;
+    auto* autograderCmd = app.add_subcommand(
+        "autograder",
+        "Write Gradescope's autograder.zip: setup.sh, run_autograder, the assignment and "
+        "pbrlab's .deb (docs/assignment.md)");
+    autograderCmd->add_option("--assignment", autograder.assignment, "The assignment file")
+        ->required();
+    autograderCmd->add_option("--out", autograder.out, "Folder for autograder.zip")->required();
+    autograderCmd->add_option("--deb", autograder.deb,
+                              "pbrlab_*.deb (default: the one cpack -G DEB wrote in the current "
+                              "folder or beside pbrlab)");
     NewStepOptions newStep;
     auto* newStepCmd = app.add_subcommand(
         "new-step", "Write a step folder to build outside the source tree (find_package(pbrlab))");
@@ -683,6 +703,8 @@ int main(int argc, char** argv) {
         if (*gradeCmd && !batchDir.empty()) {
             Session session(o, false);
             if (batchOut.empty()) throw Error("--batch needs --out DIR for the reports");
+            const auto assignment =
+                gradeAssignment(gradeAssignmentFile, *session.modules, gradeOptions);
             std::vector<fs::path> subs;
             for (const auto& e : fs::directory_iterator(batchDir)) {
                 std::error_code ec;
@@ -707,7 +729,8 @@ int main(int argc, char** argv) {
                     each.submission = fs::canonical(subs[i]);
                     GradeReport report = gradeSubmission(*session.modules, session.paths, each);
                     writeFileAtomically(out / "report.json", jsonText(toJson(report)));
-                    writeFileAtomically(out / "results.json", jsonText(toGradescope(report)));
+                    writeFileAtomically(out / "results.json",
+                                        jsonText(gradescopeResults(report, assignment)));
                     writeHtml(report, each.html);
                     table += subs[i].filename().string() + "," + std::to_string(report.score) +
                              "," + std::to_string(report.maxScore) + "," +
@@ -728,6 +751,8 @@ int main(int argc, char** argv) {
             if (gradeOptions.submission.empty())
                 throw Error("grade: give a SUBMISSION folder, or --batch DIR --out DIR");
             Session session(o, false);  // no GL in the parent: each module forks its own
+            const auto assignment =
+                gradeAssignment(gradeAssignmentFile, *session.modules, gradeOptions);
             if (!fs::is_directory(gradeOptions.submission))
                 throw Error(gradeOptions.submission.string() + ": not a directory");
             gradeOptions.submission = fs::canonical(gradeOptions.submission);
@@ -740,7 +765,8 @@ int main(int argc, char** argv) {
             if (!gradeJsonFile.empty())
                 writeFileAtomically(gradeJsonFile, jsonText(toJson(report)));
             if (!gradescopeFile.empty())
-                writeFileAtomically(gradescopeFile, jsonText(toGradescope(report)));
+                writeFileAtomically(gradescopeFile,
+                                    jsonText(gradescopeResults(report, assignment)));
             if (!gradeOptions.html.empty()) writeHtml(report, gradeOptions.html);
             return 0;
         }
@@ -763,9 +789,22 @@ int main(int argc, char** argv) {
         }
         if (*kitCmd) {
             Session session(o, false);
+            if (!kitAssignment.empty())
+                applyAssignment(loadAssignment(kitAssignment, stepIds(*session.modules)),
+                                kitDate.empty() ? todayUtc() : kitDate, kit);
+            else if (!kitDate.empty())
+                throw Error("kit: --date goes with --assignment");
             int n = writeKit(*session.modules, kit);
             std::cout << "wrote " << n << " module files and handouts to " << kit.out.string()
                       << "\n";
+            return 0;
+        }
+        if (*autograderCmd) {
+            Session session(o, false);
+            const fs::path zip = writeAutograderBundle(autograder, *session.modules);
+            std::cout << "wrote " << zip.string() << " (" << fs::file_size(zip)
+                      << " bytes): upload it as the autograder of a Gradescope programming "
+                         "assignment\n";
             return 0;
         }
         if (*newStepCmd) {
