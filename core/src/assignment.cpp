@@ -268,7 +268,8 @@ std::vector<CategoryScore> categoryScores(const ModuleGrade& g, const Assignment
     double given = 0;
     for (size_t k = 0; k < out.size(); ++k) {
         CategoryScore& s = out[k];
-        s.maxScore = k + 1 < out.size() ? points * a.weights.at(s.category) / total : points - given;
+        s.maxScore =
+            k + 1 < out.size() ? points * a.weights.at(s.category) / total : points - given;
         given += s.maxScore;
         s.score = s.passed == s.checks ? s.maxScore : s.maxScore * s.passed / s.checks;
     }
