@@ -16,6 +16,7 @@
 
 #include "class_report.h"
 #include "digest.h"
+#include "gradescope.h"
 #include "pbrlab/error.h"
 
 namespace fs = std::filesystem;
@@ -92,6 +93,8 @@ std::string configurationDigest(const ModuleRegistry& modules, const DataPaths& 
     d.add(s.robustness);
     d.add(s.stopAtFirstFailure);
     d.add(o.configuration);
+    // Points, weights and time limit change grades: a changed assignment regrades everyone.
+    if (o.assignment) d.add(readText(o.assignment->file));
     return d.hex();
 }
 
@@ -125,7 +128,8 @@ void drawProgress(size_t done, size_t total, size_t skipped, size_t graded, doub
 // One submission graded in a child process that writes its reports, then the digest; a
 // crash there costs that submission only.
 pid_t startWorker(const ModuleRegistry& modules, const DataPaths& paths, const GradeOptions& o,
-                  const fs::path& submission, const fs::path& out, const std::string& digest) {
+                  const std::optional<Assignment>& assignment, const fs::path& submission,
+                  const fs::path& out, const std::string& digest) {
     std::fflush(nullptr);
     std::cout.flush();
     const pid_t pid = fork();
@@ -139,7 +143,7 @@ pid_t startWorker(const ModuleRegistry& modules, const DataPaths& paths, const G
         each.progress = nullptr;
         GradeReport report = gradeSubmission(modules, paths, each);
         writeFileAtomically(out / "report.json", jsonText(toJson(report)));
-        writeFileAtomically(out / "results.json", jsonText(toGradescope(report)));
+        writeFileAtomically(out / "results.json", jsonText(gradescopeResults(report, assignment)));
         writeHtml(report, each.html);
         if (!digest.empty()) writeFileAtomically(out / "digest.txt", digest + "\n");
     } catch (const std::exception& e) {
@@ -238,7 +242,8 @@ BatchSummary gradeBatch(const ModuleRegistry& modules, const DataPaths& paths,
             fs::remove(out / "error.txt", ec);
             try {
                 fs::create_directories(out);
-                running[startWorker(modules, paths, each, students[i], out, digests[i])] = i;
+                running[startWorker(modules, paths, each, o.assignment, students[i], out,
+                                    digests[i])] = i;
             } catch (const std::exception& e) {
                 totals[i].error = e.what();
             }

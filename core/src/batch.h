@@ -4,9 +4,11 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "assignment.h"
 #include "grade.h"
 
 namespace pbrlab {
@@ -21,6 +23,8 @@ struct BatchOptions {
     // Anything else that decides the grades and must invalidate earlier ones when it changes
     // (the assignment file's text).
     std::string configuration;
+    // What results.json is scored by (gradescopeResults): the assignment, when there is one.
+    std::optional<Assignment> assignment;
     bool progress = true;  // a progress bar on stderr
 };
 

@@ -3,11 +3,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <fstream>
-#include <iterator>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "assignment.h"
 #include "pbrlab/error.h"
 
 namespace fs = std::filesystem;
@@ -50,50 +49,11 @@ int wholePoints(const json& value, const std::string& where) {
 }  // namespace
 
 std::vector<ClassroomStep> assignmentSteps(const ModuleRegistry& modules, const fs::path& file) {
-    // Only "steps" and "points" are read here; the assignment's own reader validates the rest.
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw Error(file.string() + ": cannot read it");
-    json a;
-    try {
-        a = json::parse(
-            std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()));
-    } catch (const json::parse_error& e) {
-        throw Error(file.string() + ": not JSON: " + e.what());
-    }
-    const std::string name = file.string();
-    if (!a.is_object()) throw Error(name + ": must be a JSON object");
-    std::vector<std::string> ids;
-    const json steps = a.value("steps", json("all"));
-    if (steps.is_string() && steps.get<std::string>() == "all") {
-        for (const auto& m : modules.modules()) ids.push_back(m.desc->id);
-    } else if (steps.is_array()) {
-        for (size_t i = 0; i < steps.size(); ++i) {
-            if (!steps[i].is_string())
-                throw Error(name + ": steps[" + std::to_string(i) + "]: must be a step id");
-            ids.push_back(steps[i].get<std::string>());
-        }
-    } else {
-        throw Error(name + ": steps: must be \"all\" or a list of step ids");
-    }
-    const json points = a.value("points", json::object());
-    if (!points.is_object())
-        throw Error(name + ": points: must be an object ({\"default\": 1, \"<id>\": n})");
-    int fallback = 1;
-    if (points.contains("default"))
-        fallback = wholePoints(points["default"], name + ": points.default");
-    for (const auto& [key, value] : points.items())
-        if (key != "default" && std::find(ids.begin(), ids.end(), key) == ids.end())
-            throw Error(name + ": points." + key + ": not one of the assignment's steps");
+    const Assignment a = loadAssignment(file, stepIds(modules));  // validated, errors name fields
     std::vector<ClassroomStep> out;
-    for (const std::string& id : ids) {
-        try {
-            out.push_back(
-                stepOf(modules, id,
-                       points.contains(id) ? wholePoints(points[id], "points." + id) : fallback));
-        } catch (const std::exception& e) {
-            throw Error(name + ": " + e.what());
-        }
-    }
+    for (const std::string& id : a.steps)
+        out.push_back(stepOf(modules, id,
+                             wholePoints(json(a.points.at(id)), file.string() + ": points." + id)));
     return out;
 }
 

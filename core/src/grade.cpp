@@ -444,7 +444,10 @@ GradeReport gradeSubmission(const ModuleRegistry& modules, const DataPaths& path
     std::vector<ModuleGrade> graded = gradeJobs(work, paths, o);
     for (size_t i = 0; i < graded.size(); ++i) report.modules[slots[i]] = std::move(graded[i]);
     for (ModuleGrade& g : report.modules) {
-        g.score = g.status == "passed" ? g.maxScore : 0;
+        if (o.scoring)
+            o.scoring(g);
+        else
+            g.score = g.status == "passed" ? g.maxScore : 0;
         g.message = validUtf8(g.message);
         report.score += g.score;
         report.maxScore += g.maxScore;

@@ -25,6 +25,9 @@ struct GradeOptions {
     GradeSettings settings;            // what gradeStep checks (size, seed, feedback)
     // Told as each module's grade comes in (progress output).
     std::function<void(const struct ModuleGrade&)> progress;
+    // Sets a grade's max_score and score (an assignment's points and partial credit,
+    // assignment.h); empty: 1 point per step, all or nothing.
+    std::function<void(struct ModuleGrade&)> scoring;
 };
 
 struct ModuleGrade {

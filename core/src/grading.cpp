@@ -9,6 +9,7 @@
 #include <ctime>
 #include <sstream>
 
+#include "pbrlab/error.h"
 #include "pbrlab/log.h"
 #include "step_grader.h"
 
@@ -101,6 +102,8 @@ StepResult StepGrader::run() {
 
 // Every check goes in through here.
 void StepGrader::record(const CheckReport& c) {
+    if (c.category.empty())
+        throw Error("grading " + d_.id + ": check '" + c.name + "' has no category");
     result_.checks.push_back(c);
     if (settings_.stopAtFirstFailure && c.deducted && !c.passed) throw Stopped{};
 }
@@ -181,11 +184,8 @@ StepResult gradeStep(LabRenderer& renderer, const LoadedModule& module, const Da
 }
 
 nlohmann::json toJson(const CheckReport& c) {
-    nlohmann::json j = {{"name", c.name},
-                        {"kind", c.kind},
-                        {"passed", c.passed},
-                        {"deducted", c.deducted},
-                        {"detail", c.detail}};
+    nlohmann::json j = {{"name", c.name},     {"kind", c.kind},         {"category", c.category},
+                        {"passed", c.passed}, {"deducted", c.deducted}, {"detail", c.detail}};
     if (c.kind == "values" || c.kind == "quality") {
         j["points"] = c.points;
         j["outside"] = c.outside;

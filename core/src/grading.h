@@ -31,10 +31,21 @@ struct GradeSettings {
     std::function<void(const std::string&)> stage;
 };
 
+// What a check is about, for the weights of an assignment (assignment.h): set where each
+// check is made. contract | probe | scenes | random | sphere_grid | invariants | estimator |
+// robustness
+inline const std::vector<std::string>& checkCategories() {
+    static const std::vector<std::string> categories = {"contract",  "probe",       "scenes",
+                                                        "random",    "sphere_grid", "invariants",
+                                                        "estimator", "robustness"};
+    return categories;
+}
+
 struct CheckReport {
     std::string name;  // "probe", "random inputs", "samples = 7", "integral of D ..."
     // values | invariant | convergence | robustness | quality
     std::string kind = "values";
+    std::string category;  // one of checkCategories()
     bool passed = true;
     bool deducted = true;  // robustness and quality are reported, not deducted
     std::string detail;    // one line: what was measured and the rule

@@ -14,6 +14,7 @@ void StepGrader::checkSamplers(const Program& program) {
     CheckReport c;
     c.name = "reads only the inputs this step may read";
     c.kind = "contract";
+    c.category = "contract";
     c.passed = forbidden.empty();
     if (forbidden.empty()) {
         c.detail = "no map computed by this step's or a later step's reference solution";
@@ -64,6 +65,7 @@ void StepGrader::gradeInvariants(const Scene& scene) {
         CheckReport c;
         c.name = inv.name;
         c.kind = "invariant";
+        c.category = "invariants";
         c.measured = inv.measured;
         c.expected = inv.expected;
         c.passed = inv.holds;
@@ -79,6 +81,7 @@ void StepGrader::gradeRobustness(const Scene& scene) {
     CheckReport c;
     c.name = "robustness on extreme inputs";
     c.kind = "robustness";
+    c.category = "robustness";
     c.deducted = false;
     c.points = st.gpu.compared;
     c.nan = st.gpu.nanCount;

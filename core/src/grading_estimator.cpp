@@ -179,6 +179,9 @@ void StepGrader::gradeEstimator(const Scene& scene) {
             if (n == counts.back()) set.last = r.value;
             run.report = reportFor(name, d_, c, set.surfaces, e.systematic.outlierFraction,
                                    set.probe, set.width);
+            // Against the converged integral: the estimator's own category, not the probe's
+            // or the random inputs' band of the reference.
+            run.report.category = "estimator";
             run.report.detail += "; band: converged integral +- (" + number(e.systematic.relative) +
                                  " of it + " + number(e.sigmas) + " sigma / sqrt(n))";
             run.surfaces = set.surfaces;
@@ -197,6 +200,7 @@ void StepGrader::gradeEstimator(const Scene& scene) {
         CheckReport fall;
         fall.name = "the error falls as the sample count grows";
         fall.kind = "convergence";
+        fall.category = "estimator";
         const double ratio = meanError.front() / std::max(meanError.back(), 1e-12);
         fall.measured = ratio;
         fall.expected = ">= " + number(e.minimumFall);
@@ -222,6 +226,7 @@ void StepGrader::gradeEstimator(const Scene& scene) {
         request.cacheGBuffer = true;
         const RenderResult r = renderer_.render(request);
         CheckReport finite;
+        finite.category = "estimator";
         finite.name = "finite values on the scene " + scene.file.stem().string() + " with " +
                       e.samplesParam + " = " + std::to_string(n);
         for (size_t i = 0; i < r.surfaces.size(); ++i) {
@@ -248,7 +253,7 @@ void StepGrader::gradeEstimator(const Scene& scene) {
     // how the picture compares, not a grade (a sub-degree sun decides it).
     ValuesRun quality = runValues(
         "quality: scene " + scene.file.stem().string() + " against the same-sample reference",
-        scene, defaults, nullptr, settings_.size, settings_.size, nullptr);
+        "estimator", scene, defaults, nullptr, settings_.size, settings_.size, nullptr);
     // Reported as a measurement: an estimator with other samples differs from this
     // picture as much as its noise, by design.
     CheckReport& q = quality.report;
@@ -306,6 +311,7 @@ void StepGrader::rescale(const std::string& name, Image& value,
     CheckReport c;
     c.name = name + ": overall scale";
     c.kind = "convergence";
+    c.category = "estimator";
     c.measured = k;
     c.expected = "1 +- " + number(e.scaleTolerance);
     c.passed = std::abs(k - 1) <= e.scaleTolerance;
@@ -366,6 +372,7 @@ void StepGrader::biasTest(const std::vector<PointSet>& sets, int n) {
     CheckReport c;
     c.name = "no systematic error at " + std::to_string(n) + " samples";
     c.kind = "convergence";
+    c.category = "estimator";
     std::string worst;
     double worstZ = 0;
     for (const auto& [name, r] : regions) {

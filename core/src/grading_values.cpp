@@ -22,9 +22,10 @@ Scene colouredLights(Scene scene) {
 
 }  // namespace
 
-ValuesRun StepGrader::runValues(const std::string& name, const Scene& scene,
-                                const ParamValues& params, const std::vector<Surface>* surfaces,
-                                int width, int height, const Probe* probe) {
+ValuesRun StepGrader::runValues(const std::string& name, const std::string& category,
+                                const Scene& scene, const ParamValues& params,
+                                const std::vector<Surface>* surfaces, int width, int height,
+                                const Probe* probe) {
     stage(name);
     EvalRequest request;
     request.render = {&m_, &params, &scene, source_, surfaces, width, height};
@@ -35,6 +36,7 @@ ValuesRun StepGrader::runValues(const std::string& name, const Scene& scene,
     ValuesRun run;
     run.report = reportFor(name, d_, e.comparison, e.render.surfaces, d_.tolerance.outlierFraction,
                            probe, width);
+    run.report.category = category;
     run.surfaces = std::move(e.render.surfaces);
     run.value = std::move(e.render.value);
     run.band = std::move(e.band);
@@ -55,23 +57,26 @@ void StepGrader::keep(ValuesRun&& run) {
     record(report);
 }
 
+// The category follows the inputs: the probe, random points of the domain, or a scene
+// (`sceneCategory`: the lesson's sphere grid is weighted on its own).
 void StepGrader::gradeCase(const std::string& name, GradeCase::Inputs inputs, const Scene& scene,
-                           const ParamValues& params) {
+                           const ParamValues& params, const std::string& sceneCategory) {
     switch (inputs) {
         case GradeCase::Inputs::Probe: {
             const Probe& p = d_.probe;
             const std::vector<Surface> s = probeSurfaces(p);
-            keep(runValues(name, scene, params, &s, p.width, p.height, &p));
+            keep(runValues(name, "probe", scene, params, &s, p.width, p.height, &p));
             return;
         }
         case GradeCase::Inputs::Domain: {
             if (!d_.domain) return;
             const Grid g = grid(domainSurfaces(d_, settings_.seed, settings_.domainPoints));
-            keep(runValues(name, scene, params, &g.surfaces, g.width, g.height, nullptr));
+            keep(runValues(name, "random", scene, params, &g.surfaces, g.width, g.height, nullptr));
             return;
         }
         case GradeCase::Inputs::Scene:
-            keep(runValues(name, scene, params, nullptr, settings_.size, settings_.size, nullptr));
+            keep(runValues(name, sceneCategory, scene, params, nullptr, settings_.size,
+                           settings_.size, nullptr));
             return;
     }
 }
@@ -83,7 +88,8 @@ void StepGrader::gradeValues(const Scene& scene) {
     gradeCase("random inputs", GradeCase::Inputs::Domain, scene, defaults);
     for (const GradeCase& c : d_.cases) {
         const Scene s = c.scene.empty() ? scene : loadScene(paths_.scene(c.scene));
-        gradeCase(c.name, c.inputs, s, withSets(d_, c.set));
+        gradeCase(c.name, c.inputs, s, withSets(d_, c.set),
+                  c.scene == lessonGridCase().scene ? "sphere_grid" : "scenes");
     }
     for (const ParamDecl& p : d_.params)
         for (const std::string& assignment : exercisedValues(p)) {

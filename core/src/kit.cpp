@@ -1,5 +1,6 @@
 #include "kit.h"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -66,6 +67,8 @@ int writeKit(const ModuleRegistry& modules, const KitOptions& o) {
     std::string list;
     for (const LoadedModule& m : modules.modules()) {
         const ModuleDesc& d = *m.desc;
+        if (!o.steps.empty() && std::find(o.steps.begin(), o.steps.end(), d.id) == o.steps.end())
+            continue;
         fs::path solution = m.sourceDir / "solution.glsl";
         std::string text = readFile(solution);
         bool released = o.withSolutions || d.step <= releaseStep;
@@ -85,9 +88,9 @@ int writeKit(const ModuleRegistry& modules, const KitOptions& o) {
               "add helper functions of your own above it (do not name them `pbrlab_*`, and do "
               "not define `PI`: it is provided, as are `NUM_LIGHTS`, `uLightPositions`, "
               "`uLightColors` and every contract function of both labs). The handouts "
-              "in `handouts/` explain each step.\n\n"
-              "| step | file | function | status |\n|---|---|---|---|\n" +
-                  list +
+              "in `handouts/` explain each step.\n\n" +
+                  (o.due.empty() ? std::string() : "Due: " + o.due + "\n\n") +
+                  "| step | file | function | status |\n|---|---|---|---|\n" + list +
                   "\n## Run and test\n\n"
                   "    pbrlab gui                      # from this folder: live view, hot reload\n"
                   "    pbrlab check ndotl --submission .   # grade one step, every check printed\n"

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "plugins.h"
 
@@ -14,6 +15,9 @@ struct KitOptions {
     bool withSolutions = false;  // reference solutions in the same shape (instructors, tests)
     std::string releaseThrough;  // solutions of the steps up to this id, stubs after
     bool force = false;          // write into a non-empty folder
+    std::vector<std::string> steps =
+        {};                // only these steps (an assignment's released ones); empty: all
+    std::string due = {};  // shown in the README when set
 };
 
 // The student version of a solution file: what is between BEGIN/END SOLUTION becomes a TODO

@@ -77,12 +77,12 @@ private:
     void stage(const std::string& what);
 
     // grading_values.cpp
-    ValuesRun runValues(const std::string& name, const Scene& scene, const ParamValues& params,
-                        const std::vector<Surface>* surfaces, int width, int height,
-                        const Probe* probe);
+    ValuesRun runValues(const std::string& name, const std::string& category, const Scene& scene,
+                        const ParamValues& params, const std::vector<Surface>* surfaces, int width,
+                        int height, const Probe* probe);
     void keep(ValuesRun&& run);
     void gradeCase(const std::string& name, GradeCase::Inputs inputs, const Scene& scene,
-                   const ParamValues& params);
+                   const ParamValues& params, const std::string& sceneCategory = "scenes");
     void gradeValues(const Scene& scene);
 
     // grading_estimator.cpp

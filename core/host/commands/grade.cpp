@@ -10,6 +10,7 @@
 
 #include "batch.h"
 #include "classroom.h"
+#include "gradescope.h"
 #include "kit.h"
 #include "mutation.h"
 #include "new_step.h"
@@ -63,6 +64,9 @@ public:
         cmd.add_option("--seed", options_.settings.seed,
                        "Seed of the random domain points (default 1: instructors may keep "
                        "their own)");
+        cmd.add_option("--assignment", assignmentFile_,
+                       "Grade by this assignment file: its steps, points, partial credit and "
+                       "time limit (docs/assignment.md)");
     }
     int run(const GlobalOptions& global) override {
         std::erase(options_.modules, std::string());  // "--steps a,,b"
@@ -75,6 +79,7 @@ private:
         if (options_.submission.empty())
             throw Error("grade: give a SUBMISSION folder, or --batch DIR --out DIR");
         Session session(global, false);  // no GL in the parent: each module forks its own
+        const auto assignment = gradeAssignment(assignmentFile_, *session.modules, options_);
         if (!fs::is_directory(options_.submission))
             throw Error(options_.submission.string() + ": not a directory");
         options_.submission = fs::canonical(options_.submission);
@@ -85,7 +90,7 @@ private:
         std::printf("total %.1f / %.1f in %.1f s\n", report.score, report.maxScore, report.seconds);
         if (!jsonFile_.empty()) writeFileAtomically(jsonFile_, jsonText(toJson(report)));
         if (!gradescopeFile_.empty())
-            writeFileAtomically(gradescopeFile_, jsonText(toGradescope(report)));
+            writeFileAtomically(gradescopeFile_, jsonText(gradescopeResults(report, assignment)));
         if (!options_.html.empty()) writeHtml(report, options_.html);
         if (failUnlessPassed_)
             for (const auto& g : report.modules)
@@ -105,6 +110,7 @@ private:
         BatchOptions batch;
         batch.batch = batchDir_;
         batch.out = batchOut_;
+        batch.assignment = gradeAssignment(assignmentFile_, *session.modules, options_);
         batch.grade = options_;
         if (!batchShard_.empty()) std::tie(batch.shard, batch.shards) = parseShard(batchShard_);
         BatchSummary done = gradeBatch(*session.modules, session.paths, batch);
@@ -115,7 +121,7 @@ private:
     }
 
     GradeOptions options_;
-    std::string batchDir_, batchOut_, jsonFile_, gradescopeFile_, batchShard_;
+    std::string batchDir_, batchOut_, jsonFile_, gradescopeFile_, batchShard_, assignmentFile_;
     std::vector<std::string> mergeDirs_;
     bool failUnlessPassed_ = false;
 };
@@ -163,9 +169,17 @@ public:
         cmd.add_option("--release-through", kit_.releaseThrough,
                        "Give the solutions of the steps up to this id (after due dates)");
         cmd.add_flag("--force", kit_.force, "Write into a non-empty folder");
+        cmd.add_option("--assignment", assignment_,
+                       "Only the assignment's steps released by --date (docs/assignment.md)");
+        cmd.add_option("--date", date_, "With --assignment: YYYY-MM-DD (default: today, UTC)");
     }
     int run(const GlobalOptions& global) override {
         Session session(global, false);
+        if (!assignment_.empty())
+            applyAssignment(loadAssignment(assignment_, stepIds(*session.modules)),
+                            date_.empty() ? todayUtc() : date_, kit_);
+        else if (!date_.empty())
+            throw Error("kit: --date goes with --assignment");
         int n = writeKit(*session.modules, kit_);
         std::cout << "wrote " << n << " module files and handouts to " << kit_.out.string() << "\n";
         return 0;
@@ -173,6 +187,33 @@ public:
 
 private:
     KitOptions kit_;
+    std::string assignment_, date_;
+};
+
+class AutograderCommand : public Command {
+public:
+    AutograderCommand()
+        : Command("autograder",
+                  "Write Gradescope's autograder.zip: setup.sh, run_autograder, the assignment "
+                  "and pbrlab's .deb (docs/assignment.md)") {}
+    void declare(CLI::App& cmd) override {
+        cmd.add_option("--assignment", options_.assignment, "The assignment file")->required();
+        cmd.add_option("--out", options_.out, "Folder for autograder.zip")->required();
+        cmd.add_option("--deb", options_.deb,
+                       "pbrlab_*.deb (default: the one cpack -G DEB wrote in the current folder "
+                       "or beside pbrlab)");
+    }
+    int run(const GlobalOptions& global) override {
+        Session session(global, false);
+        const fs::path zip = writeAutograderBundle(options_, *session.modules);
+        std::cout << "wrote " << zip.string() << " (" << fs::file_size(zip)
+                  << " bytes): upload it as the autograder of a Gradescope programming "
+                     "assignment\n";
+        return 0;
+    }
+
+private:
+    AutograderOptions options_;
 };
 
 // The mutation score: every mutant of each reference solution graded as a submission.
@@ -280,6 +321,10 @@ std::unique_ptr<Command> gradeCommand() {
 }
 std::unique_ptr<Command> classroomCommand() {
     return std::make_unique<ClassroomCommand>();
+}
+
+std::unique_ptr<Command> autograderCommand() {
+    return std::make_unique<AutograderCommand>();
 }
 
 std::unique_ptr<Command> kitCommand() {

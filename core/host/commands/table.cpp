@@ -22,6 +22,7 @@ Commands shellCommands() {
     c.push_back(classroomCommand());
     c.push_back(convergeCommand());
     c.push_back(kitCommand());
+    c.push_back(autograderCommand());
     c.push_back(newStepCommand());
     c.push_back(precomputeCommand());
     c.push_back(stabilityCommand());

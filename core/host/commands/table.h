@@ -17,6 +17,7 @@ std::unique_ptr<Command> permutationsCommand();
 std::unique_ptr<Command> gradeCommand();
 std::unique_ptr<Command> classroomCommand();
 std::unique_ptr<Command> kitCommand();
+std::unique_ptr<Command> autograderCommand();
 std::unique_ptr<Command> mutantsCommand();
 std::unique_ptr<Command> newStepCommand();
 // assets.cpp: the project's generated and precomputed data.
