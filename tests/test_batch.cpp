@@ -9,6 +9,7 @@
 
 #include "batch.h"
 #include "class_report.h"
+#include "feedback.h"
 #include "kit.h"
 #include "pbrlab/error.h"
 #include "test_support.h"
@@ -187,4 +188,22 @@ TEST(Batch, AShardIsIOfNAndNothingElse) {
     EXPECT_EQ(parseShard("1/4"), std::make_pair(1, 4));
     for (const char* bad : {"4/4", "-1/2", "1", "1/0", "1/2x", "a/b"})
         EXPECT_THROW(parseShard(bad), Error) << bad;
+}
+
+// The class chart counts a pattern-named mistake once whatever the student's figures:
+// measured numbers become #, names with digits (F0) stay, the full stop after a number stays.
+TEST(Feedback, APatternWithoutItsFiguresIsTheSameForEveryStudent) {
+    const std::string a =
+        "Your function is wrong only where N.V < 0.74 (1536 of 1584 points "
+        "there): F0 is 4% too high, 1.5e-3 at worst.";
+    const std::string b =
+        "Your function is wrong only where N.V < 0.5 (12 of 1584 points "
+        "there): F0 is 12% too high, 2e+1 at worst.";
+    EXPECT_EQ(withoutFigures(a), withoutFigures(b));
+    EXPECT_EQ(withoutFigures(a),
+              "Your function is wrong only where N.V < # (# of # points there): "
+              "F0 is #% too high, # at worst.");
+    EXPECT_NE(withoutFigures("D is off by a factor PI."),
+              withoutFigures("G is off by a factor PI."));
+    EXPECT_EQ(withoutFigures("k = r^2 / 8 at step 3."), "k = r^# / # at step #.");
 }

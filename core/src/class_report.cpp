@@ -18,7 +18,8 @@ namespace pbrlab {
 
 namespace {
 
-const char* const kClassHeader = "student,step,status,score,max_score,mistake,named_by";
+const char* const kClassHeader =
+    "student,step,status,score,max_score,mistake,named_by,mistake_group";
 const char* const kSummaryHeader = "submission,score,max_score,seconds,error";
 
 // A field as RFC 4180 writes it: quoted when it holds a comma, a quote or a line break.
@@ -160,7 +161,7 @@ std::string passBar(size_t part, size_t whole) {
 std::string mistakeChart(const std::vector<const ClassRow*>& rows) {
     std::map<std::string, size_t> counts;
     for (const ClassRow* r : rows)
-        if (!r->mistake.empty()) ++counts[r->mistake];
+        if (!r->mistake.empty()) ++counts[r->group.empty() ? r->mistake : r->group];
     if (counts.empty()) return "<span class=muted>none named</span>";
     std::vector<std::pair<std::string, size_t>> top(counts.begin(), counts.end());
     std::stable_sort(top.begin(), top.end(),
@@ -260,6 +261,7 @@ std::vector<ClassRow> classRows(const std::string& student, const json& report) 
         r.maxScore = m.at("max_score").get<double>();
         r.mistake = m.value("mistake", "");
         r.namedBy = m.value("named_by", "");
+        r.group = m.value("mistake_group", "");
         rows.push_back(std::move(r));
     }
     return rows;
@@ -270,7 +272,7 @@ std::string classCsv(const std::vector<ClassRow>& rows) {
     for (const ClassRow& r : rows)
         text += csvField(r.student) + "," + csvField(r.step) + "," + csvField(r.status) + "," +
                 number(r.score) + "," + number(r.maxScore) + "," + csvField(r.mistake) + "," +
-                csvField(r.namedBy) + "\n";
+                csvField(r.namedBy) + "," + csvField(r.group) + "\n";
     return text;
 }
 
@@ -278,7 +280,7 @@ std::vector<ClassRow> readClassCsv(const fs::path& file) {
     std::vector<ClassRow> rows;
     for (const auto& [line, f] : readTable(file, kClassHeader))
         rows.push_back({f[0], f[1], f[2], parseNumber(f[3], file, line, "score"),
-                        parseNumber(f[4], file, line, "max_score"), f[5], f[6]});
+                        parseNumber(f[4], file, line, "max_score"), f[5], f[6], f[7]});
     return rows;
 }
 

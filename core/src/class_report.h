@@ -16,6 +16,7 @@ struct ClassRow {
     std::string status;  // passed | failed | compile_error | timeout | missing | crashed
     double score = 0, maxScore = 0;
     std::string mistake, namedBy;  // the named mistake and how it was named, or empty
+    std::string group;  // the mistake without this student's figures: what the chart counts
 };
 
 // One submission's line of summary.csv; `error` says why it could not be graded at all.

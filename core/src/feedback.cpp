@@ -1,6 +1,7 @@
 #include "feedback.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <numbers>
@@ -559,6 +560,34 @@ std::string classifyError(const FeedbackInputs& in, bool* exactOut) {
     const std::string sens = sensitivity(in);
     if (!sens.empty()) s += (s.empty() ? "" : " ") + sens;
     return s;
+}
+
+std::string withoutFigures(const std::string& mistake) {
+    auto isName = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    auto isDigit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
+    std::string out;
+    for (size_t i = 0; i < mistake.size();) {
+        const bool afterName = i > 0 && (isName(mistake[i - 1]) || mistake[i - 1] == '.');
+        const bool startsNumber =
+            isDigit(mistake[i]) ||
+            (mistake[i] == '.' && i + 1 < mistake.size() && isDigit(mistake[i + 1]) && !afterName);
+        if (!startsNumber || afterName) {
+            out += mistake[i++];
+            continue;
+        }
+        // A number: digits, a decimal part, an exponent, a trailing % or x.
+        size_t j = i;
+        while (j < mistake.size() && (isDigit(mistake[j]) || mistake[j] == '.')) ++j;
+        if (j + 1 < mistake.size() && (mistake[j] == 'e' || mistake[j] == 'E') &&
+            (isDigit(mistake[j + 1]) || mistake[j + 1] == '-' || mistake[j + 1] == '+')) {
+            j += 2;
+            while (j < mistake.size() && isDigit(mistake[j])) ++j;
+        }
+        if (mistake[j - 1] == '.' && j - 1 > i) --j;  // a full stop after the number
+        out += '#';
+        i = j;
+    }
+    return out;
 }
 
 }  // namespace pbrlab

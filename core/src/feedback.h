@@ -36,4 +36,10 @@ std::string classifyError(const FeedbackInputs& in, bool* exact = nullptr);
 // "pi/4", when it is within 1%; else "".
 std::string nameConstant(double ratio);
 
+// A mistake named by a pattern, without the figures measured on this student's function
+// ("only where N.V < 0.74 (1536 of 1584 points there)" -> "only where N.V < # (# of # points
+// there)"; names such as F0 kept): the shape of the error, the same for every student who
+// makes it, so that a class report can count it.
+std::string withoutFigures(const std::string& mistake);
+
 }  // namespace pbrlab

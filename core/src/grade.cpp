@@ -37,6 +37,7 @@ json gradeJson(const ModuleGrade& g) {
             {"message", g.message},
             {"mistake", g.mistake},
             {"named_by", g.namedBy},
+            {"mistake_group", g.mistakeGroup},
             {"checks", g.checks},
             {"instructor_note", g.instructorNote},
             {"seconds", g.seconds}};
@@ -232,6 +233,7 @@ ModuleGrade finishChild(Child& c, const GradeOptions& o) {
         g.message = j.at("message");
         g.mistake = j.value("mistake", "");
         g.namedBy = j.value("named_by", "");
+        g.mistakeGroup = j.value("mistake_group", "");
         g.instructorNote = j.value("instructor_note", "");
         g.checks = j.value("checks", json::array());
         g.seconds = j.value("seconds", 0.0);
@@ -362,6 +364,7 @@ ModuleGrade gradeModule(LabRenderer& renderer, const LoadedModule& m, const Data
         g.message = r.message;
         g.mistake = r.mistake;
         g.namedBy = r.namedBy;
+        g.mistakeGroup = r.mistakeGroup;
         g.instructorNote = r.instructorNote;
         g.seconds = r.seconds;
         for (const CheckReport& c : r.checks) g.checks.push_back(toJson(c));

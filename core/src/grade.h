@@ -38,6 +38,7 @@ struct ModuleGrade {
     std::string message;
     std::string mistake;         // the mistake named from the shape of the error, when recognised
     std::string namedBy;         // pattern | typical | mutant (see StepResult)
+    std::string mistakeGroup;    // see StepResult: what a class report counts
     std::string instructorNote;  // see StepResult: not for the student's eyes
     nlohmann::json checks = nlohmann::json::array();  // every check with what it measured
     double seconds = 0;

@@ -65,6 +65,9 @@ struct StepResult {
     std::string message;  // why it failed (the first failed check, the named mistake)
     std::string mistake;  // the mistake recognised from the shape of the error, or empty
     std::string namedBy;  // pattern | typical | mutant: what named it (empty: nothing)
+    // The mistake as a class report counts it: a typical mistake's or a mutant family's name,
+    // else the pattern without this student's figures (withoutFigures).
+    std::string mistakeGroup;
     // For the instructor only: the mutant's change, quoted from the reference solution (never
     // shown to the student, who would otherwise read the solution off the feedback).
     std::string instructorNote;

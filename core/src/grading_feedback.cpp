@@ -123,6 +123,7 @@ void StepGrader::explain() {
         bool exact = false;
         result_.mistake = classifyError(in, &exact);
         if (!result_.mistake.empty()) result_.namedBy = "pattern";
+        result_.mistakeGroup = withoutFigures(result_.mistake);
         // The candidates below are compared on a sample of the failed check's points.
         Sample points;
         if (settings_.typicalMistakes || settings_.mutantCatalogue) points = sample(f);
@@ -131,6 +132,7 @@ void StepGrader::explain() {
             result_.mistake += (result_.mistake.empty() ? "" : " ") +
                                std::string("It matches a typical mistake: ") + typical;
             if (!exact) result_.namedBy = "typical";
+            result_.mistakeGroup = typical;
         }
         // When no pattern accounts for every point, the mutants of the reference solution:
         // the one change the student's values equal.
@@ -140,6 +142,7 @@ void StepGrader::explain() {
             if (!match.mistake.empty()) {
                 result_.mistake += (result_.mistake.empty() ? "" : " ") + match.mistake;
                 result_.namedBy = "mutant";
+                result_.mistakeGroup = match.mistake;
                 result_.instructorNote = "the reference with " + match.change;
             }
         }

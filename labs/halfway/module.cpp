@@ -36,20 +36,7 @@ ModuleDesc describeModule() {
     // (L = V) to 90 degrees (grazing, 45 at the centre column), y = azimuth of L 0..360 deg.
     // H then leans half as far as L, in the same azimuth. V = -L (no half vector) is not in
     // the teaching domain: the stability sweep covers it.
-    d.probe.xAxis = "angle(V, L) 0..90 deg (V = N)";
-    d.probe.yAxis = "azimuth of L 0..360 deg";
-    d.probe.width = 65;
-    d.probe.height = 33;
-    d.probe.at = [](double x, double y) {
-        const double theta = x * std::numbers::pi / 2, phi = y * 2 * std::numbers::pi;
-        Surface s;
-        s.covered = true;
-        s.normal = {0, 0, 1};
-        s.view = {0, 0, 1};
-        s.light = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
-                   std::cos(theta)};
-        return s;
-    };
+    d.probe = lightAroundNormalProbe(0.5, 33, "angle(V, L) 0..90 deg (V = N)");
     return d;
 }
 

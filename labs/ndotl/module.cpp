@@ -29,19 +29,7 @@ ModuleDesc describeModule() {
     };
     // x: angle between N and L from 0 to 180 degrees (90 at the centre column, exactly);
     // y: azimuth of L around N, 0 to 360 degrees. The value only depends on x.
-    d.probe.xAxis = "angle(N, L) 0..180 deg";
-    d.probe.yAxis = "azimuth of L 0..360 deg";
-    d.probe.width = 65;
-    d.probe.height = 17;
-    d.probe.at = [](double x, double y) {
-        const double theta = x * std::numbers::pi, phi = y * 2 * std::numbers::pi;
-        Surface s;
-        s.covered = true;
-        s.normal = {0, 0, 1};
-        s.light = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
-                   std::cos(theta)};
-        return s;
-    };
+    d.probe = lightAroundNormalProbe(1, 17, "angle(N, L) 0..180 deg");
     d.termViews = {{"N.L", TermView::Encode::None, [](const Surface& s) {
                         return glm::dvec3(ref::lambertCosine(s.normal, s.light));
                     }}};

@@ -182,6 +182,29 @@ inline Probe viewCosineRoughnessProbe() {
     return p;
 }
 
+// L over a cap of the sphere around N = +z (V = N): x = the angle from N, 0..capOverPi * pi
+// (1: the whole sphere, 0.5: the hemisphere; a multiple of pi keeps the column at 90 degrees
+// exact), both ends hit; y = the azimuth, 0..360 degrees. Shared by the steps that are functions of
+// L and N (ndotl, over the whole sphere) or of L and V = N (halfway, over the hemisphere).
+inline Probe lightAroundNormalProbe(double capOverPi, int height, std::string xAxis) {
+    Probe p;
+    p.xAxis = std::move(xAxis);
+    p.yAxis = "azimuth of L 0..360 deg";
+    p.width = 65;
+    p.height = height;
+    p.at = [capOverPi](double x, double y) {
+        const double theta = x * (capOverPi * std::numbers::pi), phi = y * 2 * std::numbers::pi;
+        Surface s;
+        s.covered = true;
+        s.normal = {0, 0, 1};
+        s.view = {0, 0, 1};
+        s.light = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                   std::cos(theta)};
+        return s;
+    };
+    return p;
+}
+
 // The plane-of-incidence probe the specular steps share: N = +z, V 60 degrees from N, L swept
 // in the same plane from -90 degrees (x = 0, grazing on the mirror side) through the mirror
 // direction (x = 1/6), N (x = 1/2) and V itself (x = 5/6) to +90 degrees; y = roughness
