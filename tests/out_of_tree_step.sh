@@ -60,7 +60,7 @@ echo "== gui: the step's term view is in the view chooser"
 if command -v xvfb-run > /dev/null; then
     gui() {
         (cd "$work" && HOME="$work" xvfb-run -a -s '-screen 0 1280x800x24' "$pbrlab" \
-            --modules "$modules" gui --module ndotl --size 640x400 --frames 2 "$@")
+            --modules "$modules" gui ndotl --window 640x400 --frames 2 "$@")
     }
     gui --view half_lambert --screenshot "$work/term.png" > "$work/gui.log" 2>&1
     test -s "$work/term.png"
