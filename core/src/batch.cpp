@@ -26,12 +26,6 @@ namespace pbrlab {
 
 namespace {
 
-std::string readText(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw Error(file.string() + ": cannot read it");
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 // Every file under `folder` (names relative to it, contents; links by their target), in name
 // order. Empty when something cannot be read: then the submission is simply graded again.
 std::string folderDigest(const fs::path& folder) {
@@ -52,7 +46,7 @@ std::string folderDigest(const fs::path& folder) {
                     d.add("large " + std::to_string(size) + " " +
                           std::to_string(fs::last_write_time(file).time_since_epoch().count()));
                 else
-                    d.add(readText(file));
+                    d.add(readWholeFile(file));
             }
         }
         return d.hex();
@@ -94,7 +88,7 @@ std::string configurationDigest(const ModuleRegistry& modules, const DataPaths& 
     d.add(s.stopAtFirstFailure);
     d.add(o.configuration);
     // Points, weights and time limit change grades: a changed assignment regrades everyone.
-    if (o.assignment) d.add(readText(o.assignment->file));
+    if (o.assignment) d.add(readWholeFile(o.assignment->file));
     return d.hex();
 }
 
@@ -213,7 +207,7 @@ BatchSummary gradeBatch(const ModuleRegistry& modules, const DataPaths& paths,
         std::error_code ec;
         const bool unchanged = !digests[i].empty() && fs::exists(out / "report.json", ec) &&
                                fs::exists(out / "digest.txt", ec) &&
-                               trimmed(readText(out / "digest.txt")) == digests[i];
+                               trimmed(readWholeFile(out / "digest.txt")) == digests[i];
         if (unchanged) {
             ++summary.skipped;
         } else {
@@ -265,7 +259,7 @@ BatchSummary gradeBatch(const ModuleRegistry& modules, const DataPaths& paths,
             totals[i].error =
                 std::string("the grading process died (") + strsignal(WTERMSIG(status)) + ")";
         else if (fs::exists(out / "error.txt"))
-            totals[i].error = trimmed(readText(out / "error.txt"));
+            totals[i].error = trimmed(readWholeFile(out / "error.txt"));
         else if (WEXITSTATUS(status) != 0)
             totals[i].error =
                 "the grading process ended with status " + std::to_string(WEXITSTATUS(status));
@@ -282,7 +276,7 @@ BatchSummary gradeBatch(const ModuleRegistry& modules, const DataPaths& paths,
             continue;
         }
         try {
-            const json report = json::parse(readText(o.out / t.student / "report.json"));
+            const json report = json::parse(readWholeFile(o.out / t.student / "report.json"));
             t.score = report.at("score").get<double>();
             t.maxScore = report.at("max_score").get<double>();
             t.seconds = report.value("seconds", 0.0);
@@ -325,7 +319,7 @@ void mergeBatches(const std::vector<fs::path>& shardOutputs, const fs::path& out
         const fs::path file = dir / "shard.json";
         json shard;
         try {
-            shard = json::parse(readText(file));
+            shard = json::parse(readWholeFile(file));
         } catch (const std::exception& e) {
             throw Error(file.string() + ": " + e.what() +
                         " (not an output of pbrlab grade --batch?)");

@@ -39,9 +39,7 @@ std::string number(double v) {
 // The records of a CSV file (quoted fields may hold commas, quotes and line breaks), each with
 // the line it starts on.
 std::vector<std::pair<int, std::vector<std::string>>> readCsv(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw Error(file.string() + ": cannot read it");
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string text = readWholeFile(file);
     std::vector<std::pair<int, std::vector<std::string>>> records;
     std::vector<std::string> fields(1);
     int line = 1, start = 1;

@@ -220,12 +220,6 @@ export PBRLAB_CACHE=$root/source/pbrlab-cache
     --gradescope "$root/results/results.json"
 )";
 
-std::string readBinary(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw Error(file.string() + ": cannot read");
-    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
 }  // namespace
 
 fs::path findDebianPackage() {
@@ -267,8 +261,8 @@ fs::path writeAutograderBundle(AutograderOptions o, const ModuleRegistry& module
         throw Error(o.deb.string() + ": not a pbrlab_*.deb (cpack -G DEB in the build folder)");
     const std::vector<ZipEntry> entries = {{"setup.sh", kSetup, true},
                                            {"run_autograder", kRunAutograder, true},
-                                           {"assignment.json", readBinary(o.assignment), false},
-                                           {debName, readBinary(o.deb), false}};
+                                           {"assignment.json", readWholeFile(o.assignment), false},
+                                           {debName, readWholeFile(o.deb), false}};
     const fs::path zip = o.out / "autograder.zip";
     fs::create_directories(o.out);
     writeFileAtomically(zip, zipArchive(entries));

@@ -30,6 +30,14 @@ Grid grid(std::vector<Surface> surfaces) {
     return g;
 }
 
+std::vector<glm::dvec3> pointValues(const Image& value, size_t count) {
+    std::vector<glm::dvec3> values;
+    values.reserve(count);
+    for (size_t i = 0; i < count; ++i)
+        values.emplace_back(value.pixels[i * 4], value.pixels[i * 4 + 1], value.pixels[i * 4 + 2]);
+    return values;
+}
+
 ParamValues withSets(const ModuleDesc& d, const std::vector<std::string>& set) {
     ParamValues values(d.params);
     for (const std::string& a : set) applyAssignment(d.params, values, a);

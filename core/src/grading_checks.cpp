@@ -54,12 +54,7 @@ void StepGrader::gradeInvariants(const Scene& scene) {
         request.seamlessCubes = false;
         request.isolatePoints = true;
         request.view = view;
-        RenderResult r = renderer_.render(request);
-        std::vector<glm::dvec3> values;
-        for (size_t i = 0; i < surfaces.size(); ++i)
-            values.emplace_back(r.value.pixels[i * 4], r.value.pixels[i * 4 + 1],
-                                r.value.pixels[i * 4 + 2]);
-        return values;
+        return pointValues(renderer_.render(request).value, surfaces.size());
     };
     for (const InvariantResult& inv : d_.invariants(evaluator)) {
         CheckReport c;

@@ -110,12 +110,7 @@ void StepGrader::explain() {
                                   &g.surfaces, g.width,   g.height};
             request.seamlessCubes = false;
             request.isolatePoints = true;
-            RenderResult r = renderer_.render(request);
-            std::vector<glm::dvec3> values;
-            for (size_t i = 0; i < surfaces.size(); ++i)
-                values.emplace_back(r.value.pixels[i * 4], r.value.pixels[i * 4 + 1],
-                                    r.value.pixels[i * 4 + 2]);
-            return values;
+            return pointValues(renderer_.render(request).value, surfaces.size());
         };
         // The estimator's bands are not the reference's: the sensitivity test would
         // compare against the same-sample reference, so it is left out there.

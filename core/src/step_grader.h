@@ -34,6 +34,9 @@ struct Grid {
 };
 Grid grid(std::vector<Surface> surfaces);
 
+// The first `count` pixels of a rendered value image (RGBA32F), as the values a check compares.
+std::vector<glm::dvec3> pointValues(const Image& value, size_t count);
+
 // The module's parameters at their defaults, then these assignments ("samples=7").
 ParamValues withSets(const ModuleDesc& d, const std::vector<std::string>& set);
 

@@ -31,20 +31,7 @@ ModuleDesc describeModule() {
                                                         ref::DenominatorGuard::LessonEpsilon);
                        },
                        true}};
-    // N anywhere; V and L in its hemisphere, half the time L near V's mirror direction (the
-    // highlight); any albedo and metallic; roughness 0.05 to 1.
-    d.domain = [](DomainRandom& r) {
-        Surface s;
-        s.normal = r.direction();
-        s.view = r.around(s.normal, 0, 1);
-        const glm::dvec3 mirror = glm::reflect(-s.view, s.normal);
-        do s.light = r.uniform() < 0.5 ? r.around(mirror, 0.9, 1) : r.around(s.normal, 0, 1);
-        while (glm::dot(s.light, s.normal) < 0);
-        s.albedo = s.albedoTexel = r.color();
-        s.metallic = r.uniform();
-        s.roughness = r.range(0.05, 1);
-        return s;
-    };
+    d.domain = highlightDomain;  // the whole lobe, half the points near the highlight
     d.cases = {lessonGridCase()};
     // As step `specular`'s probe (planeOfIncidenceProbe), for a half-metallic orange: albedo
     // (0.9, 0.5, 0.1), metallic 0.5, so both the diffuse and the specular term show in every

@@ -11,14 +11,6 @@ using namespace pbrlab;
 
 namespace {
 
-// The environment as the shader reads it (textureLod(uEnvironment, L, 0)): the CPU copy of
-// the same cube map, mip 0, filtered as GL filters it.
-struct CubeEnvironment final : ref::Environment {
-    explicit CubeEnvironment(const CubeSampler& c) : cube(c) {}
-    glm::dvec3 radiance(const glm::dvec3& dir) const override { return cube.sample(dir, 0); }
-    const CubeSampler& cube;
-};
-
 ModuleDesc describeModule() {
     ModuleDesc d;
     d.title = "Specular IBL by Monte Carlo";
@@ -36,7 +28,7 @@ ModuleDesc describeModule() {
     d.reference = [](const Surface& s, const ReferenceContext& c) {
         // V below the surface (silhouette pixels): 0, as the view does.
         if (!c.ibl || glm::dot(s.normal, s.view) < 0) return glm::dvec3(0);
-        const CubeEnvironment env(c.ibl->environment);
+        const ref::CubeEnvironment env(c.ibl->environment);
         const auto n = std::uint32_t(std::max(0.0, c.params.number("samples")));
         return ref::specularIBLReference(
             env, s.normal, s.view, ref::baseReflectivity(s.albedo, s.metallic), s.roughness, n);
@@ -72,7 +64,7 @@ ModuleDesc describeModule() {
     e.sampleCounts = {4, 64, 1024};
     e.converged = [](const Surface& s, const ReferenceContext& c, std::uint32_t samples) {
         if (!c.ibl || glm::dot(s.normal, s.view) < 0) return Estimate{};
-        const CubeEnvironment env(c.ibl->environment);
+        const ref::CubeEnvironment env(c.ibl->environment);
         const ref::Moments m = ref::specularIBLMoments(env, s.normal, s.view,
                                                        ref::baseReflectivity(s.albedo, s.metallic),
                                                        s.roughness, samples);

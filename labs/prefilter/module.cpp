@@ -13,13 +13,6 @@ using namespace pbrlab;
 
 namespace {
 
-// The environment as the shader reads it (textureLod(uEnvironment, L, 0)).
-struct CubeEnvironment final : ref::Environment {
-    explicit CubeEnvironment(const CubeSampler& c) : cube(c) {}
-    glm::dvec3 radiance(const glm::dvec3& dir) const override { return cube.sample(dir, 0); }
-    const CubeSampler& cube;
-};
-
 // The samples uniform as the shader receives it (an int, clamped to the declared range).
 std::uint32_t samples(const ReferenceContext& c) {
     return std::uint32_t(std::max(c.params.number("samples"), 1.0));
@@ -43,7 +36,7 @@ ModuleDesc describeModule() {
         const glm::dvec3 R = glm::reflect(-s.view, s.normal);
         // The reference solution in double (ref::prefilterEnvironment), reading the same
         // environment texels (mip 0) the shader reads.
-        return ref::prefilterEnvironment(CubeEnvironment(c.ibl->environment), R, s.roughness,
+        return ref::prefilterEnvironment(ref::CubeEnvironment(c.ibl->environment), R, s.roughness,
                                          samples(c));
     };
     // x: R's elevation from the nadir (0) through the horizon (0.5) to the zenith (1), in the
@@ -73,7 +66,7 @@ ModuleDesc describeModule() {
     e.sampleCounts = {4, 64, 1024};
     e.converged = [](const Surface& s, const ReferenceContext& c, std::uint32_t samples) {
         if (!c.ibl) return Estimate{};
-        const CubeEnvironment env(c.ibl->environment);
+        const ref::CubeEnvironment env(c.ibl->environment);
         const glm::dvec3 R = glm::reflect(-s.view, s.normal);
         const ref::Moments m = ref::prefilterMoments(env, R, s.roughness, samples);
         return Estimate{m.mean, m.sigma};

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "pbrlab/cube_sampler.h"
 #include "pbrlab/image.h"
 #include "pbrlab/reference.h"
 
@@ -95,6 +96,14 @@ struct ConstantEnvironment final : Environment {
     explicit ConstantEnvironment(const dvec3& c) : colour(c) {}
     dvec3 radiance(const dvec3&) const override { return colour; }
     dvec3 colour;
+};
+
+// A cube map as the shaders read the environment (textureLod(uEnvironment, L, 0)): the CPU
+// copy of the same cube, mip 0, filtered as GL filters it. Refers to `cube`, not a copy.
+struct CubeEnvironment final : Environment {
+    explicit CubeEnvironment(const CubeSampler& c) : cube(c) {}
+    dvec3 radiance(const dvec3& dir) const override { return cube.sample(dir, 0); }
+    const CubeSampler& cube;
 };
 
 // An equirectangular image (RGB from the first three channels; one channel is grey), looked

@@ -182,6 +182,22 @@ inline Probe viewCosineRoughnessProbe() {
     return p;
 }
 
+// The domain of the steps that are functions of the whole lobe (specular, brdf): N anywhere;
+// V and L in its hemisphere, half the time L near V's mirror direction (the highlight); any
+// albedo and metallic; roughness 0.05 to 1.
+inline Surface highlightDomain(DomainRandom& r) {
+    Surface s;
+    s.normal = r.direction();
+    s.view = r.around(s.normal, 0, 1);
+    const glm::dvec3 mirror = glm::reflect(-s.view, s.normal);
+    do s.light = r.uniform() < 0.5 ? r.around(mirror, 0.9, 1) : r.around(s.normal, 0, 1);
+    while (glm::dot(s.light, s.normal) < 0);
+    s.albedo = s.albedoTexel = r.color();
+    s.metallic = r.uniform();
+    s.roughness = r.range(0.05, 1);
+    return s;
+}
+
 // L over a cap of the sphere around N = +z (V = N): x = the angle from N, 0..capOverPi * pi
 // (1: the whole sphere, 0.5: the hemisphere; a multiple of pi keeps the column at 90 degrees
 // exact), both ends hit; y = the azimuth, 0..360 degrees. Shared by the steps that are functions of
