@@ -26,8 +26,6 @@ namespace pbrlab {
 
 namespace {
 
-constexpr std::uintmax_t kMaxStudentFileBytes = 10u * 1024 * 1024;
-
 json gradeJson(const ModuleGrade& g) {
     return {{"id", g.id},
             {"title", g.title},
@@ -379,27 +377,6 @@ ModuleGrade gradeModule(LabRenderer& renderer, const LoadedModule& m, const Data
     g.score = g.status == "passed" ? g.maxScore : 0;
     g.message = validUtf8(g.message);
     return g;
-}
-
-std::string screenStudentFile(const fs::path& file, const fs::path& submission) {
-    std::error_code ec;
-    const bool link = fs::is_symlink(file, ec);
-    if (link) {
-        const fs::path target = fs::canonical(file, ec);
-        if (ec) return "refused: it is a link that cannot be resolved (" + ec.message() + ")";
-        if (!isInside(target, submission))
-            return "refused: it is a link to a file outside the submission folder";
-    }
-    if (!isInside(file, submission)) return "refused: outside the submission folder";
-    if (!fs::is_regular_file(file, ec)) return "refused: not a regular file";
-    auto size = fs::file_size(file, ec);
-    if (ec) return "cannot read it: " + ec.message();
-    if (size > kMaxStudentFileBytes) return "refused: larger than 10 MB";
-    std::ifstream in(file, std::ios::binary);
-    if (!in) return "cannot read it";
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (text.find('\0') != std::string::npos) return "refused: it contains NUL bytes (not text)";
-    return {};
 }
 
 std::vector<ModuleGrade> gradeJobs(const std::vector<GradeJob>& jobs, const DataPaths& paths,

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "pbrlab/error.h"
+#include "shader/student_file.h"
 
 namespace fs = std::filesystem;
 
@@ -39,6 +40,7 @@ std::string readText(const fs::path& path) {
 
 struct Expander {
     std::vector<fs::path> roots;
+    fs::path studentFolder;  // set while expanding a student's file (see ShaderPart)
     ExpandedShader out;
     std::set<fs::path> included;
 
@@ -75,6 +77,10 @@ struct Expander {
         throw Error(where + ": #include \"" + target + "\" not found");
     }
 
+    std::string read(const fs::path& file) const {
+        return studentFolder.empty() ? readText(file) : readStudentFile(file, studentFolder);
+    }
+
     void expandText(const std::string& text, const std::string& name, const fs::path& file) {
         int index = sourceIndex(name);
         out.text += "#line 1 " + std::to_string(index) + "\n";
@@ -92,7 +98,7 @@ struct Expander {
                 fs::path target = resolve(m[1].str(), file, where);
                 if (included.insert(target).second) {
                     out.files.push_back(target);
-                    expandText(readText(target), target.string(), target);
+                    expandText(read(target), target.string(), target);
                 }
                 out.text +=
                     "#line " + std::to_string(lineNo + 1) + " " + std::to_string(index) + "\n";
@@ -109,12 +115,13 @@ struct Expander {
 
 ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
                                           const Defines& defines) const {
-    Expander ex{roots_, {}, {}};
+    Expander ex{roots_, {}, {}, {}};
     ex.out.text = "#version 450 core\n";
     for (const auto& [name, value] : defines) ex.out.text += "#define " + name + " " + value + "\n";
     for (const auto& part : parts) {
         if (!part.text.empty() || part.file.empty()) {
             ex.roots = roots_;
+            ex.studentFolder.clear();
             ex.expandText(part.text, part.name.empty() ? "<generated>" : part.name, {});
             continue;
         }
@@ -123,8 +130,11 @@ ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
         if (ec) throw Error(part.file.string() + ": cannot be resolved (" + ec.message() + ")");
         if (!ex.included.insert(file).second) continue;
         ex.out.files.push_back(file);
-        ex.roots = part.includeRoots.empty() ? roots_ : part.includeRoots;
-        ex.expandText(readText(file), file.string(), file);
+        ex.studentFolder = part.studentFolder;
+        ex.roots = part.studentFolder.empty() ? roots_ : std::vector<fs::path>{part.studentFolder};
+        // A student's file is read by the name it was given, so that the screening sees a
+        // link as a link (and names the file as the student knows it).
+        ex.expandText(ex.read(part.studentFolder.empty() ? file : part.file), file.string(), file);
     }
     return ex.out;
 }

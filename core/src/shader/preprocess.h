@@ -20,9 +20,10 @@ struct ShaderPart {
     std::filesystem::path file;  // used when text is empty
     std::string text;
     std::string name;  // for generated text: what to call it in messages
-    // When set, the only folders this part's #includes may read (a student's file: its own
-    // submission folder, never the reference solutions); otherwise the preprocessor's roots.
-    std::vector<std::filesystem::path> includeRoots;
+    // When set, this part is a student's file of this submission folder: it and every file it
+    // #includes are screened and read by readStudentFile (student_file.h), and its includes
+    // resolve inside this folder only, never in the reference solutions.
+    std::filesystem::path studentFolder;
 };
 
 struct ExpandedShader {
