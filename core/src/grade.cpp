@@ -311,10 +311,8 @@ std::string compileHints(const std::string& log) {
                  (step ? " (step " + std::to_string(step->step) + ", " + step->id + ")" : "") +
                  ": call it, or give your own helper another name.";
     }
-    if (log.find("recursion") != std::string::npos)
-        hints +=
-            "\nhint: a contract function you call calls yours back, and GLSL allows no "
-            "recursion: compute that part yourself.";
+    // Recursion and the host's own functions (main) are hinted where the log is traced back
+    // to the student's line (mapCompilerLog), which knows whose function it is.
     return hints;
 }
 
