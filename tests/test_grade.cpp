@@ -81,7 +81,7 @@ TEST(Grade, UntouchedStubsScoreZeroAndNeverCrash) {
 TEST(Grade, AnEndlessLoopIsNamedAsSuchNotAsTheStub) {
     Grader g;
     fs::path kit = g.kit(true);
-    std::ofstream(kit / "ndotl.glsl") << "float ndotl(vec3 N, vec3 L) {\n"
+    std::ofstream(kit / "ndotl.glsl") << "float lambertCosine(vec3 N, vec3 L) {\n"
                                          "    float x = 0.0;\n"
                                          "    while (true) { x += 1.0; }\n"
                                          "    return max(dot(N, L), 0.0);\n"

@@ -185,8 +185,28 @@ TEST(StudentFiles, CompileErrorsCausedByTheStudentsFilePointIntoIt) {
         EXPECT_NE(r.status, 0) << r.output;
         EXPECT_NE(r.output.find((kit / c.location).string()), std::string::npos) << r.output;
         EXPECT_NE(r.output.find(c.says), std::string::npos) << r.output;
-        if (*c.hint) EXPECT_NE(r.output.find(c.hint), std::string::npos) << r.output;
+        if (*c.hint) {
+            EXPECT_NE(r.output.find(c.hint), std::string::npos) << r.output;
+        }
         EXPECT_EQ(r.output.find(c.notSaid), std::string::npos) << r.output;
         EXPECT_EQ(r.output.find("common.glsl"), std::string::npos) << r.output;
     }
+}
+
+// The one case where "a contract function you call calls yours back" is true: specular calling
+// the full BRDF, whose reference calls specular.
+TEST(StudentFiles, ARecursionThroughAContractFunctionIsHintedAsSuch) {
+    test::TempDir dir;
+    const fs::path kit = dir.path / "kit";
+    fs::create_directories(kit);
+    std::ofstream(kit / "specular.glsl")
+        << "vec3 cookTorranceSpecular(vec3 N, vec3 V, vec3 L, vec3 F0, float roughness)\n{\n"
+           "    return cookTorranceBRDF(N, V, L, F0, 1.0, roughness);\n}\n";
+    const CommandRun r = run(dir, exe() + " check specular --size 32 --submission " + kit.string());
+    EXPECT_NE(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find((kit / "specular.glsl:3:").string()), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("you call cookTorranceBRDF, which calls your function back"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.output.find("common.glsl"), std::string::npos) << r.output;
 }

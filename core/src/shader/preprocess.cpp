@@ -176,7 +176,21 @@ int definitionLine(const std::string& text, const std::string& name) {
     int lineNo = 0;
     for (std::string line; std::getline(in, line);) {
         ++lineNo;
-        if (std::regex_search(line, definition)) return lineNo;
+        std::smatch m;
+        if (std::regex_search(line, m, definition) && m[1].str().rfind("return", 0) != 0)
+            return lineNo;
+    }
+    return 0;
+}
+
+// The line (1-based) of the first call of function `name` in `text`, or 0.
+int callLine(const std::string& text, const std::string& name) {
+    const std::regex call("\\b" + name + "\\s*\\(");
+    std::istringstream in(text);
+    int lineNo = 0;
+    for (std::string line; std::getline(in, line);) {
+        ++lineNo;
+        if (std::regex_search(line.substr(0, line.find("//")), call)) return lineNo;
     }
     return 0;
 }
@@ -240,10 +254,15 @@ std::string mapCompilerLog(const std::string& log, const ExpandedShader& shader)
     std::vector<std::string> hostNames;
     {
         static const std::regex prototype(R"(^\s*\w+\s+(\w+)\s*\([^;{]*\)\s*;)");
+        static const std::regex marker(R"(^#line \d+ (\d+)$)");
         std::istringstream in(shader.text);
+        int source = -1;
         for (std::string line; std::getline(in, line);) {
             std::smatch m;
-            if (std::regex_search(line, m, prototype)) hostNames.push_back(m[1].str());
+            if (std::regex_match(line, m, marker))
+                source = std::stoi(m[1].str());
+            else if (!shader.studentTexts.count(source) && std::regex_search(line, m, prototype))
+                hostNames.push_back(m[1].str());
         }
     }
     std::istringstream in(mapped);
@@ -254,12 +273,19 @@ std::string mapCompilerLog(const std::string& log, const ExpandedShader& shader)
             std::regex_search(line, n, named)) {
             const std::string message = m[5].str(), name = n[1].str();
             for (const auto& [index, code] : shader.studentTexts) {
-                const int at = definitionLine(code, name);
+                // Where the student defines the function, else where the student calls it
+                // (a host function in the cycle is reached from the student's call).
+                const int defined = definitionLine(code, name);
+                const bool recursion = message.find("recursion") != std::string::npos;
+                const int at = defined ? defined : recursion ? callLine(code, name) : 0;
                 if (at == 0) continue;
+                const std::string hint =
+                    defined ? hintFor(message, name, code, hostNames)
+                            : "you call " + name +
+                                  ", which calls your function back, and GLSL allows no "
+                                  "recursion: compute that part yourself.";
                 line = shader.sourceNames[size_t(index)] + ":" + std::to_string(at) + ": " +
-                       m[4].str() + ": " + message;
-                if (std::string hint = hintFor(message, name, code, hostNames); !hint.empty())
-                    line += "\nhint: " + hint;
+                       m[4].str() + ": " + message + (hint.empty() ? "" : "\nhint: " + hint);
                 break;
             }
         }
