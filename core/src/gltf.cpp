@@ -259,6 +259,68 @@ bool collectImage(tinygltf::Image* image, const int index, std::string*, std::st
     return true;
 }
 
+// "node 3 ('arm')": a node as an error message names it.
+std::string nodeName(const tinygltf::Model& m, int index) {
+    const std::string& name = m.nodes[size_t(index)].name;
+    return "node " + std::to_string(index) + (name.empty() ? "" : " ('" + name + "')");
+}
+
+// The node hierarchy is a forest, as glTF requires, checked before anything walks it: every
+// child exists and has one parent, no node is its own ancestor, and each scene's roots exist,
+// are distinct and are nobody's child. (Walked as given, a loop never ends and a node shared
+// by parents is drawn once per path: exponentially many.)
+void checkNodeForest(const tinygltf::Model& m, const fs::path& file) {
+    const int count = int(m.nodes.size());
+    std::vector<int> parent(size_t(count), -1);
+    for (int p = 0; p < count; ++p)
+        for (int c : m.nodes[size_t(p)].children) {
+            if (c < 0 || c >= count)
+                fail(file, nodeName(m, p) + " lists child " + std::to_string(c) +
+                               ", which does not exist");
+            if (c == p)
+                fail(file, nodeName(m, p) + " lists itself as a child: the nodes loop (" +
+                               nodeName(m, p) + " -> " + nodeName(m, p) + ")");
+            if (parent[size_t(c)] == p)
+                fail(file, nodeName(m, p) + " lists " + nodeName(m, c) + " twice as a child");
+            if (parent[size_t(c)] >= 0)
+                fail(file, nodeName(m, c) + " has two parents, " + nodeName(m, parent[size_t(c)]) +
+                               " and " + nodeName(m, p) + " (glTF allows a node one parent)");
+            parent[size_t(c)] = p;
+        }
+    // One parent each: following parents from any node either reaches a root or goes round a
+    // loop. 0: not seen, 1: on the chain being followed, 2: leads to a root.
+    std::vector<char> state(size_t(count), 0);
+    for (int start = 0; start < count; ++start) {
+        std::vector<int> chain;
+        int n = start;
+        while (n >= 0 && state[size_t(n)] == 0) {
+            state[size_t(n)] = 1;
+            chain.push_back(n);
+            n = parent[size_t(n)];
+        }
+        if (n >= 0 && state[size_t(n)] == 1) {  // back on the chain: n is its own ancestor
+            // The chain runs child to parent, n first on the loop; said parent to child.
+            std::string loop = nodeName(m, n);
+            for (auto it = chain.rbegin(); *it != n; ++it) loop += " -> " + nodeName(m, *it);
+            fail(file, "the nodes loop: " + loop + " -> " + nodeName(m, n));
+        }
+        for (int c : chain) state[size_t(c)] = 2;
+    }
+    for (size_t s = 0; s < m.scenes.size(); ++s) {
+        std::set<int> roots;
+        const std::string scene = "scene " + std::to_string(s);
+        for (int r : m.scenes[s].nodes) {
+            if (r < 0 || r >= count)
+                fail(file, scene + " lists node " + std::to_string(r) + ", which does not exist");
+            if (parent[size_t(r)] >= 0)
+                fail(file, scene + " lists " + nodeName(m, r) +
+                               " as a root, but it is a child of " +
+                               nodeName(m, parent[size_t(r)]));
+            if (!roots.insert(r).second) fail(file, scene + " lists " + nodeName(m, r) + " twice");
+        }
+    }
+}
+
 }  // namespace
 
 void generateTangents(MeshData& mesh) {
@@ -381,18 +443,18 @@ ModelData loadGltf(const fs::path& file) {
             data.warnings.push_back(what + ": alphaMode " + mat.alphaMode + " is drawn opaque");
         data.materials.push_back(mm);
     }
-    // Walk the default scene (or every root) applying node transforms.
+    // Walk the default scene applying node transforms: a forest (checked), so each node once.
+    checkNodeForest(model, file);
+    std::vector<int> roots;
+    const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
+    if (sceneIndex < int(model.scenes.size())) roots = model.scenes[size_t(sceneIndex)].nodes;
     std::vector<std::pair<int, glm::dmat4>> stack;
-    int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
-    if (sceneIndex < int(model.scenes.size()))
-        for (int n : model.scenes[size_t(sceneIndex)].nodes) stack.push_back({n, glm::dmat4(1)});
-    int visited = 0, skippedPrimitives = 0;
+    for (int n : roots) stack.push_back({n, glm::dmat4(1)});
+    int skippedPrimitives = 0;
     bool usesVertexColours = false;
     while (!stack.empty()) {
         auto [index, parent] = stack.back();
         stack.pop_back();
-        if (index < 0 || index >= int(model.nodes.size()) || ++visited > 100000)
-            fail(file, "node " + std::to_string(index) + " does not exist (or the nodes loop)");
         const auto& node = model.nodes[size_t(index)];
         glm::dmat4 world = parent * nodeMatrix(node);
         for (int c : node.children) stack.push_back({c, world});
