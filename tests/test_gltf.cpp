@@ -182,3 +182,47 @@ TEST(Gltf, NodeLoopsAndSharedNodesAreErrorsNamingTheNodes) {
                                        R"([{"nodes": [0]}, {"nodes": [0]}])")),
               "");
 }
+
+TEST(Gltf, FilesOutsideTheModelsFolderAreRefusedNotRead) {
+    test::TempDir dir;
+    // The model in dir/model/; a readable buffer and image beside that folder, in dir.
+    const fs::path model = dir.path / "model";
+    writeNodesGltf(dir.path, "unused.gltf", "[]");  // dir/tri.bin
+    dir.write("secret.png", "\x89PNG\r\n\x1a\n");
+    auto refused = [&](const std::string& bufferUri, const std::string& images,
+                       const std::string& said) {
+        const fs::path file = writeNodesGltf(model, "m.gltf", R"([{"mesh": 0}])",
+                                             R"([{"nodes": [0]}])", bufferUri, images);
+        const std::string m = gltfError(file);
+        EXPECT_NE(m.find(file.string()), std::string::npos) << m;
+        EXPECT_NE(m.find(said + ": refused"), std::string::npos) << m;
+        EXPECT_NE(m.find("lies outside the model's folder " + model.string()), std::string::npos)
+            << m;
+        EXPECT_EQ(m.find("not found"), std::string::npos) << m;
+    };
+    const std::string absolute = (dir.path / "tri.bin").string();
+    refused(absolute, "[]", "buffer 0 ('" + absolute + "')");
+    refused("/etc/passwd", "[]", "buffer 0 ('/etc/passwd')");
+    refused("../tri.bin", "[]", "buffer 0 ('../tri.bin')");
+    refused("sub/../../tri.bin", "[]", "buffer 0 ('sub/../../tri.bin')");
+    refused("%2E%2E/tri.bin", "[]", "buffer 0 ('%2E%2E/tri.bin')");
+    refused("tri.bin", R"([{"uri": "../secret.png"}])", "image 0 ('../secret.png')");
+    // A link beside the model that leads out of its folder is outside too.
+    fs::create_symlink(dir.path / "tri.bin", model / "link.bin");
+    refused("link.bin", "[]", "buffer 0 ('link.bin')");
+    // Beside it, in a folder below it, or percent-encoded: read.
+    EXPECT_EQ(gltfError(writeNodesGltf(model, "m.gltf", R"([{"mesh": 0}])")), "");
+    fs::create_directories(model / "data dir");
+    fs::copy_file(model / "tri.bin", model / "data dir/tri.bin");
+    EXPECT_EQ(gltfError(writeNodesGltf(model, "m.gltf", R"([{"mesh": 0}])", R"([{"nodes": [0]}])",
+                                       "data%20dir/./tri.bin")),
+              "");
+    // tinygltf looks in the working directory for a file its model's folder lacks: not here.
+    writeNodesGltf(model, "m.gltf", R"([{"mesh": 0}])");
+    fs::remove(model / "tri.bin");
+    const fs::path cwd = fs::current_path();
+    fs::current_path(dir.path);  // which holds a tri.bin
+    const std::string m = gltfError(model / "m.gltf");
+    fs::current_path(cwd);
+    EXPECT_NE(m.find("tri.bin"), std::string::npos) << m;
+}

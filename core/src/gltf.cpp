@@ -17,6 +17,7 @@
 
 #include "pbrlab/error.h"
 #include "pbrlab/texgen.h"
+#include "shader/preprocess.h"
 
 namespace fs = std::filesystem;
 
@@ -189,11 +190,29 @@ std::string percentDecode(const std::string& uri) {
     return out;
 }
 
-// The external image files a glTF names (its JSON read before tinygltf reads anything), so
-// that the file-reading callback below can leave them unread. Any problem: an empty set, and
-// tinygltf reports the error itself.
-std::set<fs::path> externalImageFiles(const fs::path& file) {
-    std::set<fs::path> files;
+// True when `uri` (percent-decoded, relative to the model's folder `dir`) names a file inside
+// that folder or below it: not absolute, not climbing out with "..", not a link leading out.
+bool besideModel(const fs::path& dir, const std::string& uri) {
+    const fs::path relative(uri);
+    if (relative.has_root_path()) return false;
+    return isInside(dir / relative, dir);
+}
+
+// What the file-reading callbacks below need: the model's folder (nothing outside it is read)
+// and the external image files, left unread.
+struct ModelFiles {
+    fs::path dir;
+    std::set<fs::path> images;  // canonical
+};
+
+// The model's external files, from its JSON read before tinygltf reads anything: each buffer
+// and image URI must lie in the model's folder (else an error saying so), and the image files
+// are remembered so that the file-reading callback below can leave them unread. JSON that
+// does not parse: nothing checked here, and tinygltf reports the error itself.
+ModelFiles externalFiles(const fs::path& file) {
+    // The model's folder ("." for a bare file name: tinygltf then looks there too).
+    ModelFiles files{file.has_parent_path() ? file.parent_path() : fs::path("."), {}};
+    nlohmann::json doc;
     try {
         std::ifstream in(file, std::ios::binary);
         std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -204,15 +223,30 @@ std::set<fs::path> externalImageFiles(const fs::path& file) {
             if (length > bytes.size() - 20) return files;
             text = bytes.substr(20, length);
         }
-        auto doc = nlohmann::json::parse(text);
-        for (const auto& image : doc.value("images", nlohmann::json::array())) {
-            if (!image.is_object() || !image.contains("uri") || !image["uri"].is_string()) continue;
-            std::string uri = image["uri"].get<std::string>();
-            if (uri.rfind("data:", 0) == 0) continue;
-            files.insert(fs::weakly_canonical(file.parent_path() / percentDecode(uri)));
-        }
+        doc = nlohmann::json::parse(text);
     } catch (const std::exception&) {
-        files.clear();
+        return files;
+    }
+    if (!doc.is_object()) return files;
+    for (const char* kind : {"buffers", "images"}) {
+        const auto list = doc.value(kind, nlohmann::json::array());
+        if (!list.is_array()) continue;
+        for (size_t i = 0; i < list.size(); ++i) {
+            const auto& item = list[i];
+            if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+            const std::string uri = item["uri"].get<std::string>();
+            if (uri.rfind("data:", 0) == 0) continue;
+            const std::string decoded = percentDecode(uri);
+            const std::string what = std::string(kind).substr(0, std::strlen(kind) - 1) + " " +
+                                     std::to_string(i) + " ('" + uri + "')";
+            if (!besideModel(files.dir, decoded))
+                fail(file, what + ": refused: " + decoded + " lies outside the model's folder " +
+                               fs::absolute(files.dir).lexically_normal().string() +
+                               " (a model may only read files beside it)");
+            std::error_code ec;
+            if (std::string(kind) == "images")
+                files.images.insert(fs::weakly_canonical(files.dir / decoded, ec));
+        }
     }
     return files;
 }
@@ -221,9 +255,9 @@ std::set<fs::path> externalImageFiles(const fs::path& file) {
 // placeholder byte (tinygltf refuses an empty read) and the image is read on first use.
 bool readWholeFileExceptImages(std::vector<unsigned char>* out, std::string* err,
                                const std::string& path, void* userData) {
-    const auto* skip = static_cast<const std::set<fs::path>*>(userData);
+    const auto* files = static_cast<const ModelFiles*>(userData);
     std::error_code ec;
-    if (skip->count(fs::weakly_canonical(path, ec)) && fs::is_regular_file(path, ec)) {
+    if (files->images.count(fs::weakly_canonical(path, ec)) && fs::is_regular_file(path, ec)) {
         out->assign(1, 0);
         return true;
     }
@@ -231,9 +265,12 @@ bool readWholeFileExceptImages(std::vector<unsigned char>* out, std::string* err
 }
 
 // tinygltf's own check opens the file; a stat is enough (and leaves image files unopened).
-bool fileExists(const std::string& path, void*) {
+// Nothing outside the model's folder exists for tinygltf: not even the file of the same name
+// in the working directory, where tinygltf looks when the model's folder lacks it.
+bool fileExists(const std::string& path, void* userData) {
+    const auto* files = static_cast<const ModelFiles*>(userData);
     std::error_code ec;
-    return fs::is_regular_file(path, ec);
+    return fs::is_regular_file(path, ec) && isInside(path, files->dir);
 }
 
 // Keeps images encoded: embedded bytes are copied (decoded later, if ever), external files
@@ -360,11 +397,11 @@ ModelData loadGltf(const fs::path& file) {
     ModelData data;
     data.file = file;
     ImageCollector collector{file, {}};
-    std::set<fs::path> externalImages = externalImageFiles(file);
+    ModelFiles files = externalFiles(file);  // throws for a file outside the model's folder
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(collectImage, &collector);
     loader.SetFsCallbacks({&fileExists, &tinygltf::ExpandFilePath, &readWholeFileExceptImages,
-                           &tinygltf::WriteWholeFile, &externalImages});
+                           &tinygltf::WriteWholeFile, &files});
     tinygltf::Model model;
     std::string err, warn;
     bool binary = file.extension() == ".glb";

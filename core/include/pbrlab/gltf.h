@@ -59,8 +59,9 @@ struct ModelData {
 // Triangle strips and fans become triangle lists; a primitive without normals gets flat ones
 // (as the glTF specification asks); points and lines are left out with a warning. Throws
 // pbrlab::Error "FILE: ..." for a missing, truncated or invalid file, data it cannot read
-// (e.g. sparse or out-of-range accessors), a file with no triangles at all, or nodes that are
-// not a forest (a loop, a node with two parents: named with the path of the loop).
+// (e.g. sparse or out-of-range accessors), a file with no triangles at all, nodes that are not
+// a forest (a loop, a node with two parents: named with the path of the loop), or a buffer or
+// image outside the model's folder (refused, not read).
 ModelData loadGltf(const std::filesystem::path& file);
 
 // Per-vertex tangents from uv derivatives (Gram-Schmidt against the normal). w = +1 when
