@@ -226,3 +226,26 @@ TEST(Gltf, FilesOutsideTheModelsFolderAreRefusedNotRead) {
     fs::current_path(cwd);
     EXPECT_NE(m.find("tri.bin"), std::string::npos) << m;
 }
+
+TEST(Gltf, ModelsDrawingMoreThanTheLimitAreRefused) {
+    test::TempDir dir;
+    auto nodes = [](size_t count) {
+        std::string list = "[", roots = "[";
+        for (size_t i = 0; i < count; ++i) {
+            list += std::string(i ? ", " : "") + R"({"mesh": 0})";
+            roots += (i ? ", " : "") + std::to_string(i);
+        }
+        return std::pair{list + "]", R"([{"nodes": )" + roots + "]}]"};
+    };
+    auto [over, overScenes] = nodes(kMaxDrawnMeshes + 1);
+    const fs::path file = writeNodesGltf(dir.path, "many.gltf", over, overScenes);
+    const std::string m = gltfError(file);
+    EXPECT_NE(m.find(file.string()), std::string::npos) << m;
+    EXPECT_NE(m.find("draws " + std::to_string(kMaxDrawnMeshes + 1) + " primitives"),
+              std::string::npos)
+        << m;
+    EXPECT_NE(m.find("at most " + std::to_string(kMaxDrawnMeshes)), std::string::npos) << m;
+    auto [at, atScenes] = nodes(kMaxDrawnMeshes);
+    EXPECT_EQ(loadGltf(writeNodesGltf(dir.path, "limit.gltf", at, atScenes)).primitives.size(),
+              kMaxDrawnMeshes);
+}

@@ -485,6 +485,21 @@ ModelData loadGltf(const fs::path& file) {
     std::vector<int> roots;
     const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
     if (sceneIndex < int(model.scenes.size())) roots = model.scenes[size_t(sceneIndex)].nodes;
+    // Every primitive is a draw: more than a scene may draw is refused before any is read.
+    size_t primitives = 0;
+    for (std::vector<int> open = roots; !open.empty();) {
+        const auto& node = model.nodes[size_t(open.back())];
+        open.pop_back();
+        open.insert(open.end(), node.children.begin(), node.children.end());
+        if (node.mesh < 0) continue;
+        if (node.mesh >= int(model.meshes.size())) fail(file, "node mesh index out of range");
+        primitives += model.meshes[size_t(node.mesh)].primitives.size();
+    }
+    if (primitives > kMaxDrawnMeshes)
+        fail(file, "its scene draws " + std::to_string(primitives) +
+                       " primitives (a mesh's primitives, once per node that places it), more "
+                       "than pbrlab draws (at most " +
+                       std::to_string(kMaxDrawnMeshes) + ")");
     std::vector<std::pair<int, glm::dmat4>> stack;
     for (int n : roots) stack.push_back({n, glm::dmat4(1)});
     int skippedPrimitives = 0;
@@ -496,7 +511,6 @@ ModelData loadGltf(const fs::path& file) {
         glm::dmat4 world = parent * nodeMatrix(node);
         for (int c : node.children) stack.push_back({c, world});
         if (node.mesh < 0) continue;
-        if (node.mesh >= int(model.meshes.size())) fail(file, "node mesh index out of range");
         for (const auto& prim : model.meshes[size_t(node.mesh)].primitives) {
             const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
             if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
