@@ -2,6 +2,7 @@
 // errors (a small deterministic fuzz run over truncations and byte flips).
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <fstream>
 #include <random>
 
@@ -98,4 +99,153 @@ TEST(Gltf, LoadsTheSharedTangentTestModelWhenPresent) {
     EXPECT_FALSE(m.primitives.empty());
     EXPECT_FALSE(m.materials.empty());
     EXPECT_GE(m.materials[0].normalTexture.image, 0);
+}
+
+namespace {
+
+// The message of loadGltf(file)'s error ("" when it loads), and that it came back at all in a
+// generous bound: a node loop once ran for a minute and 20 GB before failing.
+std::string gltfError(const fs::path& file) {
+    const auto start = std::chrono::steady_clock::now();
+    std::string message;
+    try {
+        loadGltf(file);
+    } catch (const Error& e) {
+        message = e.what();
+    }
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20)) << file;
+    return message;
+}
+
+// dir/name, a .gltf of one triangle (its buffer dir/tri.bin, named by `bufferUri`) drawn by
+// `nodes`, with `scenes` and `images`.
+fs::path writeNodesGltf(const fs::path& dir, const std::string& name, const std::string& nodes,
+                        const std::string& scenes = R"([{"nodes": [0]}])",
+                        const std::string& bufferUri = "tri.bin",
+                        const std::string& images = "[]") {
+    const float positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    fs::create_directories(dir);
+    std::ofstream(dir / "tri.bin", std::ios::binary)
+        .write(reinterpret_cast<const char*>(positions), sizeof positions);
+    std::ofstream(dir / name, std::ios::binary) << R"({"asset": {"version": "2.0"},
+  "buffers": [{"uri": ")" + bufferUri + R"(", "byteLength": 36}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                 "min": [0, 0, 0], "max": [1, 1, 0]}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+  "images": )" + images + R"(,
+  "nodes": )" + nodes + R"(, "scenes": )" + scenes + R"(, "scene": 0})";
+    return dir / name;
+}
+
+}  // namespace
+
+TEST(Gltf, NodeLoopsAndSharedNodesAreErrorsNamingTheNodes) {
+    test::TempDir dir;
+    auto expect = [&](const std::string& name, const std::string& nodes, const std::string& scenes,
+                      const std::vector<std::string>& said) {
+        const fs::path file = writeNodesGltf(dir.path, name, nodes, scenes);
+        const std::string m = gltfError(file);
+        EXPECT_NE(m.find(file.string()), std::string::npos) << m;
+        for (const std::string& s : said) EXPECT_NE(m.find(s), std::string::npos) << m;
+    };
+    expect("self.gltf", R"([{"name": "knot", "mesh": 0, "children": [0]}])", R"([{"nodes": [0]}])",
+           {"node 0 ('knot') lists itself as a child", "node 0 ('knot') -> node 0 ('knot')"});
+    expect("two.gltf", R"([{"mesh": 0, "children": [1]}, {"mesh": 0, "children": [0]}])",
+           R"([{"nodes": [0]}])", {"the nodes loop: node 0 -> node 1 -> node 0"});
+    // A loop no scene reaches is refused all the same.
+    expect("three.gltf",
+           R"([{"mesh": 0}, {"children": [2]}, {"children": [3]}, {"children": [1]}])",
+           R"([{"nodes": [0]}])", {"the nodes loop: node 1 -> node 2 -> node 3 -> node 1"});
+    expect("shared.gltf", R"([{"children": [2]}, {"children": [2]}, {"name": "wheel", "mesh": 0}])",
+           R"([{"nodes": [0, 1]}])", {"node 2 ('wheel') has two parents, node 0 and node 1"});
+    expect("twice.gltf", R"([{"children": [1, 1]}, {"mesh": 0}])", R"([{"nodes": [0]}])",
+           {"node 0 lists node 1 twice as a child"});
+    // Each node listing the next twice: 2^40 paths walked as given.
+    std::string doubling = "[";
+    for (int i = 0; i < 40; ++i)
+        doubling += R"({"mesh": 0, "children": [)" + std::to_string(i + 1) + ", " +
+                    std::to_string(i + 1) + "]}, ";
+    expect("doubling.gltf", doubling + R"({"mesh": 0}])", R"([{"nodes": [0]}])",
+           {"node 0 lists node 1 twice as a child"});
+    expect("roots.gltf", R"([{"mesh": 0}])", R"([{"nodes": [0, 0]}])",
+           {"scene 0 lists node 0 twice"});
+    expect("rootchild.gltf", R"([{"children": [1]}, {"mesh": 0}])", R"([{"nodes": [0, 1]}])",
+           {"scene 0 lists node 1 as a root, but it is a child of node 0"});
+    expect("nochild.gltf", R"([{"children": [7]}])", R"([{"nodes": [0]}])",
+           {"node 0 lists child 7, which does not exist"});
+    // A node in two scenes is allowed (the default scene is drawn), as is a deep chain.
+    std::string chain = "[";
+    for (int i = 0; i < 5000; ++i) chain += R"({"children": [)" + std::to_string(i + 1) + "]}, ";
+    EXPECT_EQ(gltfError(writeNodesGltf(dir.path, "chain.gltf", chain + R"({"mesh": 0}])")), "");
+    EXPECT_EQ(gltfError(writeNodesGltf(dir.path, "scenes.gltf", R"([{"mesh": 0}])",
+                                       R"([{"nodes": [0]}, {"nodes": [0]}])")),
+              "");
+}
+
+TEST(Gltf, FilesOutsideTheModelsFolderAreRefusedNotRead) {
+    test::TempDir dir;
+    // The model in dir/model/; a readable buffer and image beside that folder, in dir.
+    const fs::path model = dir.path / "model";
+    writeNodesGltf(dir.path, "unused.gltf", "[]");  // dir/tri.bin
+    dir.write("secret.png", "\x89PNG\r\n\x1a\n");
+    auto refused = [&](const std::string& bufferUri, const std::string& images,
+                       const std::string& said) {
+        const fs::path file = writeNodesGltf(model, "m.gltf", R"([{"mesh": 0}])",
+                                             R"([{"nodes": [0]}])", bufferUri, images);
+        const std::string m = gltfError(file);
+        EXPECT_NE(m.find(file.string()), std::string::npos) << m;
+        EXPECT_NE(m.find(said + ": refused"), std::string::npos) << m;
+        EXPECT_NE(m.find("lies outside the model's folder " + model.string()), std::string::npos)
+            << m;
+        EXPECT_EQ(m.find("not found"), std::string::npos) << m;
+    };
+    const std::string absolute = (dir.path / "tri.bin").string();
+    refused(absolute, "[]", "buffer 0 ('" + absolute + "')");
+    refused("/etc/passwd", "[]", "buffer 0 ('/etc/passwd')");
+    refused("../tri.bin", "[]", "buffer 0 ('../tri.bin')");
+    refused("sub/../../tri.bin", "[]", "buffer 0 ('sub/../../tri.bin')");
+    refused("%2E%2E/tri.bin", "[]", "buffer 0 ('%2E%2E/tri.bin')");
+    refused("tri.bin", R"([{"uri": "../secret.png"}])", "image 0 ('../secret.png')");
+    // A link beside the model that leads out of its folder is outside too.
+    fs::create_symlink(dir.path / "tri.bin", model / "link.bin");
+    refused("link.bin", "[]", "buffer 0 ('link.bin')");
+    // Beside it, in a folder below it, or percent-encoded: read.
+    EXPECT_EQ(gltfError(writeNodesGltf(model, "m.gltf", R"([{"mesh": 0}])")), "");
+    fs::create_directories(model / "data dir");
+    fs::copy_file(model / "tri.bin", model / "data dir/tri.bin");
+    EXPECT_EQ(gltfError(writeNodesGltf(model, "m.gltf", R"([{"mesh": 0}])", R"([{"nodes": [0]}])",
+                                       "data%20dir/./tri.bin")),
+              "");
+    // tinygltf looks in the working directory for a file its model's folder lacks: not here.
+    writeNodesGltf(model, "m.gltf", R"([{"mesh": 0}])");
+    fs::remove(model / "tri.bin");
+    const fs::path cwd = fs::current_path();
+    fs::current_path(dir.path);  // which holds a tri.bin
+    const std::string m = gltfError(model / "m.gltf");
+    fs::current_path(cwd);
+    EXPECT_NE(m.find("tri.bin"), std::string::npos) << m;
+}
+
+TEST(Gltf, ModelsDrawingMoreThanTheLimitAreRefused) {
+    test::TempDir dir;
+    auto nodes = [](size_t count) {
+        std::string list = "[", roots = "[";
+        for (size_t i = 0; i < count; ++i) {
+            list += std::string(i ? ", " : "") + R"({"mesh": 0})";
+            roots += (i ? ", " : "") + std::to_string(i);
+        }
+        return std::pair{list + "]", R"([{"nodes": )" + roots + "]}]"};
+    };
+    auto [over, overScenes] = nodes(kMaxDrawnMeshes + 1);
+    const fs::path file = writeNodesGltf(dir.path, "many.gltf", over, overScenes);
+    const std::string m = gltfError(file);
+    EXPECT_NE(m.find(file.string()), std::string::npos) << m;
+    EXPECT_NE(m.find("draws " + std::to_string(kMaxDrawnMeshes + 1) + " primitives"),
+              std::string::npos)
+        << m;
+    EXPECT_NE(m.find("at most " + std::to_string(kMaxDrawnMeshes)), std::string::npos) << m;
+    auto [at, atScenes] = nodes(kMaxDrawnMeshes);
+    EXPECT_EQ(loadGltf(writeNodesGltf(dir.path, "limit.gltf", at, atScenes)).primitives.size(),
+              kMaxDrawnMeshes);
 }

@@ -215,3 +215,28 @@ TEST(Headless, StudentFilesCannotIncludeTheReferenceSolutions) {
               "float lambertCosine(vec3 N, vec3 L) { return myClamp(dot(N, L)); }\n");
     EXPECT_TRUE(h.check("ndotl", {kit.path}).passed);
 }
+
+TEST(Headless, ASceneAtTheLightLimitRenders) {
+    // Every light is a uniform array element in every program: at the limit it still compiles,
+    // in the step that sums all the lights and in one that reads the first.
+    Headless h;
+    test::TempDir dir;
+    std::string lights;
+    for (size_t i = 0; i < kMaxSceneLights; ++i)
+        lights += std::string(i ? ", " : "") + R"({"position": [)" + std::to_string(double(i) / 8) +
+                  R"(, 3, 5], "color": [0.5, 0.5, 0.5]})";
+    const Scene scene = loadScene(dir.write(
+        "lights.json", R"({"lights": [)" + lights +
+                           R"(], "objects": [{"material": {"albedo": [0.5, 0.5, 0.5]}}]})"));
+    ASSERT_EQ(scene.lights.size(), kMaxSceneLights);
+    for (const char* id : {"ndotl", "reflectance"}) {
+        const LoadedModule& m = h.modules.find(id);
+        const RenderResult r =
+            h.renderer.renderScene(m, ParamValues(m.desc->params), scene, {}, 16, 16, false);
+        float brightest = 0;  // of the colour channels (alpha is 1 wherever evaluated)
+        for (size_t i = 0; i < r.value.pixels.size(); ++i)
+            if (int(i % size_t(r.value.channels)) < 3)
+                brightest = std::max(brightest, r.value.pixels[i]);
+        EXPECT_GT(brightest, 0.0f) << id;
+    }
+}

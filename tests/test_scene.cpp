@@ -152,3 +152,72 @@ TEST(Scene, CorruptedSceneFilesGiveErrorsNotCrashes) {
     }
     EXPECT_GT(errors, 0);
 }
+
+namespace {
+// A scene of `lights` lights and `objects` objects, each `object` (JSON).
+std::string sceneJson(size_t lights, size_t objects,
+                      const std::string& object = R"({"material": {"albedo": [0.5, 0.5, 0.5]}})") {
+    std::string json = R"({"lights": [)";
+    for (size_t i = 0; i < lights; ++i)
+        json += std::string(i ? ", " : "") + R"({"position": [)" + std::to_string(i % 7) +
+                R"(, 4, 5], "color": [1, 1, 1]})";
+    json += R"(], "objects": [)";
+    for (size_t i = 0; i < objects; ++i) json += (i ? ", " : "") + object;
+    return json + "]}";
+}
+}  // namespace
+
+TEST(Scene, MoreLightsThanTheShadersHoldIsAnErrorSayingTheLimit) {
+    const std::string m = loadError(sceneJson(kMaxSceneLights + 1, 1));
+    EXPECT_NE(m.find("scene.json: field 'lights': " + std::to_string(kMaxSceneLights + 1) +
+                     " lights, more than the shaders hold (at most " +
+                     std::to_string(kMaxSceneLights) + ")"),
+              std::string::npos)
+        << m;
+    EXPECT_NE(loadError(sceneJson(100000, 1)).find("100000 lights"), std::string::npos);
+    EXPECT_EQ(loadError(sceneJson(kMaxSceneLights, 1)), "");
+}
+
+TEST(Scene, MoreDrawsThanTheLimitIsAnErrorSayingTheLimit) {
+    const std::string limit = "(at most " + std::to_string(kMaxDrawnMeshes) + ")";
+    std::string m = loadError(sceneJson(1, kMaxDrawnMeshes + 1));
+    EXPECT_NE(m.find("scene.json: field 'objects': " + std::to_string(kMaxDrawnMeshes + 1) +
+                     " objects, more than pbrlab draws " + limit),
+              std::string::npos)
+        << m;
+    EXPECT_EQ(loadError(sceneJson(1, kMaxDrawnMeshes)), "");
+    // Each model object draws every primitive of its model: here 1000 (a triangle, 1000 nodes).
+    test::TempDir dir;
+    const float positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    std::ofstream(dir.path / "tri.bin", std::ios::binary)
+        .write(reinterpret_cast<const char*>(positions), sizeof positions);
+    std::string nodes, roots;
+    for (int i = 0; i < 1000; ++i) {
+        nodes += std::string(i ? ", " : "") + R"({"mesh": 0})";
+        roots += (i ? ", " : "") + std::to_string(i);
+    }
+    dir.write("many.gltf", R"({"asset": {"version": "2.0"},
+  "buffers": [{"uri": "tri.bin", "byteLength": 36}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                 "min": [0, 0, 0], "max": [1, 1, 0]}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+  "nodes": [)" + nodes + R"(], "scenes": [{"nodes": [)" +
+                               roots + R"(]}], "scene": 0})");
+    const size_t models = kMaxDrawnMeshes / 1000 + 1;
+    const fs::path file =
+        dir.write("scene.json", sceneJson(1, models, R"({"model": "many.gltf"})"));
+    try {
+        loadScene(file);
+        FAIL() << "loaded a scene drawing " << models * 1000 << " meshes";
+    } catch (const Error& e) {
+        m = e.what();
+    }
+    EXPECT_NE(m.find(file.string() + ": field 'objects': they draw " +
+                     std::to_string(models * 1000) + " meshes"),
+              std::string::npos)
+        << m;
+    EXPECT_NE(m.find(limit), std::string::npos) << m;
+    dir.write("scene.json", sceneJson(1, kMaxDrawnMeshes / 1000, R"({"model": "many.gltf"})"));
+    EXPECT_EQ(drawItems(loadScene(file)).size(), kMaxDrawnMeshes / 1000 * 1000);
+}

@@ -46,6 +46,27 @@ int wholePoints(const json& value, const std::string& where) {
     return int(value.get<double>());
 }
 
+// GitHub's OWNER/NAME: the owner letters, digits and '-', the name also '.' and '_' (and not
+// "." or ".."). Checked, as it is written into a shell command of the workflow.
+void checkRepository(const std::string& repository) {
+    if (repository.empty())
+        throw Error(
+            "classroom: pass --repository OWNER/NAME, the GitHub repository the workflow clones "
+            "and builds pbrlab from (your course's fork or copy, e.g. --repository "
+            "my-course/pbrlab)");
+    const size_t slash = repository.find('/');
+    const std::string owner = repository.substr(0, slash),
+                      name = slash == std::string::npos ? "" : repository.substr(slash + 1);
+    bool ok = !owner.empty() && !name.empty() && name != "." && name != "..";
+    for (char c : owner) ok = ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '-');
+    for (char c : name)
+        ok =
+            ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.');
+    if (!ok)
+        throw Error("classroom: --repository " + quoted(repository) +
+                    ": expected a GitHub repository as OWNER/NAME (e.g. my-course/pbrlab)");
+}
+
 }  // namespace
 
 std::vector<ClassroomStep> assignmentSteps(const ModuleRegistry& modules, const fs::path& file) {
@@ -70,6 +91,7 @@ std::vector<ClassroomStep> listedSteps(const ModuleRegistry& modules, const std:
 }
 
 std::string classroomWorkflow(const ClassroomOptions& o) {
+    checkRepository(o.pbrlabRepository);
     if (o.steps.empty()) throw Error("classroom: no steps to grade");
     std::ostringstream y;
     y << "# GitHub Classroom autograding for pbrlab, written by `pbrlab classroom`: one points "

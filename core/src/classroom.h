@@ -18,8 +18,8 @@ struct ClassroomStep {
 
 struct ClassroomOptions {
     std::vector<ClassroomStep> steps;
-    std::string pbrlabRepository = "YOUR-ORG/pbrlab";  // where the workflow builds pbrlab from
-    int timeoutMinutes = 10;                           // per step (the grader's limit)
+    std::string pbrlabRepository;  // OWNER/NAME on GitHub, where the workflow builds pbrlab from
+    int timeoutMinutes = 10;       // per step (the grader's limit)
 };
 
 // The steps and points of an assignment file: its "steps" (a list of ids, or "all") and
@@ -32,7 +32,9 @@ std::vector<ClassroomStep> assignmentSteps(const ModuleRegistry& modules,
 std::vector<ClassroomStep> listedSteps(const ModuleRegistry& modules, const std::string& ids,
                                        int points);
 
-// .github/workflows/classroom.yml's text.
+// .github/workflows/classroom.yml's text. Throws when pbrlabRepository is missing (there is no
+// sensible default: the workflow would clone a repository that does not exist) or is not of
+// GitHub's OWNER/NAME form.
 std::string classroomWorkflow(const ClassroomOptions& options);
 
 }  // namespace pbrlab

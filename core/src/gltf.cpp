@@ -17,6 +17,7 @@
 
 #include "pbrlab/error.h"
 #include "pbrlab/texgen.h"
+#include "shader/preprocess.h"
 
 namespace fs = std::filesystem;
 
@@ -189,11 +190,29 @@ std::string percentDecode(const std::string& uri) {
     return out;
 }
 
-// The external image files a glTF names (its JSON read before tinygltf reads anything), so
-// that the file-reading callback below can leave them unread. Any problem: an empty set, and
-// tinygltf reports the error itself.
-std::set<fs::path> externalImageFiles(const fs::path& file) {
-    std::set<fs::path> files;
+// True when `uri` (percent-decoded, relative to the model's folder `dir`) names a file inside
+// that folder or below it: not absolute, not climbing out with "..", not a link leading out.
+bool besideModel(const fs::path& dir, const std::string& uri) {
+    const fs::path relative(uri);
+    if (relative.has_root_path()) return false;
+    return isInside(dir / relative, dir);
+}
+
+// What the file-reading callbacks below need: the model's folder (nothing outside it is read)
+// and the external image files, left unread.
+struct ModelFiles {
+    fs::path dir;
+    std::set<fs::path> images;  // canonical
+};
+
+// The model's external files, from its JSON read before tinygltf reads anything: each buffer
+// and image URI must lie in the model's folder (else an error saying so), and the image files
+// are remembered so that the file-reading callback below can leave them unread. JSON that
+// does not parse: nothing checked here, and tinygltf reports the error itself.
+ModelFiles externalFiles(const fs::path& file) {
+    // The model's folder ("." for a bare file name: tinygltf then looks there too).
+    ModelFiles files{file.has_parent_path() ? file.parent_path() : fs::path("."), {}};
+    nlohmann::json doc;
     try {
         std::ifstream in(file, std::ios::binary);
         std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -204,15 +223,30 @@ std::set<fs::path> externalImageFiles(const fs::path& file) {
             if (length > bytes.size() - 20) return files;
             text = bytes.substr(20, length);
         }
-        auto doc = nlohmann::json::parse(text);
-        for (const auto& image : doc.value("images", nlohmann::json::array())) {
-            if (!image.is_object() || !image.contains("uri") || !image["uri"].is_string()) continue;
-            std::string uri = image["uri"].get<std::string>();
-            if (uri.rfind("data:", 0) == 0) continue;
-            files.insert(fs::weakly_canonical(file.parent_path() / percentDecode(uri)));
-        }
+        doc = nlohmann::json::parse(text);
     } catch (const std::exception&) {
-        files.clear();
+        return files;
+    }
+    if (!doc.is_object()) return files;
+    for (const char* kind : {"buffers", "images"}) {
+        const auto list = doc.value(kind, nlohmann::json::array());
+        if (!list.is_array()) continue;
+        for (size_t i = 0; i < list.size(); ++i) {
+            const auto& item = list[i];
+            if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+            const std::string uri = item["uri"].get<std::string>();
+            if (uri.rfind("data:", 0) == 0) continue;
+            const std::string decoded = percentDecode(uri);
+            const std::string what = std::string(kind).substr(0, std::strlen(kind) - 1) + " " +
+                                     std::to_string(i) + " ('" + uri + "')";
+            if (!besideModel(files.dir, decoded))
+                fail(file, what + ": refused: " + decoded + " lies outside the model's folder " +
+                               fs::absolute(files.dir).lexically_normal().string() +
+                               " (a model may only read files beside it)");
+            std::error_code ec;
+            if (std::string(kind) == "images")
+                files.images.insert(fs::weakly_canonical(files.dir / decoded, ec));
+        }
     }
     return files;
 }
@@ -221,9 +255,9 @@ std::set<fs::path> externalImageFiles(const fs::path& file) {
 // placeholder byte (tinygltf refuses an empty read) and the image is read on first use.
 bool readWholeFileExceptImages(std::vector<unsigned char>* out, std::string* err,
                                const std::string& path, void* userData) {
-    const auto* skip = static_cast<const std::set<fs::path>*>(userData);
+    const auto* files = static_cast<const ModelFiles*>(userData);
     std::error_code ec;
-    if (skip->count(fs::weakly_canonical(path, ec)) && fs::is_regular_file(path, ec)) {
+    if (files->images.count(fs::weakly_canonical(path, ec)) && fs::is_regular_file(path, ec)) {
         out->assign(1, 0);
         return true;
     }
@@ -231,9 +265,12 @@ bool readWholeFileExceptImages(std::vector<unsigned char>* out, std::string* err
 }
 
 // tinygltf's own check opens the file; a stat is enough (and leaves image files unopened).
-bool fileExists(const std::string& path, void*) {
+// Nothing outside the model's folder exists for tinygltf: not even the file of the same name
+// in the working directory, where tinygltf looks when the model's folder lacks it.
+bool fileExists(const std::string& path, void* userData) {
+    const auto* files = static_cast<const ModelFiles*>(userData);
     std::error_code ec;
-    return fs::is_regular_file(path, ec);
+    return fs::is_regular_file(path, ec) && isInside(path, files->dir);
 }
 
 // Keeps images encoded: embedded bytes are copied (decoded later, if ever), external files
@@ -257,6 +294,68 @@ bool collectImage(tinygltf::Image* image, const int index, std::string*, std::st
         t.extension = image->mimeType == "image/jpeg" ? ".jpg" : ".png";
     }
     return true;
+}
+
+// "node 3 ('arm')": a node as an error message names it.
+std::string nodeName(const tinygltf::Model& m, int index) {
+    const std::string& name = m.nodes[size_t(index)].name;
+    return "node " + std::to_string(index) + (name.empty() ? "" : " ('" + name + "')");
+}
+
+// The node hierarchy is a forest, as glTF requires, checked before anything walks it: every
+// child exists and has one parent, no node is its own ancestor, and each scene's roots exist,
+// are distinct and are nobody's child. (Walked as given, a loop never ends and a node shared
+// by parents is drawn once per path: exponentially many.)
+void checkNodeForest(const tinygltf::Model& m, const fs::path& file) {
+    const int count = int(m.nodes.size());
+    std::vector<int> parent(size_t(count), -1);
+    for (int p = 0; p < count; ++p)
+        for (int c : m.nodes[size_t(p)].children) {
+            if (c < 0 || c >= count)
+                fail(file, nodeName(m, p) + " lists child " + std::to_string(c) +
+                               ", which does not exist");
+            if (c == p)
+                fail(file, nodeName(m, p) + " lists itself as a child: the nodes loop (" +
+                               nodeName(m, p) + " -> " + nodeName(m, p) + ")");
+            if (parent[size_t(c)] == p)
+                fail(file, nodeName(m, p) + " lists " + nodeName(m, c) + " twice as a child");
+            if (parent[size_t(c)] >= 0)
+                fail(file, nodeName(m, c) + " has two parents, " + nodeName(m, parent[size_t(c)]) +
+                               " and " + nodeName(m, p) + " (glTF allows a node one parent)");
+            parent[size_t(c)] = p;
+        }
+    // One parent each: following parents from any node either reaches a root or goes round a
+    // loop. 0: not seen, 1: on the chain being followed, 2: leads to a root.
+    std::vector<char> state(size_t(count), 0);
+    for (int start = 0; start < count; ++start) {
+        std::vector<int> chain;
+        int n = start;
+        while (n >= 0 && state[size_t(n)] == 0) {
+            state[size_t(n)] = 1;
+            chain.push_back(n);
+            n = parent[size_t(n)];
+        }
+        if (n >= 0 && state[size_t(n)] == 1) {  // back on the chain: n is its own ancestor
+            // The chain runs child to parent, n first on the loop; said parent to child.
+            std::string loop = nodeName(m, n);
+            for (auto it = chain.rbegin(); *it != n; ++it) loop += " -> " + nodeName(m, *it);
+            fail(file, "the nodes loop: " + loop + " -> " + nodeName(m, n));
+        }
+        for (int c : chain) state[size_t(c)] = 2;
+    }
+    for (size_t s = 0; s < m.scenes.size(); ++s) {
+        std::set<int> roots;
+        const std::string scene = "scene " + std::to_string(s);
+        for (int r : m.scenes[s].nodes) {
+            if (r < 0 || r >= count)
+                fail(file, scene + " lists node " + std::to_string(r) + ", which does not exist");
+            if (parent[size_t(r)] >= 0)
+                fail(file, scene + " lists " + nodeName(m, r) +
+                               " as a root, but it is a child of " +
+                               nodeName(m, parent[size_t(r)]));
+            if (!roots.insert(r).second) fail(file, scene + " lists " + nodeName(m, r) + " twice");
+        }
+    }
 }
 
 }  // namespace
@@ -298,11 +397,11 @@ ModelData loadGltf(const fs::path& file) {
     ModelData data;
     data.file = file;
     ImageCollector collector{file, {}};
-    std::set<fs::path> externalImages = externalImageFiles(file);
+    ModelFiles files = externalFiles(file);  // throws for a file outside the model's folder
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(collectImage, &collector);
     loader.SetFsCallbacks({&fileExists, &tinygltf::ExpandFilePath, &readWholeFileExceptImages,
-                           &tinygltf::WriteWholeFile, &externalImages});
+                           &tinygltf::WriteWholeFile, &files});
     tinygltf::Model model;
     std::string err, warn;
     bool binary = file.extension() == ".glb";
@@ -381,23 +480,37 @@ ModelData loadGltf(const fs::path& file) {
             data.warnings.push_back(what + ": alphaMode " + mat.alphaMode + " is drawn opaque");
         data.materials.push_back(mm);
     }
-    // Walk the default scene (or every root) applying node transforms.
+    // Walk the default scene applying node transforms: a forest (checked), so each node once.
+    checkNodeForest(model, file);
+    std::vector<int> roots;
+    const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
+    if (sceneIndex < int(model.scenes.size())) roots = model.scenes[size_t(sceneIndex)].nodes;
+    // Every primitive is a draw: more than a scene may draw is refused before any is read.
+    size_t primitives = 0;
+    for (std::vector<int> open = roots; !open.empty();) {
+        const auto& node = model.nodes[size_t(open.back())];
+        open.pop_back();
+        open.insert(open.end(), node.children.begin(), node.children.end());
+        if (node.mesh < 0) continue;
+        if (node.mesh >= int(model.meshes.size())) fail(file, "node mesh index out of range");
+        primitives += model.meshes[size_t(node.mesh)].primitives.size();
+    }
+    if (primitives > kMaxDrawnMeshes)
+        fail(file, "its scene draws " + std::to_string(primitives) +
+                       " primitives (a mesh's primitives, once per node that places it), more "
+                       "than pbrlab draws (at most " +
+                       std::to_string(kMaxDrawnMeshes) + ")");
     std::vector<std::pair<int, glm::dmat4>> stack;
-    int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
-    if (sceneIndex < int(model.scenes.size()))
-        for (int n : model.scenes[size_t(sceneIndex)].nodes) stack.push_back({n, glm::dmat4(1)});
-    int visited = 0, skippedPrimitives = 0;
+    for (int n : roots) stack.push_back({n, glm::dmat4(1)});
+    int skippedPrimitives = 0;
     bool usesVertexColours = false;
     while (!stack.empty()) {
         auto [index, parent] = stack.back();
         stack.pop_back();
-        if (index < 0 || index >= int(model.nodes.size()) || ++visited > 100000)
-            fail(file, "node " + std::to_string(index) + " does not exist (or the nodes loop)");
         const auto& node = model.nodes[size_t(index)];
         glm::dmat4 world = parent * nodeMatrix(node);
         for (int c : node.children) stack.push_back({c, world});
         if (node.mesh < 0) continue;
-        if (node.mesh >= int(model.meshes.size())) fail(file, "node mesh index out of range");
         for (const auto& prim : model.meshes[size_t(node.mesh)].primitives) {
             const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
             if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&

@@ -128,6 +128,14 @@ MaterialDesc fromModel(const ModelMaterial& mm, const ModelData& model) {
     return m;
 }
 
+// What drawItems(scene).size() will be.
+size_t drawCount(const Scene& scene) {
+    size_t draws = 0;
+    for (const ObjectDesc& o : scene.objects)
+        draws += o.model < 0 ? 1 : scene.models.at(size_t(o.model)).data->primitives.size();
+    return draws;
+}
+
 }  // namespace
 
 Scene loadScene(const fs::path& file) {
@@ -173,6 +181,10 @@ Scene loadScene(const fs::path& file) {
 
     if (!doc.contains("lights") || !doc["lights"].is_array() || doc["lights"].empty())
         r.fail("lights", "expected a non-empty array of point lights");
+    if (doc["lights"].size() > kMaxSceneLights)
+        r.fail("lights", std::to_string(doc["lights"].size()) +
+                             " lights, more than the shaders hold (at most " +
+                             std::to_string(kMaxSceneLights) + ")");
     for (size_t i = 0; i < doc["lights"].size(); ++i) {
         std::string f = "lights[" + std::to_string(i) + "]";
         const json& l = doc["lights"][i];
@@ -199,6 +211,10 @@ Scene loadScene(const fs::path& file) {
 
     if (!doc.contains("objects") || !doc["objects"].is_array() || doc["objects"].empty())
         r.fail("objects", "expected a non-empty array");
+    if (doc["objects"].size() > kMaxDrawnMeshes)
+        r.fail("objects", std::to_string(doc["objects"].size()) +
+                              " objects, more than pbrlab draws (at most " +
+                              std::to_string(kMaxDrawnMeshes) + ")");
     for (size_t i = 0; i < doc["objects"].size(); ++i) {
         std::string f = "objects[" + std::to_string(i) + "]";
         const json& o = doc["objects"][i];
@@ -243,6 +259,12 @@ Scene loadScene(const fs::path& file) {
         }
         scene.objects.push_back(obj);
     }
+    // A model's primitives are draws too: each object places all of them.
+    if (const size_t draws = drawCount(scene); draws > kMaxDrawnMeshes)
+        r.fail("objects", "they draw " + std::to_string(draws) +
+                              " meshes (a sphere is one, a model one per primitive), more than "
+                              "pbrlab draws (at most " +
+                              std::to_string(kMaxDrawnMeshes) + ")");
     return scene;
 }
 

@@ -139,7 +139,8 @@ public:
         cmd.add_option("--points", points_,
                        "Without --assignment: whole points per step (default 1)");
         cmd.add_option("--repository", classroom_.pbrlabRepository,
-                       "GitHub repository the workflow builds pbrlab from (OWNER/NAME)");
+                       "Required: GitHub repository the workflow clones and builds pbrlab from "
+                       "(OWNER/NAME, e.g. my-course/pbrlab)");
         cmd.add_option("--out", out_, "Folder that gets .github/workflows/classroom.yml")
             ->required();
     }
