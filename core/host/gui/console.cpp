@@ -13,6 +13,7 @@
 
 #include "lab.h"
 #include "pbrlab/error.h"
+#include "view_status.h"
 
 extern char** environ;
 
@@ -113,6 +114,57 @@ private:
     std::string view_;
 };
 
+// What the view panel says: the compile error, what the picture is, the statistics.
+class StatusCommand : public LocalCommand {
+public:
+    using LocalCommand::LocalCommand;
+    void declare(CLI::App&) override {}
+    int run(const GlobalOptions&) override {
+        const std::string& id = lab().module(state()).id;
+        output_ += "step " + id + ", badge: " + badgeText(lab().badges().of(id).status) + "\n" +
+                   describe(viewStatus(lab(), state()));
+        return 0;
+    }
+};
+
+// As the screenshot button, to a file of one's choice.
+class ScreenshotCommand : public LocalCommand {
+public:
+    using LocalCommand::LocalCommand;
+    void declare(CLI::App& cmd) override {
+        cmd.add_option("file", file_, "The PNG to write (default: pbrlab-screenshot.png)");
+    }
+    int run(const GlobalOptions&) override {
+        requests().screenshot = true;
+        requests().screenshotFile = file_;
+        return 0;
+    }
+
+private:
+    std::string file_;
+};
+
+// For scripts (--command): the lines after it wait, the window drawing meanwhile.
+class WaitCommand : public LocalCommand {
+public:
+    using LocalCommand::LocalCommand;
+    void declare(CLI::App& cmd) override {
+        cmd.add_option("--file", wait.file,
+                       "Also until this file exists (a script that edits files meanwhile)");
+        cmd.add_option("--timeout", seconds_, "Give up after this many seconds (default 300)");
+    }
+    int run(const GlobalOptions&) override {
+        wait.active = true;
+        wait.since = std::chrono::steady_clock::now();
+        wait.until = wait.since + std::chrono::milliseconds(int64_t(seconds_ * 1000));
+        return 0;
+    }
+    Console::Wait wait;
+
+private:
+    double seconds_ = 300;
+};
+
 class HelpCommand : public LocalCommand {
 public:
     using LocalCommand::LocalCommand;
@@ -159,6 +211,15 @@ std::unique_ptr<CommandLine> consoleCommandLine(const ConsoleTarget& target, std
     addLocal<SceneCommand>(c, "scene", "GUI: show this scene or --model (as the chooser)", target,
                            output);
     addLocal<ViewCommand>(c, "view", "GUI: show this view (as --view)", target, output);
+    addLocal<StatusCommand>(c, "status",
+                            "GUI: what the view says (compile error, picture, statistics)", target,
+                            output);
+    addLocal<ScreenshotCommand>(c, "screenshot", "GUI: save the window (as the button)", target,
+                                output);
+    addLocal<WaitCommand>(c, "wait",
+                          "GUI: hold the next lines until the picture is evaluated and the "
+                          "step's badge graded",
+                          target, output);
     HelpCommand* help = addLocal<HelpCommand>(
         c, "help", "GUI: list the commands, or one command's options", target, output);
     addLocal<ClearCommand>(c, "clear", "GUI: clear the console", target, output);
@@ -215,7 +276,7 @@ void Console::submit(const std::string& line) {
 }
 
 bool Console::idle() const {
-    return queue_.empty() && child_ <= 0;
+    return queue_.empty() && child_ <= 0 && !wait_.active;
 }
 
 std::string Console::text() const {
@@ -244,11 +305,30 @@ void Console::poll(const ConsoleTarget& target) {
     if (done) finishChild();
     // One line a frame: a local command's requests (a step chosen) are carried out by the
     // frame before the next line reads the state.
-    if (child_ <= 0 && !queue_.empty()) {
+    if (child_ <= 0 && !waiting(target) && !queue_.empty()) {
         const std::string line = queue_.front();
         queue_.pop_front();
         runLine(line, target);
     }
+}
+
+// `wait`: until the file exists (when given), and the lab has nothing left to update.
+bool Console::waiting(const ConsoleTarget& target) {
+    if (!wait_.active) return false;
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - wait_.since).count();
+    char took[64];
+    std::snprintf(took, sizeof took, "%.1f s", seconds);
+    if (now > wait_.until) {
+        append(std::string("wait: gave up after ") + took + "\n");
+    } else {
+        std::error_code ec;
+        if (!wait_.file.empty() && !std::filesystem::exists(wait_.file, ec)) return true;
+        if (target.lab && !target.lab->settled(*target.state)) return true;
+        append(std::string("(waited ") + took + ")\n");
+    }
+    wait_ = {};
+    return false;
 }
 
 void Console::runLine(const std::string& text, const ConsoleTarget& target) {
@@ -272,6 +352,7 @@ void Console::runLine(const std::string& text, const ConsoleTarget& target) {
     if (!dynamic_cast<LocalCommand*>(command)) return startChild(words);
     try {
         command->run(line->global);
+        if (auto* wait = dynamic_cast<WaitCommand*>(command)) wait_ = wait->wait;
     } catch (const std::exception& e) {
         output += std::string("error: ") + e.what() + "\n";
     }

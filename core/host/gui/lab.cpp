@@ -92,6 +92,8 @@ void Lab::select(GuiState& state, int index) {
     state.sceneName.clear();
     state.plotRow = module(state).probe.height / 2;
     studentWatch_.forget();
+    shown_.compileLog = compiles_[module(state).id].log;
+    shown_.compiledAt = compiles_[module(state).id].compiledAt;
     loadScene(state);
     std::ifstream in(loaded(state).sourceDir / "README.md");
     std::stringstream s;
