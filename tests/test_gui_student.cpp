@@ -178,3 +178,31 @@ TEST(GuiStudent, ACompileErrorStaysOnScreenUntilTheFileCompilesAgain) {
     EXPECT_GT(errorBoxPixels(broken), 5000);
     EXPECT_EQ(errorBoxPixels(fixed), 0);
 }
+
+// The console's `check ndf` grades the open workspace (here found in the folder the lab was
+// started in), as the badge does, not the reference solution; --submission '' still asks
+// for the reference solution, and the console's help says so.
+TEST(GuiStudent, TheConsolesCheckGradesTheOpenWorkspace) {
+    if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+    test::TempDir dir;
+    const fs::path kit = dir.path / "kit";
+    dir.write("kit/ndf.glsl",
+              "float distributionGGX(vec3 N, vec3 H, float roughness) { return 0.5; }\n");
+    BackgroundGui gui(dir,
+                      "ndf --command 'check ndf' --command \"check ndf --submission ''\" "
+                      "--command help --command wait --command status");
+    ASSERT_EQ(gui.finish(), 0) << gui.log();
+    const std::string log = gui.log();
+    const size_t inKit = log.find("> check ndf\n(on the workspace: --submission " +
+                                  fs::canonical(kit).string() + ")\n");
+    const size_t solution = log.find("> check ndf --submission ''\n");
+    ASSERT_NE(inKit, std::string::npos) << log;
+    ASSERT_NE(solution, std::string::npos) << log;
+    const size_t fail = log.find("ndf: FAIL", inKit), pass = log.find("ndf: PASS", solution);
+    EXPECT_LT(fail, solution) << log;
+    EXPECT_NE(pass, std::string::npos) << log;
+    EXPECT_NE(log.find("work on the open workspace unless the line gives one"), std::string::npos)
+        << log;
+    // The badge says what the console's check said.
+    EXPECT_NE(statusReport(log, 0).find("badge: fails"), std::string::npos) << log;
+}

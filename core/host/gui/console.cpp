@@ -21,6 +21,11 @@ namespace pbrlab {
 
 namespace {
 
+const char* const kWorkspaceNote =
+    "\nIn the lab, commands that take --submission (check, render, stability, gallery, grade) "
+    "work on the open workspace unless the line gives one: --submission DIR for another "
+    "folder, --submission '' for the reference solutions.\n";
+
 // A command that runs in the GUI's process and changes its state, as a panel does.
 class LocalCommand : public Command {
 public:
@@ -177,6 +182,9 @@ public:
         output_ += command_.empty() ? app->get_formatter()->make_help(app, app->get_name(),
                                                                       CLI::AppFormatMode::Normal)
                                     : app->get_subcommand(command_)->help(app->get_name());
+        output_ += kWorkspaceNote;
+        if (target_.lab && !lab().submission().empty())
+            output_ += "The workspace: " + lab().submission().string() + "\n";
         return 0;
     }
     const CLI::App* app = nullptr;
@@ -261,6 +269,25 @@ ConsoleParse parseConsoleLine(const std::string& text) {
         parsed.given = line->given();
     }
     return parsed;
+}
+
+std::vector<std::string> inWorkspace(const std::vector<std::string>& words,
+                                     const std::filesystem::path& workspace) {
+    if (workspace.empty()) return words;
+    std::string output;
+    auto line = consoleCommandLine({}, output);
+    if (!parseWords(*line, words).empty()) return words;
+    const Command* command = line->chosen();
+    if (!command || command->name == "gui") return words;
+    const CLI::App* sub = line->app.get_subcommand(command->name);
+    const CLI::Option* submission = sub->get_option_no_throw("--submission");
+    if (!submission || submission->count() > 0) return words;
+    for (const char* other : {"--batch", "--merge"})
+        if (const CLI::Option* o = sub->get_option_no_throw(other); o && o->count() > 0)
+            return words;
+    std::vector<std::string> with = words;
+    with.insert(with.end(), {"--submission", workspace.string()});
+    return with;
 }
 
 Console::Console(std::vector<std::string> globalArguments, bool echo)
@@ -349,7 +376,15 @@ void Console::runLine(const std::string& text, const ConsoleTarget& target) {
     if (!command) return;
     if (command->name == "clear") return clear();
     if (command->name == "gui") return append("gui: this is the lab, open already\n");
-    if (!dynamic_cast<LocalCommand*>(command)) return startChild(words);
+    if (!dynamic_cast<LocalCommand*>(command)) {
+        if (target.lab) {
+            const std::vector<std::string> inside = inWorkspace(words, target.lab->submission());
+            if (inside.size() != words.size())
+                append("(on the workspace: --submission " + inside.back() + ")\n");
+            words = inside;
+        }
+        return startChild(words);
+    }
     try {
         command->run(line->global);
         if (auto* wait = dynamic_cast<WaitCommand*>(command)) wait_ = wait->wait;

@@ -1,8 +1,8 @@
 // The GUI's command line: the shell's commands (commands/), parsed with the same CLI11
-// declarations and run as a child process of this executable with their output captured,
-// and the GUI-local commands (step, set, scene, view, status, screenshot, wait, help, clear)
-// that change GuiState as the panels do or report on it. Lines run one after another; the
-// window keeps drawing meanwhile.
+// declarations and run as a child process of this executable with their output captured (on
+// the open workspace: inWorkspace), and the GUI-local commands (step, set, scene, view,
+// status, screenshot, wait, help, clear) that change GuiState as the panels do or report on
+// it. Lines run one after another; the window keeps drawing meanwhile.
 #pragma once
 
 #include <sys/types.h>
@@ -48,6 +48,13 @@ std::unique_ptr<CommandLine> consoleCommandLine(const ConsoleTarget& target, std
 
 // Parses one line with the console's command line (nothing runs).
 ConsoleParse parseConsoleLine(const std::string& line);
+
+// In the lab, a shell command that takes --submission (check, render, stability, gallery,
+// grade) works on the open workspace: `words` with `--submission WORKSPACE` added when the
+// line gives none (nor grade's --batch or --merge); else `words` as they are. An explicit
+// --submission wins (--submission '' for the reference solutions).
+std::vector<std::string> inWorkspace(const std::vector<std::string>& words,
+                                     const std::filesystem::path& workspace);
 
 class Console {
 public:

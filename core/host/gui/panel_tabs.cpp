@@ -44,7 +44,7 @@ void drawSideTabs(const Lab& lab, GuiState& state, SideTabsMemory& memory, Conso
         ImGui::EndTabItem();
     }
     if (ImGui::BeginTabItem("Console", nullptr, opened("console"))) {
-        drawConsoleTab(console);
+        drawConsoleTab(lab, console);
         ImGui::EndTabItem();
     }
     ImGui::EndTabBar();
