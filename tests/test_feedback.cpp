@@ -78,6 +78,38 @@ TEST(Feedback, AStubIsRecognised) {
     EXPECT_TRUE(contains(s, "returns 0 whatever the inputs") && contains(s, "stub")) << s;
 }
 
+TEST(Feedback, AConstantZeroFromAnEndlessLoopSaysSoNotStub) {
+    // GLSL compilers delete a loop with no way out; the function's value is then 0 (Mesa).
+    for (const char* loop :
+         {"while (true) {}", "while(1){ x += 1.0; }", "for (;;) { x *= 2.0; }",
+          "for (int i = 0; ; ++i) x += 1.0;", "do { x += 1.0; } while (true);"}) {
+        const std::string code =
+            std::string("float ndotl(vec3 N, vec3 L) {\n    float x = 0.0;\n    ") + loop +
+            "\n    return max(dot(N, L), 0.0);\n}\n";
+        const std::string why = whyAlwaysZero(code);
+        EXPECT_TRUE(contains(why, "loop that never ends")) << loop << ": " << why;
+        EXPECT_FALSE(contains(why, "stub")) << loop << ": " << why;
+        // Through classifyError, as the grader calls it with the student's file.
+        const ModuleDesc d = module(1);
+        FeedbackInputs in = inputs(
+            d, [](const Surface& s) { return glm::dvec3(ndotl(s)); },
+            [](const Surface&) { return glm::dvec3(0); });
+        in.studentCode = code;
+        const std::string s = classifyError(in);
+        EXPECT_TRUE(contains(s, "loop that never ends") && !contains(s, "stub")) << s;
+    }
+    // Loops that end, or a commented-out loop, are not endless; the stub is the stub.
+    for (const char* code :
+         {"while (true) { if (x > 1.0) break; x += 0.5; }", "for (;;) { return 0.0; }",
+          "// while (true) {}\nreturn 0.0;", "/* for (;;) {} */ return 0.0;",
+          "for (int i = 0; i < 4; ++i) x += 1.0;"})
+        EXPECT_FALSE(contains(whyAlwaysZero(code), "never ends")) << code;
+    EXPECT_TRUE(contains(whyAlwaysZero("// TODO: implement float ndotl(vec3 N, vec3 L)\n"
+                                       "return 0.0;"),
+                         "stub"));
+    EXPECT_EQ(whyAlwaysZero("return 0.0 * dot(N, L);"), "");
+}
+
 TEST(Feedback, OffsetsPowersAndTermsAreNamed) {
     const ModuleDesc d = module(3);
     auto truth = [](const Surface& s) {

@@ -70,12 +70,27 @@ TEST(Grade, UntouchedStubsScoreZeroAndNeverCrash) {
     int named = 0;
     for (const auto& m : r.modules) {
         EXPECT_EQ(m.status, "failed") << m.id << ": " << m.message;
-        named += contains(m.mistake, "still the stub");
+        named += contains(m.mistake, "still the kit's stub");
     }
     EXPECT_EQ(r.score, 0);
     // Every stub returns 0; only hammersley's view turns that into something else than a
     // constant (box counts), so the feedback says "stub" for the other twenty.
     EXPECT_GE(named, 20);
+}
+
+TEST(Grade, AnEndlessLoopIsNamedAsSuchNotAsTheStub) {
+    Grader g;
+    fs::path kit = g.kit(true);
+    std::ofstream(kit / "ndotl.glsl") << "float ndotl(vec3 N, vec3 L) {\n"
+                                         "    float x = 0.0;\n"
+                                         "    while (true) { x += 1.0; }\n"
+                                         "    return max(dot(N, L), 0.0);\n"
+                                         "}\n";
+    const GradeReport r = g.grade(kit, {"ndotl"});
+    const ModuleGrade& m = Grader::find(r, "ndotl");
+    EXPECT_NE(m.status, "passed") << m.message;
+    EXPECT_TRUE(contains(m.mistake, "loop that never ends")) << m.mistake << "\n" << m.message;
+    EXPECT_FALSE(contains(m.mistake, "stub")) << m.mistake;
 }
 
 TEST(Grade, EachProblemCostsOnlyItsOwnStep) {

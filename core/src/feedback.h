@@ -21,7 +21,16 @@ struct FeedbackInputs {
     std::function<std::vector<glm::dvec3>(const std::vector<Surface>&)> student;
     std::function<glm::dvec3(const Surface&)> reference;
     DomainFn domain;
+    // The student's file, when there is one: a constant 0 is told apart from the kit's stub
+    // (an endless loop the compiler removed, for one). Optional.
+    std::string studentCode;
 };
+
+// Why a function that returns 0 for every input does, read from its code: an endless loop
+// (`while (true)`, `for (;;)` with no break or return: GLSL compilers delete a loop with no
+// way out, and the function then returns an undefined value, 0 on Mesa), or the kit's stub
+// left in place. "" when the code says neither.
+std::string whyAlwaysZero(const std::string& code);
 
 // What the inputs at a point were, in the module's terms: the fields its domain (or probe)
 // varies, and the cosines between the directions it reads ("N.V 0.42, roughness 0.05").

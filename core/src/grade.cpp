@@ -26,8 +26,6 @@ namespace pbrlab {
 
 namespace {
 
-constexpr std::uintmax_t kMaxStudentFileBytes = 10u * 1024 * 1024;
-
 json gradeJson(const ModuleGrade& g) {
     return {{"id", g.id},
             {"title", g.title},
@@ -313,10 +311,8 @@ std::string compileHints(const std::string& log) {
                  (step ? " (step " + std::to_string(step->step) + ", " + step->id + ")" : "") +
                  ": call it, or give your own helper another name.";
     }
-    if (log.find("recursion") != std::string::npos)
-        hints +=
-            "\nhint: a contract function you call calls yours back, and GLSL allows no "
-            "recursion: compute that part yourself.";
+    // Recursion and the host's own functions (main) are hinted where the log is traced back
+    // to the student's line (mapCompilerLog), which knows whose function it is.
     return hints;
 }
 
@@ -379,27 +375,6 @@ ModuleGrade gradeModule(LabRenderer& renderer, const LoadedModule& m, const Data
     g.score = g.status == "passed" ? g.maxScore : 0;
     g.message = validUtf8(g.message);
     return g;
-}
-
-std::string screenStudentFile(const fs::path& file, const fs::path& submission) {
-    std::error_code ec;
-    const bool link = fs::is_symlink(file, ec);
-    if (link) {
-        const fs::path target = fs::canonical(file, ec);
-        if (ec) return "refused: it is a link that cannot be resolved (" + ec.message() + ")";
-        if (!isInside(target, submission))
-            return "refused: it is a link to a file outside the submission folder";
-    }
-    if (!isInside(file, submission)) return "refused: outside the submission folder";
-    if (!fs::is_regular_file(file, ec)) return "refused: not a regular file";
-    auto size = fs::file_size(file, ec);
-    if (ec) return "cannot read it: " + ec.message();
-    if (size > kMaxStudentFileBytes) return "refused: larger than 10 MB";
-    std::ifstream in(file, std::ios::binary);
-    if (!in) return "cannot read it";
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (text.find('\0') != std::string::npos) return "refused: it contains NUL bytes (not text)";
-    return {};
 }
 
 std::vector<ModuleGrade> gradeJobs(const std::vector<GradeJob>& jobs, const DataPaths& paths,

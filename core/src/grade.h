@@ -11,6 +11,7 @@
 #include "grading.h"
 #include "plugins.h"
 #include "renderer.h"
+#include "shader/student_file.h"
 
 namespace pbrlab {
 
@@ -49,11 +50,6 @@ struct GradeReport {
     std::vector<ModuleGrade> modules;
     double score = 0, maxScore = 0, seconds = 0;
 };
-
-// Rejects what a grader must not read: a file over 10 MB, NUL bytes, a symlink leaving the
-// folder or one that cannot be resolved. Empty when the file may be graded, else why not.
-std::string screenStudentFile(const std::filesystem::path& file,
-                              const std::filesystem::path& submission);
 
 // One step in this process (no fork): what a grade's child runs, and the GUI's badges.
 ModuleGrade gradeModule(LabRenderer& renderer, const LoadedModule& module, const DataPaths& paths,

@@ -11,6 +11,7 @@
 #include "feedback.h"
 #include "mutants.h"
 #include "pbrlab/error.h"
+#include "shader/student_file.h"
 #include "step_grader.h"
 
 namespace fs = std::filesystem;
@@ -115,14 +116,31 @@ void StepGrader::explain() {
         // The estimator's bands are not the reference's: the sensitivity test would
         // compare against the same-sample reference, so it is left out there.
         if (!d_.estimator) in.domain = d_.domain;
+        if (!source_.dir.empty()) {
+            try {
+                const fs::path file = source_.dir / (d_.id + ".glsl");
+                in.studentCode = readStudentFile(file, source_.dir);
+            } catch (const Error&) {
+                // No file of the student's here (the reference is graded): nothing to read.
+            }
+        }
         bool exact = false;
         result_.mistake = classifyError(in, &exact);
         if (!result_.mistake.empty()) result_.namedBy = "pattern";
         result_.mistakeGroup = withoutFigures(result_.mistake);
+        // A constant output says all there is to say: a typical mistake that is 0 where the
+        // reference is not (-L under a clamp) would "match" it on the failed points only.
+        bool constant = !in.values.empty();
+        for (const glm::dvec3& v : in.values)
+            constant = constant && glm::all(glm::lessThanEqual(glm::abs(v - in.values.front()),
+                                                               glm::dvec3(1e-7)));
+        const bool lookFurther = !(exact && constant);
         // The candidates below are compared on a sample of the failed check's points.
         Sample points;
-        if (settings_.typicalMistakes || settings_.mutantCatalogue) points = sample(f);
-        const std::string typical = settings_.typicalMistakes ? typicalMistake(f, points) : "";
+        if (lookFurther && (settings_.typicalMistakes || settings_.mutantCatalogue))
+            points = sample(f);
+        const std::string typical =
+            lookFurther && settings_.typicalMistakes ? typicalMistake(f, points) : "";
         if (!typical.empty()) {
             result_.mistake += (result_.mistake.empty() ? "" : " ") +
                                std::string("It matches a typical mistake: ") + typical;
@@ -131,7 +149,7 @@ void StepGrader::explain() {
         }
         // When no pattern accounts for every point, the mutants of the reference solution:
         // the one change the student's values equal.
-        if (!exact && typical.empty() && settings_.mutantCatalogue) {
+        if (lookFurther && !exact && typical.empty() && settings_.mutantCatalogue) {
             stage("feedback: one change from the reference");
             const MutantMatch match = mutantMatch(f, points);
             if (!match.mistake.empty()) {

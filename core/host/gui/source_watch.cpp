@@ -22,7 +22,7 @@ void SourceWatch::scan(const fs::path& file, const fs::path& folder) {
     std::vector<fs::path> files;
     try {
         ShaderPart part(file);
-        part.includeRoots = {folder};  // as the renderer reads a student's file
+        part.studentFolder = folder;  // screened, as the renderer reads a student's file
         files = ShaderPreprocessor({folder}).expand({part}, {}).files;
     } catch (const Error&) {
         // A missing include (or the file itself missing): the renderer says why. The folder

@@ -1,11 +1,13 @@
 #include "shader/preprocess.h"
 
+#include <algorithm>
 #include <fstream>
 #include <regex>
 #include <set>
 #include <sstream>
 
 #include "pbrlab/error.h"
+#include "shader/student_file.h"
 
 namespace fs = std::filesystem;
 
@@ -39,6 +41,7 @@ std::string readText(const fs::path& path) {
 
 struct Expander {
     std::vector<fs::path> roots;
+    fs::path studentFolder;  // set while expanding a student's file (see ShaderPart)
     ExpandedShader out;
     std::set<fs::path> included;
 
@@ -75,11 +78,17 @@ struct Expander {
         throw Error(where + ": #include \"" + target + "\" not found");
     }
 
+    std::string read(const fs::path& file) const {
+        return studentFolder.empty() ? readText(file) : readStudentFile(file, studentFolder);
+    }
+
     void expandText(const std::string& text, const std::string& name, const fs::path& file) {
         int index = sourceIndex(name);
+        if (!studentFolder.empty()) out.studentTexts[index] = text;
         out.text += "#line 1 " + std::to_string(index) + "\n";
         static const std::regex includeLine(R"(^\s*#\s*include\s*"([^"]+)\"\s*(//.*)?$)");
         static const std::regex versionLine(R"(^\s*#\s*version\b.*$)");
+        static const std::regex hostDirective(R"(^\s*#\s*(extension|line)\b.*$)");
         std::istringstream in(text);
         std::string line;
         int lineNo = 0;
@@ -92,12 +101,19 @@ struct Expander {
                 fs::path target = resolve(m[1].str(), file, where);
                 if (included.insert(target).second) {
                     out.files.push_back(target);
-                    expandText(readText(target), target.string(), target);
+                    expandText(read(target), target.string(), target);
                 }
                 out.text +=
                     "#line " + std::to_string(lineNo + 1) + " " + std::to_string(index) + "\n";
             } else if (std::regex_match(line, versionLine)) {
                 out.text += "\n";  // the host writes #version once, first
+            } else if (std::regex_match(line, m, hostDirective) && !studentFolder.empty()) {
+                // The compiler accepts these only before any code, or would map its messages
+                // through the student's #line: it reports them in the host's files.
+                throw ShaderError(name + ":" + std::to_string(lineNo) + ": error: #" + m[1].str() +
+                                  " is not allowed in a step's file: the host writes the "
+                                  "program's #version, extensions and line markers (the step's "
+                                  "file is pasted in the middle of the program)");
             } else {
                 out.text += line + "\n";
             }
@@ -109,12 +125,13 @@ struct Expander {
 
 ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
                                           const Defines& defines) const {
-    Expander ex{roots_, {}, {}};
+    Expander ex{roots_, {}, {}, {}};
     ex.out.text = "#version 450 core\n";
     for (const auto& [name, value] : defines) ex.out.text += "#define " + name + " " + value + "\n";
     for (const auto& part : parts) {
         if (!part.text.empty() || part.file.empty()) {
             ex.roots = roots_;
+            ex.studentFolder.clear();
             ex.expandText(part.text, part.name.empty() ? "<generated>" : part.name, {});
             continue;
         }
@@ -123,8 +140,11 @@ ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
         if (ec) throw Error(part.file.string() + ": cannot be resolved (" + ec.message() + ")");
         if (!ex.included.insert(file).second) continue;
         ex.out.files.push_back(file);
-        ex.roots = part.includeRoots.empty() ? roots_ : part.includeRoots;
-        ex.expandText(readText(file), file.string(), file);
+        ex.studentFolder = part.studentFolder;
+        ex.roots = part.studentFolder.empty() ? roots_ : std::vector<fs::path>{part.studentFolder};
+        // A student's file is read by the name it was given, so that the screening sees a
+        // link as a link (and names the file as the student knows it).
+        ex.expandText(ex.read(part.studentFolder.empty() ? file : part.file), file.string(), file);
     }
     return ex.out;
 }
@@ -145,6 +165,108 @@ std::string mapCompilerLog(const std::string& log, const std::vector<std::string
     }
     result.append(begin, log.cend());
     return result;
+}
+
+namespace {
+
+// The line (1-based) of a definition or prototype of function `name` in `text`, or 0.
+int definitionLine(const std::string& text, const std::string& name) {
+    const std::regex definition("^\\s*(\\w+\\s+)+" + name + "\\s*\\(");
+    std::istringstream in(text);
+    int lineNo = 0;
+    for (std::string line; std::getline(in, line);) {
+        ++lineNo;
+        if (std::regex_search(line, definition)) return lineNo;
+    }
+    return 0;
+}
+
+// The body of the first definition of `name` (its braces), or "".
+std::string bodyOf(const std::string& text, const std::string& name) {
+    const std::regex definition("\\b" + name + "\\s*\\([^)]*\\)\\s*\\{");
+    std::smatch m;
+    if (!std::regex_search(text, m, definition)) return "";
+    const size_t open = size_t(m.position(0) + m.length(0) - 1);
+    int depth = 0;
+    for (size_t i = open; i < text.size(); ++i) {
+        depth += text[i] == '{' ? 1 : text[i] == '}' ? -1 : 0;
+        if (depth == 0) return text.substr(open, i - open + 1);
+    }
+    return text.substr(open);
+}
+
+bool isStudentSource(const ExpandedShader& shader, const std::string& file) {
+    for (const auto& [index, text] : shader.studentTexts)
+        if (size_t(index) < shader.sourceNames.size() && shader.sourceNames[size_t(index)] == file)
+            return true;
+    return false;
+}
+
+// What to say about a function of the student's file that the compiler names in `message`.
+std::string hintFor(const std::string& message, const std::string& name, const std::string& code,
+                    const std::vector<std::string>& hostNames) {
+    const bool hosts = std::find(hostNames.begin(), hostNames.end(), name) != hostNames.end();
+    if (message.find("redefined") != std::string::npos) {
+        if (name == "main")
+            return "main is the host's (it calls your function for every pixel): a step's file "
+                   "holds only your function and helpers of your own.";
+        // A contract function's redefinition is hinted by the grader, which knows its step.
+        return hosts ? "" : name + " is already defined by pbrlab: give your helper another name.";
+    }
+    if (message.find("recursion") != std::string::npos) {
+        const std::string body = bodyOf(code, name);
+        const std::regex call("\\b" + name + "\\s*\\(");
+        if (!body.empty() && std::regex_search(body, call))
+            return name + " calls itself, and GLSL allows no recursion: write it as a loop.";
+        return name + " is part of a cycle of calls" +
+               (hosts ? " through a contract function that calls yours back" : "") +
+               ", and GLSL allows no recursion: compute that part yourself.";
+    }
+    return "";
+}
+
+}  // namespace
+
+std::string mapCompilerLog(const std::string& log, const ExpandedShader& shader) {
+    const std::string mapped = mapCompilerLog(log, shader.sourceNames);
+    if (shader.studentTexts.empty()) return mapped;
+    // "file:L(C): error: message" as mapCompilerLog writes Mesa's messages.
+    static const std::regex located(R"(^(.*):(\d+)\((\d+)\): (error|warning): (.*)$)");
+    // The function a message is about: `name' redefined, `float name(float)' has static
+    // recursion.
+    static const std::regex named(R"(`(?:[\w ]*\s)?(\w+)(?:\([^']*\))?')");
+    // The host's function names a student may collide with: contract functions are declared
+    // in "<contract prototypes>"; others are found by their definition in the host's text.
+    std::vector<std::string> hostNames;
+    {
+        static const std::regex prototype(R"(^\s*\w+\s+(\w+)\s*\([^;{]*\)\s*;)");
+        std::istringstream in(shader.text);
+        for (std::string line; std::getline(in, line);) {
+            std::smatch m;
+            if (std::regex_search(line, m, prototype)) hostNames.push_back(m[1].str());
+        }
+    }
+    std::istringstream in(mapped);
+    std::string out;
+    for (std::string line; std::getline(in, line);) {
+        std::smatch m, n;
+        if (std::regex_match(line, m, located) && !isStudentSource(shader, m[1].str()) &&
+            std::regex_search(line, n, named)) {
+            const std::string message = m[5].str(), name = n[1].str();
+            for (const auto& [index, code] : shader.studentTexts) {
+                const int at = definitionLine(code, name);
+                if (at == 0) continue;
+                line = shader.sourceNames[size_t(index)] + ":" + std::to_string(at) + ": " +
+                       m[4].str() + ": " + message;
+                if (std::string hint = hintFor(message, name, code, hostNames); !hint.empty())
+                    line += "\nhint: " + hint;
+                break;
+            }
+        }
+        out += line + "\n";
+    }
+    if (!mapped.empty() && mapped.back() != '\n' && !out.empty()) out.pop_back();
+    return out;
 }
 
 }  // namespace pbrlab

@@ -7,7 +7,15 @@
 #include <string>
 #include <vector>
 
+#include "pbrlab/error.h"
+
 namespace pbrlab {
+
+// A compile or link failure; what() is the compiler log with file:line references (or a
+// directive the preprocessor refused in a student's file, with its file:line).
+struct ShaderError : Error {
+    using Error::Error;
+};
 
 // Name -> value; the map keeps them sorted, which makes the set a stable cache key.
 using Defines = std::map<std::string, std::string>;
@@ -20,9 +28,10 @@ struct ShaderPart {
     std::filesystem::path file;  // used when text is empty
     std::string text;
     std::string name;  // for generated text: what to call it in messages
-    // When set, the only folders this part's #includes may read (a student's file: its own
-    // submission folder, never the reference solutions); otherwise the preprocessor's roots.
-    std::vector<std::filesystem::path> includeRoots;
+    // When set, this part is a student's file of this submission folder: it and every file it
+    // #includes are screened and read by readStudentFile (student_file.h), and its includes
+    // resolve inside this folder only, never in the reference solutions.
+    std::filesystem::path studentFolder;
 };
 
 struct ExpandedShader {
@@ -31,6 +40,9 @@ struct ExpandedShader {
     std::vector<std::string> sourceNames;
     // Every file read, for hot reload.
     std::vector<std::filesystem::path> files;
+    // Source-string number -> the text of a student's file (the part with a studentFolder,
+    // and what it includes): compiler messages that point elsewhere are traced back to it.
+    std::map<int, std::string> studentTexts;
 };
 
 class ShaderPreprocessor {
@@ -50,6 +62,13 @@ private:
 
 // Rewrites "S:L(C)" / "S(L)" source references in a compiler log to "file:L(C)".
 std::string mapCompilerLog(const std::string& log, const std::vector<std::string>& sourceNames);
+
+// mapCompilerLog, then every message that a student's file caused but the compiler reports
+// elsewhere (Mesa loses the source number of a redefinition and reports a recursion at 0:0)
+// is moved to the student's line that caused it, with a hint where one is true: a function
+// the host defines (main, a contract function), a function that calls itself, a cycle of
+// calls through a contract function.
+std::string mapCompilerLog(const std::string& log, const ExpandedShader& shader);
 
 // True when `path` (made canonical) lies inside `root` (made canonical).
 bool isInside(const std::filesystem::path& path, const std::filesystem::path& root);

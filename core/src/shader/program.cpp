@@ -35,7 +35,7 @@ gl::Handle compile(GLenum stage, const ExpandedShader& source) {
     gl::CompileShader(shader.id());
     GLint ok = 0;
     gl::GetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
-    if (!ok) throw ShaderError(mapCompilerLog(shaderLog(shader.id()), source.sourceNames));
+    if (!ok) throw ShaderError(mapCompilerLog(shaderLog(shader.id()), source));
     return shader;
 }
 
@@ -130,7 +130,7 @@ std::shared_ptr<Program> ProgramCache::build(const ProgramRecipe& recipe) {
     gl::LinkProgram(program.id());
     GLint ok = 0;
     gl::GetProgramiv(program.id(), GL_LINK_STATUS, &ok);
-    if (!ok) throw ShaderError(mapCompilerLog(programLog(program.id()), fs.sourceNames));
+    if (!ok) throw ShaderError(mapCompilerLog(programLog(program.id()), fs));
     ++compiles_;
     countEvent(Counter::ProgramCompiles);
     std::vector<fs::path> files = vs.files;

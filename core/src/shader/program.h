@@ -17,11 +17,6 @@
 
 namespace pbrlab {
 
-// A compile or link failure; what() is the compiler log with file:line references.
-struct ShaderError : Error {
-    using Error::Error;
-};
-
 class Program {
 public:
     Program(gl::Handle handle, std::vector<std::filesystem::path> files);
