@@ -3,6 +3,7 @@
 // console's own lines (--command: `wait`, `status`, `screenshot`), and the test edits the
 // files while the window is open, between the run's `wait --file` lines.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <atomic>
 #include <chrono>
@@ -32,14 +33,16 @@ std::string readText(const fs::path& file) {
 
 // `pbrlab --verbose gui ARGS --window 1200x760 --frames 2`, run from dir/kit with HOME=dir (the
 // remembered state is the test's own) in the background; stdout and stderr go to dir/log.txt.
+// Stopped after 5 minutes (a window that hangs fails the test).
 class BackgroundGui {
 public:
     BackgroundGui(const test::TempDir& dir, const std::string& args) : log_(dir.path / "log.txt") {
         fs::create_directories(dir.path / "kit");
         const std::string cmd =
             "cd " + (dir.path / "kit").string() + " && HOME=" + dir.path.string() +
-            " xvfb-run -a -s '-screen 0 1280x800x24' " PBRLAB_EXECUTABLE " --verbose gui " + args +
-            " --window 1200x760 --frames 2 > " + log_.string() + " 2>&1";
+            " timeout 300 xvfb-run -a -s '-screen 0 1280x800x24' " PBRLAB_EXECUTABLE
+            " --verbose gui " +
+            args + " --window 1200x760 --frames 2 > " + log_.string() + " 2>&1";
         thread_ = std::thread([this, cmd] {
             status_ = std::system(cmd.c_str());
             finished_ = true;
@@ -205,4 +208,49 @@ TEST(GuiStudent, TheConsolesCheckGradesTheOpenWorkspace) {
         << log;
     // The badge says what the console's check said.
     EXPECT_NE(statusReport(log, 0).find("badge: fails"), std::string::npos) << log;
+}
+
+// A FIFO (a student's `mkfifo ndotl.glsl`) when the window opens, and a good ndf.glsl replaced
+// by a file over 10 MB while it is open: the window does not hang opening them, and says why
+// they are not used, in the place of the compile error, with the solution's picture, through
+// the evaluations that follow (the renderer refuses a file once per change, then would draw
+// its last good program).
+TEST(GuiStudent, AFifoOrAHugeFileIsRefusedOnScreenWithoutBlocking) {
+    if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+    test::TempDir dir;
+    const fs::path kit = dir.path / "kit", go = dir.path / "go";
+    fs::create_directories(kit);
+    ASSERT_EQ(mkfifo((kit / "ndotl.glsl").c_str(), 0644), 0);
+    dir.write("kit/ndf.glsl", kGoodNdf);
+    const fs::path shot = dir.path / "fifo.png";
+    BackgroundGui gui(dir, "ndotl --submission " + kit.string() +
+                               " --command wait --command status --command 'screenshot " +
+                               shot.string() +
+                               "' --command 'step ndf' --command wait --command 'wait --timeout "
+                               "200 --file " +
+                               go.string() + "' --command wait --command status");
+    const bool started = gui.waitFor("> wait --timeout 200 --file " + go.string());
+    dir.write("huge.glsl", std::string(11 * 1024 * 1024, ' ') + kGoodNdf);
+    fs::rename(dir.path / "huge.glsl", kit / "ndf.glsl");  // as an editor saves: at once
+    dir.write("go", "");
+    ASSERT_EQ(gui.finish(), 0) << gui.log();
+    ASSERT_TRUE(started) << gui.log();
+    const std::string log = gui.log();
+    const std::string fifo = statusReport(log, 0), huge = statusReport(log, 1);
+    EXPECT_NE(fifo.find("ndotl.glsl cannot be used, so the picture is the solution's"),
+              std::string::npos)
+        << log;
+    EXPECT_NE(fifo.find((kit / "ndotl.glsl").string() + ": refused: not a regular file (a FIFO)"),
+              std::string::npos)
+        << log;
+    EXPECT_EQ(fifo.find("student   worst"), std::string::npos) << log;
+    EXPECT_NE(huge.find("ndf.glsl cannot be used, so the picture is the solution's"),
+              std::string::npos)
+        << log;
+    EXPECT_NE(huge.find((kit / "ndf.glsl").string() + ": refused: larger than 10 MB"),
+              std::string::npos)
+        << log;
+    EXPECT_EQ(huge.find("student   worst"), std::string::npos) << log;
+    EXPECT_EQ(huge.find("last good"), std::string::npos) << log;
+    EXPECT_GT(errorBoxPixels(shot), 5000);
 }

@@ -7,6 +7,7 @@
 #include "lab.h"
 #include "pbrlab/display.h"
 #include "pbrlab/log.h"
+#include "shader/student_file.h"
 #include "term_views.h"
 
 namespace fs = std::filesystem;
@@ -94,7 +95,7 @@ void Lab::studentFailed(const std::string& id, const std::string& log) {
     if (c.log != log) logLine("gui", id + ".glsl does not compile");
     c.log = log;
     c.failed = studentWatch_.current();
-    shown_.compileLog = c.log;
+    showCompile(id);
     badges_->markCompileError(id);
 }
 
@@ -106,7 +107,7 @@ void Lab::studentRendered(const std::string& id) {
     if (!c.log.empty() && now == c.failed) return;
     if (!c.log.empty()) logLine("gui", id + ".glsl compiles again");
     c.log.clear();
-    shown_.compileLog.clear();
+    showCompile(id);
     if (now == c.good && !c.compiledAt.empty()) return;
     c.good = now;
     const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
@@ -115,6 +116,14 @@ void Lab::studentRendered(const std::string& id) {
     char text[16];
     std::strftime(text, sizeof text, "%H:%M:%S", &local);
     c.compiledAt = shown_.compiledAt = text;
+}
+
+// The step's compile state as the panels show it: a refusal first, else the compile error.
+void Lab::showCompile(const std::string& id) {
+    const StudentCompile& c = compiles_[id];
+    shown_.refused = !c.refusal.empty();
+    shown_.compileLog = shown_.refused ? c.refusal : c.log;
+    shown_.compiledAt = c.compiledAt;
 }
 
 bool Lab::settled(const GuiState& state) const {
@@ -143,15 +152,12 @@ void Lab::drawLive(const GuiState& state) {
         shown_.liveTexture =
             displayPass_->run(r.valueTexture, liveSize_, liveSize_, m.display, m.components);
         shown_.liveWho = student ? "your" : "the solution's";
-    } catch (const ShaderError& e) {
-        // The student's file, saved while the input moves, does not compile: the error stays
-        // (the renderer keeps its last good program and will not throw this again), and the
-        // full path shows the last version that compiled.
+    } catch (const Error& e) {
+        // The student's file, saved while the input moves, does not compile (or may not be
+        // read): the error stays (the renderer keeps its last good program and will not throw
+        // this again), and the full path shows the last version that compiled.
         if (student) studentFailed(m.id, e.what());
         render(state);
-        return;
-    } catch (const Error& e) {
-        render(state);  // the full path says why
         return;
     }
     shown_.renderMs = millisecondsSince(start);
@@ -205,12 +211,21 @@ void Lab::render(const GuiState& state) {
         shown_.renderError = e.what();
     }
     updatePermutation(state, applyParamBindings(scene, d, params));
-    shown_.hasStudent = !studentFile(state).empty() && fs::exists(studentFile(state));
+    const fs::path file = studentFile(state);
+    std::error_code ec;
+    shown_.hasStudent = !file.empty() && fs::exists(fs::symlink_status(file, ec));
     if (!shown_.hasStudent) compiles_.erase(d.id);  // deleted: nothing to compile
-    shown_.compileLog = compiles_[d.id].log;
-    shown_.compiledAt = compiles_[d.id].compiledAt;
+    // Screened before anything reads it (the renderer reads it through the same screening):
+    // a FIFO, a device, a file over 10 MB or with NUL bytes, or a link out of the workspace is
+    // refused, with the reason on screen, and never opened for reading.
+    StudentCompile& c = compiles_[d.id];
+    const std::string refusal = shown_.hasStudent ? screenStudentFile(file, submission_) : "";
+    if (!refusal.empty() && c.refusal != file.string() + ": " + refusal)
+        logLine("gui", file.string() + ": " + refusal);
+    c.refusal = refusal.empty() ? "" : file.string() + ": " + refusal;
+    showCompile(d.id);
     bool rendered = false;
-    if (shown_.hasStudent) {
+    if (shown_.hasStudent && !shown_.refused) {
         // A new file that does not compile fails twice (the view's program, then the probe's),
         // and renders the third time with the last good programs (the cache kept them).
         for (int attempt = 0; attempt < 3; ++attempt) {
@@ -232,13 +247,11 @@ void Lab::render(const GuiState& state) {
                 studentRendered(d.id);
                 rendered = true;
                 break;
-            } catch (const ShaderError& e) {
-                // The new file does not compile: show the log, and render once more with the
-                // last good program (the cache kept it).
-                studentFailed(d.id, e.what());
             } catch (const Error& e) {
-                shown_.compileLog = e.what();
-                break;
+                // The new file does not compile (ShaderError), or a file it includes may not
+                // be read: show why, and render once more with the last good program (the
+                // cache kept it; it throws this once per edit).
+                studentFailed(d.id, e.what());
             }
         }
     }

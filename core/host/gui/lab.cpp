@@ -92,8 +92,7 @@ void Lab::select(GuiState& state, int index) {
     state.sceneName.clear();
     state.plotRow = module(state).probe.height / 2;
     studentWatch_.forget();
-    shown_.compileLog = compiles_[module(state).id].log;
-    shown_.compiledAt = compiles_[module(state).id].compiledAt;
+    showCompile(module(state).id);
     loadScene(state);
     std::ifstream in(loaded(state).sourceDir / "README.md");
     std::stringstream s;

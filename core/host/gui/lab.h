@@ -53,7 +53,10 @@ struct Shown {
     // file:line. It stays until a version of the file compiles again; meanwhile the picture
     // and the statistics are the last version's that did (studentValue), if any.
     std::string compileLog;
-    std::string compiledAt;   // when the version of the student's file on screen compiled
+    std::string compiledAt;  // when the version of the student's file on screen compiled
+    // compileLog says why the file may not be read (screenStudentFile) or used: nothing of
+    // the student's is shown.
+    bool refused = false;
     std::string messages;     // start-up notes for the steps panel (modules, font, state)
     bool hasStudent = false;  // a student file exists for this step
     Image studentValue, solutionValue, referenceValue, probeSolution, probeStudent;
@@ -116,6 +119,7 @@ private:
     void moved();
     void studentFailed(const std::string& id, const std::string& log);
     void studentRendered(const std::string& id);
+    void showCompile(const std::string& id);
 
     GuiOptions options_;
     DataPaths paths_;
@@ -134,6 +138,7 @@ private:
     // program (kept across steps), and the error stays on screen.
     struct StudentCompile {
         std::string log, compiledAt;
+        std::string refusal;  // the file may not be read or used, and why (before log)
         SourceWatch::Stamps failed, good;
     };
     std::map<std::string, StudentCompile> compiles_;

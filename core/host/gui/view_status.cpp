@@ -25,10 +25,14 @@ ViewStatus viewStatus(const Lab& lab, const GuiState& state) {
     const Shown& shown = lab.shown();
     const std::string file = d.id + ".glsl";
     // The picture and the statistics are of the last program that compiled, not of the file.
-    const bool lastGood = !shown.compileLog.empty() && !shown.studentValue.pixels.empty();
+    const bool lastGood =
+        !shown.compileLog.empty() && !shown.refused && !shown.studentValue.pixels.empty();
     ViewStatus s;
     s.lastGood = lastGood;
-    if (!shown.compileLog.empty()) {
+    if (shown.refused) {
+        s.error = file + " cannot be used, so the picture is the solution's:";
+        s.errorLog = shown.compileLog;
+    } else if (!shown.compileLog.empty()) {
         s.error = lastGood ? file +
                                  " does not compile: the picture and the statistics are of "
                                  "the last program that compiled, " +
