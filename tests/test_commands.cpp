@@ -98,6 +98,27 @@ TEST(Commands, TheConsolesOwnCommandsAreListedWithTheShellsInHelp) {
     EXPECT_EQ(parseConsoleLine("render --help").message, executableOutput("render --help"));
 }
 
+// In the lab, `check ndf` grades the open workspace, as the badge does; a line that names a
+// folder (or '' for the reference solutions) keeps it.
+TEST(Commands, InTheLabCommandsThatTakeASubmissionWorkOnTheWorkspace) {
+    using Words = std::vector<std::string>;
+    const std::filesystem::path kit = "/home/student/kit";
+    for (const Words& line : {Words{"check", "ndf"}, Words{"render", "ndf", "--out", "x.png"},
+                              Words{"stability", "ndf"}, Words{"grade"}}) {
+        Words expected = line;
+        expected.insert(expected.end(), {"--submission", kit.string()});
+        EXPECT_EQ(inWorkspace(line, kit), expected) << line[0];
+    }
+    for (const Words& line :
+         {Words{"check", "ndf", "--submission", "other"}, Words{"check", "ndf", "--submission", ""},
+          Words{"grade", "other"}, Words{"grade", "--batch", "class", "--out", "r"}, Words{"list"},
+          Words{"mutants", "ndf"}, Words{"kit", "--out", "k"}, Words{"gui"},
+          Words{"check", "--bogus"}})
+        EXPECT_EQ(inWorkspace(line, kit), line) << line[0];
+    // No workspace open: the reference solutions, as on the shell.
+    EXPECT_EQ(inWorkspace({"check", "ndf"}, {}), (Words{"check", "ndf"}));
+}
+
 TEST(Commands, SplitsALineAsAShellDoesWithoutExpansions) {
     EXPECT_EQ(splitWords("  render  ndf\t--out \"a b.png\" --set 'x=1 2' c\\ d \"\" "),
               (std::vector<std::string>{"render", "ndf", "--out", "a b.png", "--set", "x=1 2",

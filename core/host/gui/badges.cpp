@@ -81,6 +81,13 @@ std::string Badges::update(const ModuleRegistry& registry) {
     return arrived;
 }
 
+bool Badges::upToDate(const std::string& id) const {
+    if (job_.pid > 0 && job_.id == id) return false;
+    const Badge& badge = of(id);
+    if (badge.status == Status::Missing) return true;
+    return badge.status != Status::Unknown && !badge.watch.stale(submission_ / (id + ".glsl"));
+}
+
 void Badges::start(const std::string& id) {
     job_.id = id;
     job_.json = fs::temp_directory_path() /

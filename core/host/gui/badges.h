@@ -43,6 +43,8 @@ public:
         auto it = badges_.find(id);
         return it == badges_.end() ? unknown : it->second;
     }
+    // The step's badge is the grade of its file as it is on disk (or says it is missing).
+    bool upToDate(const std::string& id) const;
     // The render found that the student's file does not compile: the badge says so now.
     void markCompileError(const std::string& id) { badges_[id].status = Status::CompileError; }
 

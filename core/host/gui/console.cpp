@@ -13,12 +13,18 @@
 
 #include "lab.h"
 #include "pbrlab/error.h"
+#include "view_status.h"
 
 extern char** environ;
 
 namespace pbrlab {
 
 namespace {
+
+const char* const kWorkspaceNote =
+    "\nIn the lab, commands that take --submission (check, render, stability, gallery, grade) "
+    "work on the open workspace unless the line gives one: --submission DIR for another "
+    "folder, --submission '' for the reference solutions.\n";
 
 // A command that runs in the GUI's process and changes its state, as a panel does.
 class LocalCommand : public Command {
@@ -113,6 +119,57 @@ private:
     std::string view_;
 };
 
+// What the view panel says: the compile error, what the picture is, the statistics.
+class StatusCommand : public LocalCommand {
+public:
+    using LocalCommand::LocalCommand;
+    void declare(CLI::App&) override {}
+    int run(const GlobalOptions&) override {
+        const std::string& id = lab().module(state()).id;
+        output_ += "step " + id + ", badge: " + badgeText(lab().badges().of(id).status) + "\n" +
+                   describe(viewStatus(lab(), state()));
+        return 0;
+    }
+};
+
+// As the screenshot button, to a file of one's choice.
+class ScreenshotCommand : public LocalCommand {
+public:
+    using LocalCommand::LocalCommand;
+    void declare(CLI::App& cmd) override {
+        cmd.add_option("file", file_, "The PNG to write (default: pbrlab-screenshot.png)");
+    }
+    int run(const GlobalOptions&) override {
+        requests().screenshot = true;
+        requests().screenshotFile = file_;
+        return 0;
+    }
+
+private:
+    std::string file_;
+};
+
+// For scripts (--command): the lines after it wait, the window drawing meanwhile.
+class WaitCommand : public LocalCommand {
+public:
+    using LocalCommand::LocalCommand;
+    void declare(CLI::App& cmd) override {
+        cmd.add_option("--file", wait.file,
+                       "Also until this file exists (a script that edits files meanwhile)");
+        cmd.add_option("--timeout", seconds_, "Give up after this many seconds (default 300)");
+    }
+    int run(const GlobalOptions&) override {
+        wait.active = true;
+        wait.since = std::chrono::steady_clock::now();
+        wait.until = wait.since + std::chrono::milliseconds(int64_t(seconds_ * 1000));
+        return 0;
+    }
+    Console::Wait wait;
+
+private:
+    double seconds_ = 300;
+};
+
 class HelpCommand : public LocalCommand {
 public:
     using LocalCommand::LocalCommand;
@@ -125,6 +182,9 @@ public:
         output_ += command_.empty() ? app->get_formatter()->make_help(app, app->get_name(),
                                                                       CLI::AppFormatMode::Normal)
                                     : app->get_subcommand(command_)->help(app->get_name());
+        output_ += kWorkspaceNote;
+        if (target_.lab && !lab().submission().empty())
+            output_ += "The workspace: " + lab().submission().string() + "\n";
         return 0;
     }
     const CLI::App* app = nullptr;
@@ -159,6 +219,15 @@ std::unique_ptr<CommandLine> consoleCommandLine(const ConsoleTarget& target, std
     addLocal<SceneCommand>(c, "scene", "GUI: show this scene or --model (as the chooser)", target,
                            output);
     addLocal<ViewCommand>(c, "view", "GUI: show this view (as --view)", target, output);
+    addLocal<StatusCommand>(c, "status",
+                            "GUI: what the view says (compile error, picture, statistics)", target,
+                            output);
+    addLocal<ScreenshotCommand>(c, "screenshot", "GUI: save the window (as the button)", target,
+                                output);
+    addLocal<WaitCommand>(c, "wait",
+                          "GUI: hold the next lines until the picture is evaluated and the "
+                          "step's badge graded",
+                          target, output);
     HelpCommand* help = addLocal<HelpCommand>(
         c, "help", "GUI: list the commands, or one command's options", target, output);
     addLocal<ClearCommand>(c, "clear", "GUI: clear the console", target, output);
@@ -202,6 +271,25 @@ ConsoleParse parseConsoleLine(const std::string& text) {
     return parsed;
 }
 
+std::vector<std::string> inWorkspace(const std::vector<std::string>& words,
+                                     const std::filesystem::path& workspace) {
+    if (workspace.empty()) return words;
+    std::string output;
+    auto line = consoleCommandLine({}, output);
+    if (!parseWords(*line, words).empty()) return words;
+    const Command* command = line->chosen();
+    if (!command || command->name == "gui") return words;
+    const CLI::App* sub = line->app.get_subcommand(command->name);
+    const CLI::Option* submission = sub->get_option_no_throw("--submission");
+    if (!submission || submission->count() > 0) return words;
+    for (const char* other : {"--batch", "--merge"})
+        if (const CLI::Option* o = sub->get_option_no_throw(other); o && o->count() > 0)
+            return words;
+    std::vector<std::string> with = words;
+    with.insert(with.end(), {"--submission", workspace.string()});
+    return with;
+}
+
 Console::Console(std::vector<std::string> globalArguments, bool echo)
     : globalArguments_(std::move(globalArguments)), echo_(echo) {}
 
@@ -215,7 +303,7 @@ void Console::submit(const std::string& line) {
 }
 
 bool Console::idle() const {
-    return queue_.empty() && child_ <= 0;
+    return queue_.empty() && child_ <= 0 && !wait_.active;
 }
 
 std::string Console::text() const {
@@ -244,11 +332,30 @@ void Console::poll(const ConsoleTarget& target) {
     if (done) finishChild();
     // One line a frame: a local command's requests (a step chosen) are carried out by the
     // frame before the next line reads the state.
-    if (child_ <= 0 && !queue_.empty()) {
+    if (child_ <= 0 && !waiting(target) && !queue_.empty()) {
         const std::string line = queue_.front();
         queue_.pop_front();
         runLine(line, target);
     }
+}
+
+// `wait`: until the file exists (when given), and the lab has nothing left to update.
+bool Console::waiting(const ConsoleTarget& target) {
+    if (!wait_.active) return false;
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - wait_.since).count();
+    char took[64];
+    std::snprintf(took, sizeof took, "%.1f s", seconds);
+    if (now > wait_.until) {
+        append(std::string("wait: gave up after ") + took + "\n");
+    } else {
+        std::error_code ec;
+        if (!wait_.file.empty() && !std::filesystem::exists(wait_.file, ec)) return true;
+        if (target.lab && !target.lab->settled(*target.state)) return true;
+        append(std::string("(waited ") + took + ")\n");
+    }
+    wait_ = {};
+    return false;
 }
 
 void Console::runLine(const std::string& text, const ConsoleTarget& target) {
@@ -269,9 +376,18 @@ void Console::runLine(const std::string& text, const ConsoleTarget& target) {
     if (!command) return;
     if (command->name == "clear") return clear();
     if (command->name == "gui") return append("gui: this is the lab, open already\n");
-    if (!dynamic_cast<LocalCommand*>(command)) return startChild(words);
+    if (!dynamic_cast<LocalCommand*>(command)) {
+        if (target.lab) {
+            const std::vector<std::string> inside = inWorkspace(words, target.lab->submission());
+            if (inside.size() != words.size())
+                append("(on the workspace: --submission " + inside.back() + ")\n");
+            words = inside;
+        }
+        return startChild(words);
+    }
     try {
         command->run(line->global);
+        if (auto* wait = dynamic_cast<WaitCommand*>(command)) wait_ = wait->wait;
     } catch (const std::exception& e) {
         output += std::string("error: ") + e.what() + "\n";
     }

@@ -1,13 +1,16 @@
 // The GUI's command line: the shell's commands (commands/), parsed with the same CLI11
-// declarations and run as a child process of this executable with their output captured,
-// and the GUI-local commands (step, set, scene, view, help, clear) that change GuiState as
-// the panels do. Lines run one after another; the window keeps drawing meanwhile.
+// declarations and run as a child process of this executable with their output captured (on
+// the open workspace: inWorkspace), and the GUI-local commands (step, set, scene, view,
+// status, screenshot, wait, help, clear) that change GuiState as the panels do or report on
+// it. Lines run one after another; the window keeps drawing meanwhile.
 #pragma once
 
 #include <sys/types.h>
 
 #include <array>
+#include <chrono>
 #include <deque>
+#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -46,6 +49,13 @@ std::unique_ptr<CommandLine> consoleCommandLine(const ConsoleTarget& target, std
 // Parses one line with the console's command line (nothing runs).
 ConsoleParse parseConsoleLine(const std::string& line);
 
+// In the lab, a shell command that takes --submission (check, render, stability, gallery,
+// grade) works on the open workspace: `words` with `--submission WORKSPACE` added when the
+// line gives none (nor grade's --batch or --merge); else `words` as they are. An explicit
+// --submission wins (--submission '' for the reference solutions).
+std::vector<std::string> inWorkspace(const std::vector<std::string>& words,
+                                     const std::filesystem::path& workspace);
+
 class Console {
 public:
     // `globalArguments`: the GUI's own --modules/--verbose, given to every child command.
@@ -59,6 +69,12 @@ public:
     void poll(const ConsoleTarget& target);
     // No line queued or running.
     bool idle() const;
+    // The console's `wait` holds the lines after it until this is met.
+    struct Wait {
+        bool active = false;
+        std::filesystem::path file;  // and this exists (empty: no file)
+        std::chrono::steady_clock::time_point since, until;
+    };
     bool running() const { return child_ > 0; }
     // Everything shown so far (the typed lines with "> ", then their output).
     std::string text() const;
@@ -74,10 +90,12 @@ private:
     void runLine(const std::string& line, const ConsoleTarget& target);
     void startChild(const std::vector<std::string>& words);
     void finishChild();
+    bool waiting(const ConsoleTarget& target);
 
     std::vector<std::string> globalArguments_;
     bool echo_ = false;
     std::deque<std::string> queue_;
+    Wait wait_;
     mutable std::mutex mutex_;  // text_ and childDone_, written by the reader thread
     std::string text_;
     bool childDone_ = false;

@@ -1,11 +1,13 @@
 // The frame function: GuiState -> evaluation -> images (Lab::update and what it calls).
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 
 #include "evaluate.h"
 #include "lab.h"
 #include "pbrlab/display.h"
 #include "pbrlab/log.h"
+#include "shader/student_file.h"
 #include "term_views.h"
 
 namespace fs = std::filesystem;
@@ -47,7 +49,10 @@ void Lab::update(GuiState& state, Requests& requests) {
     }
     if (requests.moved) moved();
     if (requests.recompose) compose(state);
-    requests = {};
+    Requests carriedOut;  // all but the screenshot, which the window takes after drawing
+    carriedOut.screenshot = requests.screenshot;
+    carriedOut.screenshotFile = std::move(requests.screenshotFile);
+    requests = std::move(carriedOut);
 
     // Hot reload: a saved student file, or a file it includes, marks the view dirty; the
     // renderer recompiles it.
@@ -83,6 +88,50 @@ void Lab::moved() {
     lastMove_ = std::chrono::steady_clock::now();
 }
 
+// The student's file did not compile (ShaderError): its log stays on screen until a version
+// of the file compiles (studentRendered with the files changed since).
+void Lab::studentFailed(const std::string& id, const std::string& log) {
+    StudentCompile& c = compiles_[id];
+    if (c.log != log) logLine("gui", id + ".glsl does not compile");
+    c.log = log;
+    c.failed = studentWatch_.current();
+    showCompile(id);
+    badges_->markCompileError(id);
+}
+
+// The student's picture rendered. With the files as they were when they failed, that was the
+// renderer's last good program: the error stays. Otherwise the files on disk compiled.
+void Lab::studentRendered(const std::string& id) {
+    StudentCompile& c = compiles_[id];
+    const SourceWatch::Stamps now = studentWatch_.current();
+    if (!c.log.empty() && now == c.failed) return;
+    if (!c.log.empty()) logLine("gui", id + ".glsl compiles again");
+    c.log.clear();
+    showCompile(id);
+    if (now == c.good && !c.compiledAt.empty()) return;
+    c.good = now;
+    const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+    std::tm local{};
+    localtime_r(&t, &local);
+    char text[16];
+    std::strftime(text, sizeof text, "%H:%M:%S", &local);
+    c.compiledAt = shown_.compiledAt = text;
+}
+
+// The step's compile state as the panels show it: a refusal first, else the compile error.
+void Lab::showCompile(const std::string& id) {
+    const StudentCompile& c = compiles_[id];
+    shown_.refused = !c.refusal.empty();
+    shown_.compileLog = shown_.refused ? c.refusal : c.log;
+    shown_.compiledAt = c.compiledAt;
+}
+
+bool Lab::settled(const GuiState& state) const {
+    const fs::path file = studentFile(state);
+    return !dirty_ && !shown_.liveTexture && (file.empty() || !studentWatch_.stale(file)) &&
+           badges_->upToDate(module(state).id);
+}
+
 // The picture the student is looking at (theirs when their file has compiled, else the
 // solution's), rendered at the live size (kLiveBudgetMs) and mapped for display on the GPU.
 void Lab::drawLive(const GuiState& state) {
@@ -104,7 +153,11 @@ void Lab::drawLive(const GuiState& state) {
             displayPass_->run(r.valueTexture, liveSize_, liveSize_, m.display, m.components);
         shown_.liveWho = student ? "your" : "the solution's";
     } catch (const Error& e) {
-        render(state);  // a program that does not compile: the full path says why
+        // The student's file, saved while the input moves, does not compile (or may not be
+        // read): the error stays (the renderer keeps its last good program and will not throw
+        // this again), and the full path shows the last version that compiled.
+        if (student) studentFailed(m.id, e.what());
+        render(state);
         return;
     }
     shown_.renderMs = millisecondsSince(start);
@@ -158,10 +211,24 @@ void Lab::render(const GuiState& state) {
         shown_.renderError = e.what();
     }
     updatePermutation(state, applyParamBindings(scene, d, params));
-    shown_.hasStudent = !studentFile(state).empty() && fs::exists(studentFile(state));
+    const fs::path file = studentFile(state);
+    std::error_code ec;
+    shown_.hasStudent = !file.empty() && fs::exists(fs::symlink_status(file, ec));
+    if (!shown_.hasStudent) compiles_.erase(d.id);  // deleted: nothing to compile
+    // Screened before anything reads it (the renderer reads it through the same screening):
+    // a FIFO, a device, a file over 10 MB or with NUL bytes, or a link out of the workspace is
+    // refused, with the reason on screen, and never opened for reading.
+    StudentCompile& c = compiles_[d.id];
+    const std::string refusal = shown_.hasStudent ? screenStudentFile(file, submission_) : "";
+    if (!refusal.empty() && c.refusal != file.string() + ": " + refusal)
+        logLine("gui", file.string() + ": " + refusal);
+    c.refusal = refusal.empty() ? "" : file.string() + ": " + refusal;
+    showCompile(d.id);
     bool rendered = false;
-    if (shown_.hasStudent) {
-        for (int attempt = 0; attempt < 2; ++attempt) {
+    if (shown_.hasStudent && !shown_.refused) {
+        // A new file that does not compile fails twice (the view's program, then the probe's),
+        // and renders the third time with the last good programs (the cache kept them).
+        for (int attempt = 0; attempt < 3; ++attempt) {
             try {
                 RenderRequest request{&m,      &params,     &scene,     studentSource,
                                       nullptr, kRenderSize, kRenderSize};
@@ -177,17 +244,14 @@ void Lab::render(const GuiState& state) {
                 probeRequest.seamlessCubes = false;
                 probeRequest.ibl = iblFor(scene);
                 shown_.probeStudent = renderer_->render(probeRequest).value;
-                if (attempt == 0) shown_.compileLog.clear();
+                studentRendered(d.id);
                 rendered = true;
                 break;
-            } catch (const ShaderError& e) {
-                // The new file does not compile: show the log, and render once more with the
-                // last good program (the cache kept it).
-                shown_.compileLog = e.what();
-                badges_->markCompileError(d.id);
             } catch (const Error& e) {
-                shown_.compileLog = e.what();
-                break;
+                // The new file does not compile (ShaderError), or a file it includes may not
+                // be read: show why, and render once more with the last good program (the
+                // cache kept it; it throws this once per edit).
+                studentFailed(d.id, e.what());
             }
         }
     }

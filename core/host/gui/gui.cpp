@@ -155,13 +155,15 @@ public:
             ++frame;
             // Scripted: the frames asked for, and the console's lines have finished.
             bool last = options_.frames > 0 && frame >= options_.frames && console_.idle();
-            if (requests_.screenshot || (last && !options_.screenshot.empty())) {
-                fs::path file = last && !options_.screenshot.empty()
-                                    ? options_.screenshot
-                                    : fs::path("pbrlab-screenshot.png");
-                saveScreenshot(file, w, h, lab_.shown().messages);
+            if (requests_.screenshot) {  // the button, or the console's `screenshot`
+                saveScreenshot(requests_.screenshotFile.empty() ? fs::path("pbrlab-screenshot.png")
+                                                                : requests_.screenshotFile,
+                               w, h, lab_.shown().messages);
                 requests_.screenshot = false;
+                requests_.screenshotFile.clear();
             }
+            if (last && !options_.screenshot.empty())
+                saveScreenshot(options_.screenshot, w, h, lab_.shown().messages);
             glfwSwapBuffers(window);
             lab_.shown().frameMs = millisecondsSince(start);
             frameTimes.push_back(lab_.shown().frameMs);

@@ -35,7 +35,10 @@ struct Requests {
     bool moved = false;        // camera, parameter or light changed: live frames, then the
                                // evaluation once the input is still
     bool recompose = false;    // the view or its settings changed: the same values shown anew
-    bool screenshot = false;   // save the window as pbrlab-screenshot.png
+    // Save the window, when drawn, to screenshotFile (empty: pbrlab-screenshot.png); the
+    // window does it, not update().
+    bool screenshot = false;
+    std::filesystem::path screenshotFile;
     std::optional<PointLightDesc> firstLight;  // the scene's first light, edited
     std::optional<std::string> environment;    // load this environment: "sky" or a file
 };
@@ -46,7 +49,14 @@ struct Shown {
     std::string handout;  // the step's README.md
     std::string sceneError;   // the scene, model or environment that did not load
     std::string renderError;  // the solution's render failed
-    std::string compileLog;   // the student's file did not compile (empty: it did)
+    // The student's file does not compile (or may not be read): the compiler's log, with
+    // file:line. It stays until a version of the file compiles again; meanwhile the picture
+    // and the statistics are the last version's that did (studentValue), if any.
+    std::string compileLog;
+    std::string compiledAt;  // when the version of the student's file on screen compiled
+    // compileLog says why the file may not be read (screenStudentFile) or used: nothing of
+    // the student's is shown.
+    bool refused = false;
     std::string messages;     // start-up notes for the steps panel (modules, font, state)
     bool hasStudent = false;  // a student file exists for this step
     Image studentValue, solutionValue, referenceValue, probeSolution, probeStudent;
@@ -91,6 +101,9 @@ public:
     const Shown& shown() const { return shown_; }
     Shown& shown() { return shown_; }
     const std::vector<int>& liveSizes() const { return liveSizes_; }  // for --orbit's report
+    // The picture is evaluated for the state, and the step's badge graded for the file on
+    // disk: nothing is left to update (the console's `wait`).
+    bool settled(const GuiState& state) const;
     // The term views of the loaded steps (term_views.h), in the view chooser's order.
     const std::vector<TermView>& termViews() const { return termViews_; }
 
@@ -104,6 +117,9 @@ private:
     void compose(const GuiState& state);
     void updatePermutation(const GuiState& state, const Scene& scene);
     void moved();
+    void studentFailed(const std::string& id, const std::string& log);
+    void studentRendered(const std::string& id);
+    void showCompile(const std::string& id);
 
     GuiOptions options_;
     DataPaths paths_;
@@ -116,6 +132,16 @@ private:
     Shown shown_;
     Band band_;                 // the reference's band on the current picture
     SourceWatch studentWatch_;  // hot reload of the step on screen
+    // Per step, the student's file's compile error (Shown::compileLog for the step on screen)
+    // and the files as they were when it failed, and when a version last compiled: a render
+    // that succeeds with the files unchanged since the failure used the renderer's last good
+    // program (kept across steps), and the error stays on screen.
+    struct StudentCompile {
+        std::string log, compiledAt;
+        std::string refusal;  // the file may not be read or used, and why (before log)
+        SourceWatch::Stamps failed, good;
+    };
+    std::map<std::string, StudentCompile> compiles_;
     // What is on screen, for the chooser to return to when a file does not load.
     std::string shownSceneName_;
     std::filesystem::path shownModel_;

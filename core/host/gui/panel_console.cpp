@@ -22,15 +22,26 @@ int recallHistory(ImGuiInputTextCallbackData* data) {
 
 }  // namespace
 
-void drawConsoleTab(Console& console) {
+void drawConsoleTab(const Lab& lab, Console& console) {
     const float inputHeight = ImGui::GetFrameHeightWithSpacing() * 2;
     ImGui::BeginChild("console output", ImVec2(0, -inputHeight), true);
     const std::string text = console.text();
-    if (text.empty())
+    if (text.empty()) {
+        ImGui::PushTextWrapPos(0);
         ImGui::TextDisabled(
             "The shell's commands run here as `pbrlab ...` would (`check ndf`, `render ndf "
             "--out x.png`); `step`, `set`, `scene` and `view` change the lab. `help` lists "
             "them all.");
+        if (lab.submission().empty())
+            ImGui::TextDisabled("No workspace is open: commands use the reference solutions.");
+        else
+            ImGui::TextDisabled(
+                "Commands that take --submission (check, render, stability, gallery, grade) "
+                "work on the workspace, %s, unless the line gives one (--submission '' for the "
+                "reference solutions).",
+                lab.submission().string().c_str());
+        ImGui::PopTextWrapPos();
+    }
     ImGui::PushTextWrapPos(0);
     ImGui::TextUnformatted(text.data(), text.data() + text.size());
     ImGui::PopTextWrapPos();
@@ -42,8 +53,10 @@ void drawConsoleTab(Console& console) {
     ImGui::SetNextItemWidth(-1);
     const ImGuiInputTextFlags flags =
         ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_CallbackHistory;
-    if (ImGui::InputTextWithHint("##line", "a command, e.g. check ndf", console.input.data(),
-                                 console.input.size(), flags, recallHistory, &console)) {
+    const char* hint = lab.submission().empty() ? "a command, e.g. check ndf"
+                                                : "a command, e.g. check ndf (your workspace's)";
+    if (ImGui::InputTextWithHint("##line", hint, console.input.data(), console.input.size(), flags,
+                                 recallHistory, &console)) {
         const std::string line = console.input.data();
         if (!line.empty()) {
             console.submit(line);

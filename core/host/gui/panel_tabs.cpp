@@ -6,6 +6,7 @@
 #include "handout.h"
 #include "panels.h"
 #include "pbrlab/log.h"
+#include "view_status.h"
 
 namespace pbrlab {
 
@@ -44,7 +45,7 @@ void drawSideTabs(const Lab& lab, GuiState& state, SideTabsMemory& memory, Conso
         ImGui::EndTabItem();
     }
     if (ImGui::BeginTabItem("Console", nullptr, opened("console"))) {
-        drawConsoleTab(console);
+        drawConsoleTab(lab, console);
         ImGui::EndTabItem();
     }
     ImGui::EndTabBar();
@@ -56,9 +57,9 @@ void drawLogTab(const Lab& lab, const GuiState& state) {
     if (compileLog.empty()) {
         ImGui::TextDisabled("no errors");
     } else {
-        ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1),
-                           "%s does not compile; the image shows the last version that did.",
-                           lab.studentFile(state).filename().string().c_str());
+        ImGui::PushTextWrapPos(0);
+        ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", viewStatus(lab, state).error.c_str());
+        ImGui::PopTextWrapPos();
         ImGui::TextDisabled("click a line to copy it");
         std::istringstream in(compileLog);
         std::string line;

@@ -9,6 +9,7 @@
 #include "panels.h"
 #include "pbrlab/display.h"
 #include "term_views.h"
+#include "view_status.h"
 
 namespace pbrlab {
 
@@ -94,27 +95,51 @@ void drawLegend(double lo, double hi, bool logScale, float height) {
     ImGui::Dummy(ImVec2(28, height));
 }
 
-void drawStats(const Lab& lab, const GuiState& state) {
-    const ModuleDesc& d = lab.module(state);
-    const Shown& shown = lab.shown();
-    auto row = [&](const char* who, const Comparison& s) {
-        bool ok = s.passes(d.nonNegative, d.tolerance.outlierFraction);
-        ImGui::TextColored(ok ? ImVec4(0.4f, 0.9f, 0.45f, 1) : ImVec4(1, 0.5f, 0.3f, 1),
-                           "%-9s worst %.3g x the tolerance  outside %d  NaN %d  Inf %d  "
-                           "neg %d  %s",
-                           who, s.worstExcess, s.outside, s.nanCount, s.infCount, s.negativeCount,
-                           ok ? "within the band" : "outside the band");
-    };
-    if (shown.liveTexture) {
-        ImGui::TextDisabled("vs the CPU reference: follows when the input stops");
-        return;
+// The statistics under the picture; with a compile error, they say that they are of the last
+// program that compiled.
+void drawStats(const ViewStatus& status) {
+    ImGui::PushTextWrapPos(0);
+    if (status.lastGood)
+        ImGui::TextColored(ImVec4(1, 0.6f, 0.35f, 1), "%s", status.statsHeading.c_str());
+    else
+        ImGui::TextDisabled("%s", status.statsHeading.c_str());
+    ImGui::PopTextWrapPos();
+    for (const ViewStatus::Row& row : status.rows)
+        ImGui::TextColored(row.ok ? ImVec4(0.4f, 0.9f, 0.45f, 1) : ImVec4(1, 0.5f, 0.3f, 1), "%s",
+                           row.text.c_str());
+    if (!status.grade.empty()) ImGui::TextWrapped("%s", status.grade.c_str());
+}
+
+// The student's compile error, above the picture until the file compiles again: what the
+// picture is, then the compiler's text (file:line), scrolled when long; a click copies a line.
+void drawCompileError(const ViewStatus& status) {
+    const ImVec4 red(1, 0.4f, 0.4f, 1);
+    const ImGuiStyle& style = ImGui::GetStyle();
+    int lines = 0;  // of the log, up to 6 (then it scrolls)
+    for (size_t i = 0; i < status.errorLog.size(); ++i)
+        lines += status.errorLog[i] == '\n' || i + 1 == status.errorLog.size();
+    const float wrap = ImGui::GetContentRegionAvail().x - 2 * style.WindowPadding.x;
+    const float height = ImGui::CalcTextSize(status.error.c_str(), nullptr, false, wrap).y +
+                         ImGui::GetTextLineHeightWithSpacing() * float(std::min(lines, 6)) +
+                         style.ItemSpacing.y + style.WindowPadding.y * 2;
+    ImGui::PushStyleColor(ImGuiCol_Border, red);
+    ImGui::PushStyleColor(ImGuiCol_ChildBg, ImVec4(0.25f, 0.08f, 0.08f, 1));
+    ImGui::BeginChild("compile error", ImVec2(0, height), true);
+    ImGui::PushStyleColor(ImGuiCol_Text, red);
+    ImGui::TextWrapped("%s", status.error.c_str());
+    ImGui::PopStyleColor();
+    size_t start = 0;
+    for (int n = 0; start < status.errorLog.size(); ++n) {
+        size_t end = status.errorLog.find('\n', start);
+        if (end == std::string::npos) end = status.errorLog.size();
+        const std::string line = status.errorLog.substr(start, end - start);
+        start = end + 1;
+        ImGui::PushID(n);
+        if (ImGui::Selectable(line.c_str())) ImGui::SetClipboardText(line.c_str());
+        ImGui::PopID();
     }
-    ImGui::TextDisabled("vs the CPU reference's band on this picture (the badge is the grade):");
-    if (!shown.studentValue.pixels.empty()) row("student", shown.studentStats);
-    row("solution", shown.solutionStats);
-    const Badge& badge = lab.badges().of(d.id);
-    if (badge.status == Status::Fails && !badge.gradeMessage.empty())
-        ImGui::TextWrapped("grade: %s", badge.gradeMessage.c_str());
+    ImGui::EndChild();
+    ImGui::PopStyleColor(2);
 }
 
 }  // namespace
@@ -142,11 +167,10 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
     ImGui::SameLine();
     ImGui::TextDisabled("frame %.1f ms, render %.0f ms", shown.frameMs, shown.renderMs);
 
-    if (shown.studentValue.pixels.empty() && showsStudent(state.view))
-        ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "%s",
-                           shown.hasStudent
-                               ? "your file has not compiled yet: showing the solution"
-                               : "no student file for this step: showing the solution");
+    const ViewStatus status = viewStatus(lab, state);
+    if (!status.error.empty()) drawCompileError(status);
+    if (!status.notice.empty())
+        ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "%s", status.notice.c_str());
     if (!shown.renderError.empty())
         ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "%s", shown.renderError.c_str());
     if (shown.nanCount + shown.infCount > 0)
@@ -173,7 +197,7 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
                    difference ? state.differenceRange : d.display.hi,
                    !difference && d.display.logScale, side);
     }
-    drawStats(lab, state);
+    drawStats(status);
 }
 
 }  // namespace pbrlab

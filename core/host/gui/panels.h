@@ -31,6 +31,6 @@ void drawSideTabs(const Lab& lab, GuiState& state, SideTabsMemory& memory, Conso
 void drawPlotTab(const Lab& lab, GuiState& state);
 void drawLogTab(const Lab& lab, const GuiState& state);
 void drawProgramsTab(const Lab& lab);
-void drawConsoleTab(Console& console);
+void drawConsoleTab(const Lab& lab, Console& console);
 
 }  // namespace pbrlab

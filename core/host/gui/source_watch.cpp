@@ -33,10 +33,20 @@ void SourceWatch::scan(const fs::path& file, const fs::path& folder) {
     for (const fs::path& f : files) stamps_.emplace_back(f, stampOf(f));
 }
 
-bool SourceWatch::changed(const fs::path& file, const fs::path& folder) {
+bool SourceWatch::stale(const fs::path& file) const {
     bool changed = file != file_ || stamps_.empty();
     for (const auto& [f, stamp] : stamps_) changed = changed || stampOf(f) != stamp;
-    if (!changed) return false;
+    return changed;
+}
+
+SourceWatch::Stamps SourceWatch::current() const {
+    Stamps now;
+    for (const auto& [f, stamp] : stamps_) now.emplace_back(f, stampOf(f));
+    return now;
+}
+
+bool SourceWatch::changed(const fs::path& file, const fs::path& folder) {
+    if (!stale(file)) return false;
     file_ = file;
     scan(file, folder);  // an edit may add or remove an #include
     return true;

@@ -15,11 +15,17 @@ public:
     // only place a student's #include may read from.
     bool changed(const std::filesystem::path& file, const std::filesystem::path& folder);
     void forget() { stamps_.clear(); }
+    // What changed() would say now, without rescanning: for a caller that only asks.
+    bool stale(const std::filesystem::path& file) const;
+
+    using Stamps = std::vector<std::pair<std::filesystem::path, std::filesystem::file_time_type>>;
+    // The watched files' modification times on disk now (the files of the last scan).
+    Stamps current() const;
 
 private:
     void scan(const std::filesystem::path& file, const std::filesystem::path& folder);
     std::filesystem::path file_;
-    std::vector<std::pair<std::filesystem::path, std::filesystem::file_time_type>> stamps_;
+    Stamps stamps_;
 };
 
 }  // namespace pbrlab
