@@ -3,6 +3,10 @@
 // others, the reference solutions at full points), Gradescope's rows, the release schedule.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <regex>
+#include <sstream>
+
 #include "assignment.h"
 #include "grade.h"
 #include "gradescope.h"
@@ -171,6 +175,147 @@ TEST(Assignment, PartialCreditIsTheWeightsShareOfTheCategoriesPassed) {
     EXPECT_EQ(rw.modules[0].score, 2);
     EXPECT_EQ(rw.modules[1].score, 0);
     EXPECT_EQ(toGradescope(rw, whole)["tests"].size(), 2u);
+}
+
+namespace {
+
+// What `pbrlab ARGS` prints on stdout; fails the test unless it exits 0.
+std::string pbrlabOutput(const std::string& args) {
+    std::string out;
+    FILE* p = popen((PBRLAB_EXECUTABLE " " + args).c_str(), "r");
+    char buffer[512];
+    for (size_t n; (n = fread(buffer, 1, sizeof buffer, p)) > 0;) out.append(buffer, n);
+    EXPECT_EQ(pclose(p), 0) << args << "\n" << out;
+    return out;
+}
+
+std::string fileText(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Every "score" and "max_score" in a report, as JSON writes it, with where it is.
+void pointsIn(const nlohmann::json& j, const std::string& at,
+              std::vector<std::pair<std::string, std::string>>& out) {
+    if (j.is_object()) {
+        for (const auto& [key, value] : j.items()) {
+            if ((key == "score" || key == "max_score") && value.is_number())
+                out.push_back({at + "." + key, value.dump()});
+            else
+                pointsIn(value, at + "." + key, out);
+        }
+    } else if (j.is_array()) {
+        for (size_t i = 0; i < j.size(); ++i)
+            pointsIn(j[i], at + "[" + std::to_string(i) + "]", out);
+    }
+}
+
+// The fields of the line of `text` that starts with `first` (whitespace-separated).
+std::vector<std::string> lineStartingWith(const std::string& text, const std::string& first) {
+    std::istringstream lines(text);
+    for (std::string line; std::getline(lines, line);) {
+        std::istringstream in(line);
+        std::vector<std::string> fields;
+        for (std::string f; in >> f;) fields.push_back(f);
+        if (!fields.empty() && fields[0] == first) return fields;
+    }
+    return {};
+}
+
+}  // namespace
+
+// One rounding rule in every report: points in whole micro-points, written as decimals of at
+// most six places, the total the sum of the parts. Steps worth 0.1 and 0.2 (whose binary sum
+// is 0.30000000000000004) and fresnel's planted mistake pow6 graded in thirds (contract 1,
+// probe 1, scenes 1): fresnel earns the contract's 0.333333 and 1 of the 4 scene checks'
+// 0.333334 (the last category takes what the others leave), 0.083334 rounded half up.
+TEST(Assignment, EveryReportGivesTheSamePointsRoundedToTheMicroPoint) {
+    Graded g;
+    const fs::path kit = g.dir.path / "kit";
+    KitOptions k;
+    k.out = kit;
+    k.withSolutions = true;
+    k.steps = {"ndotl", "ndf", "fresnel"};
+    writeKit(g.modules, k);
+    fs::copy_file(g.paths.labs() / "fresnel/mistakes/pow6.glsl", kit / "fresnel.glsl",
+                  fs::copy_options::overwrite_existing);
+    const fs::path assignment = g.dir.write("a.json", R"({
+        "steps": ["ndotl", "ndf", "fresnel"], "points": {"ndotl": 0.1, "ndf": 0.2, "fresnel": 1},
+        "checks": {"contract": 1, "probe": 1, "scenes": 1, "random": 0, "sphere_grid": 0,
+                   "invariants": 0, "robustness": 0}
+    })");
+    const fs::path out = g.dir.path / "out";
+    const std::string text = pbrlabOutput(
+        "grade " + kit.string() + " --assignment " + assignment.string() + " --json " +
+        (out / "report.json").string() + " --gradescope " + (out / "results.json").string() +
+        " --html " + (out / "html").string() + " --jobs 2");
+    // The class reports: the same submission graded with --batch.
+    fs::create_directories(g.dir.path / "class");
+    fs::copy(kit, g.dir.path / "class/alice", fs::copy_options::recursive);
+    pbrlabOutput("grade --batch " + (g.dir.path / "class").string() + " --out " +
+                 (g.dir.path / "reports").string() + " --assignment " + assignment.string() +
+                 " --jobs 2 2>/dev/null");
+
+    const std::map<std::string, std::string> steps = {
+        {"ndotl", "0.1"}, {"ndf", "0.2"}, {"fresnel", "0.416667"}};
+    const std::map<std::string, std::string> maxima = {
+        {"ndotl", "0.1"}, {"ndf", "0.2"}, {"fresnel", "1"}};
+    for (const fs::path& dir : {out, g.dir.path / "reports/alice"}) {
+        const auto report = nlohmann::json::parse(fileText(dir / "report.json"));
+        const auto results = nlohmann::json::parse(fileText(dir / "results.json"));
+        // Every number as JSON writes it: a decimal of at most six places.
+        std::vector<std::pair<std::string, std::string>> numbers;
+        pointsIn(report, "report.json", numbers);
+        pointsIn(results, "results.json", numbers);
+        EXPECT_GE(numbers.size(), 14u);
+        for (const auto& [where, number] : numbers)
+            EXPECT_TRUE(std::regex_match(number, std::regex(R"(-?[0-9]+(\.[0-9]{1,6})?)")))
+                << where << " = " << number;
+        EXPECT_EQ(report["score"].get<double>(), 0.716667);
+        EXPECT_EQ(report["max_score"].get<double>(), 1.3);
+        for (const auto& m : report["modules"]) {
+            EXPECT_EQ(m["score"].get<double>(), std::stod(steps.at(m["id"]))) << m["id"];
+            EXPECT_EQ(m["max_score"].get<double>(), std::stod(maxima.at(m["id"]))) << m["id"];
+        }
+        // results.json: the same total, the sum of its rows exactly.
+        EXPECT_EQ(results["score"].get<double>(), 0.716667);
+        EXPECT_EQ(results["extra_data"]["max_score"].get<double>(), 1.3);
+        double sum = 0;
+        std::map<std::string, std::pair<double, double>> rows;
+        for (const auto& t : results["tests"]) {
+            sum = addPoints(sum, t["score"].get<double>());
+            rows[t["name"]] = {t["score"].get<double>(), t["max_score"].get<double>()};
+        }
+        EXPECT_EQ(sum, results["score"].get<double>());
+        EXPECT_EQ(rows["fresnel: contract"], std::make_pair(0.333333, 0.333333));
+        EXPECT_EQ(rows["fresnel: probe"], std::make_pair(0.0, 0.333333));
+        EXPECT_EQ(rows["fresnel: scenes"], std::make_pair(0.083334, 0.333334));
+        EXPECT_NE(results["output"].get<std::string>().find("| fresnel | failed | 0.416667 / 1 |"),
+                  std::string::npos)
+            << results["output"];
+    }
+    // The text `pbrlab grade` prints.
+    for (const auto& [id, score] : steps) {
+        const std::vector<std::string> line = lineStartingWith(text, id);
+        ASSERT_GE(line.size(), 5u) << text;
+        EXPECT_EQ(line[2] + " / " + line[4], score + " / " + maxima.at(id)) << text;
+    }
+    const std::vector<std::string> total = lineStartingWith(text, "total");
+    ASSERT_GE(total.size(), 4u) << text;
+    EXPECT_EQ(total[1] + " / " + total[3], "0.716667 / 1.3") << text;
+    // The HTML report.
+    const std::string html = fileText(out / "html/index.html");
+    EXPECT_NE(html.find("score 0.716667 / 1.3 "), std::string::npos);
+    EXPECT_NE(html.find("<br>0.416667 / 1</td>"), std::string::npos);
+    // The class reports.
+    const fs::path reports = g.dir.path / "reports";
+    EXPECT_NE(fileText(reports / "summary.csv").find("\nalice,0.716667,1.3,"), std::string::npos)
+        << fileText(reports / "summary.csv");
+    const std::string csv = fileText(reports / "class.csv");
+    EXPECT_NE(csv.find("\nalice,ndotl,passed,0.1,0.1,"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("\nalice,fresnel,failed,0.416667,1,"), std::string::npos) << csv;
+    EXPECT_NE(fileText(reports / "class.html").find("mean score 0.716667 / 1.3;"),
+              std::string::npos);
 }
 
 TEST(Assignment, TheReleaseScheduleDecidesWhatTheKitHandsOut) {

@@ -263,30 +263,37 @@ std::vector<CategoryScore> categoryScores(const ModuleGrade& g, const Assignment
     double total = 0;
     for (const CategoryScore& s : out) total += a.weights.at(s.category);
     if (total <= 0) return {};
-    const double points = a.points.count(g.id) ? a.points.at(g.id) : 1;
-    // The last category takes what the others leave, so that the maxima add up to the points.
-    double given = 0;
+    // In whole micro-points (grade.h): the maxima add up to the points exactly, the last
+    // category taking what the others leave, and each score is its maximum's share rounded
+    // once.
+    const std::int64_t points = toMicroPoints(a.points.count(g.id) ? a.points.at(g.id) : 1);
+    std::int64_t given = 0;
     for (size_t k = 0; k < out.size(); ++k) {
         CategoryScore& s = out[k];
-        s.maxScore =
-            k + 1 < out.size() ? points * a.weights.at(s.category) / total : points - given;
-        given += s.maxScore;
-        s.score = s.passed == s.checks ? s.maxScore : s.maxScore * s.passed / s.checks;
+        const std::int64_t max =
+            k + 1 < out.size()
+                ? std::min<std::int64_t>(
+                      std::llround(double(points) * a.weights.at(s.category) / total),
+                      points - given)
+                : points - given;
+        given += max;
+        // max * passed / checks, rounded half up, in integers.
+        const std::int64_t score = (2 * max * s.passed + s.checks) / (2 * std::int64_t(s.checks));
+        s.maxScore = fromMicroPoints(max);
+        s.score = fromMicroPoints(score);
     }
     return out;
 }
 
 void scoreGrade(ModuleGrade& g, const Assignment& a) {
-    g.maxScore = a.points.count(g.id) ? a.points.at(g.id) : 1;
+    g.maxScore = roundPoints(a.points.count(g.id) ? a.points.at(g.id) : 1);
     const std::vector<CategoryScore> scores = categoryScores(g, a);
     if (scores.empty()) {
         g.score = g.status == "passed" ? g.maxScore : 0;
         return;
     }
     g.score = 0;
-    bool all = true;
-    for (const CategoryScore& s : scores) g.score += s.score, all = all && s.passed == s.checks;
-    if (all) g.score = g.maxScore;  // not a sum's rounding of it
+    for (const CategoryScore& s : scores) g.score = addPoints(g.score, s.score);
 }
 
 std::string releasedThrough(const std::vector<Assignment::Release>& schedule,

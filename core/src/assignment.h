@@ -55,13 +55,14 @@ struct CategoryScore {
 };
 
 // A grade's points by category: max = points * w_c / sum(w) over the categories the step's
-// checks have (weight > 0), score = max * passed / checks. Empty when the grade is
+// checks have (weight > 0), score = max * passed / checks, in whole micro-points (grade.h: the
+// maxima add up to the points exactly, each score rounded once). Empty when the grade is
 // all-or-nothing: no partial credit, no graded checks (compile error, timeout, missing,
 // crashed), a failed contract check, or no category with weight.
 std::vector<CategoryScore> categoryScores(const ModuleGrade& grade, const Assignment& a);
 
 // Sets the grade's max_score (the step's points) and score (the sum of categoryScores, or
-// all-or-nothing).
+// all-or-nothing), rounded to the micro-point.
 void scoreGrade(ModuleGrade& grade, const Assignment& a);
 
 // The steps whose starter files (`schedule` = release) or solutions (= solutions) are out by
