@@ -247,6 +247,13 @@ Assignment loadAssignment(const fs::path& file, const std::vector<std::string>& 
 std::vector<CategoryScore> categoryScores(const ModuleGrade& g, const Assignment& a) {
     std::vector<CategoryScore> out;
     if (!a.partialCredit || (g.status != "passed" && g.status != "failed")) return out;
+    // Points say that something of the step was done: none until a values check passed that
+    // the kit's stub fails (the grader marks it shows_work). The stub passes the contract,
+    // invariants such as 0 <= G <= 1, finite values, robustness, values where the reference
+    // is what it returns.
+    bool workShown = false;
+    for (const json& check : g.checks)
+        workShown = workShown || (check.value("shows_work", false) && check.value("passed", false));
     for (const std::string& c : checkCategories()) {
         CategoryScore s;
         s.category = c;
@@ -255,8 +262,10 @@ std::vector<CategoryScore> categoryScores(const ModuleGrade& g, const Assignment
             // A contract violation reads black where the step may not read: nothing else it
             // measured means anything.
             if (c == "contract" && !check.value("passed", false)) return {};
+            const bool passed = check.value("passed", false);
             ++s.checks;
-            s.passed += check.value("passed", false);
+            s.passed += passed;
+            s.earning += passed && workShown;
         }
         if (s.checks > 0 && a.weights.at(c) > 0) out.push_back(s);
     }
@@ -277,8 +286,8 @@ std::vector<CategoryScore> categoryScores(const ModuleGrade& g, const Assignment
                       points - given)
                 : points - given;
         given += max;
-        // max * passed / checks, rounded half up, in integers.
-        const std::int64_t score = (2 * max * s.passed + s.checks) / (2 * std::int64_t(s.checks));
+        // max * earning / checks, rounded half up, in integers.
+        const std::int64_t score = (2 * max * s.earning + s.checks) / (2 * std::int64_t(s.checks));
         s.maxScore = fromMicroPoints(max);
         s.score = fromMicroPoints(score);
     }

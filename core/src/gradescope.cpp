@@ -73,8 +73,13 @@ json toGradescope(const GradeReport& r, const Assignment& a) {
                         ": " + mdText(check.value("name", "")) + " (" +
                         mdText(check.value("detail", "")) + ")\n";
             }
-            std::string output = std::to_string(c.passed) + " of " + std::to_string(c.checks) +
-                                 " checks passed\n\n" + list;
+            std::string output =
+                std::to_string(c.passed) + " of " + std::to_string(c.checks) + " checks passed\n\n";
+            if (c.earning < c.passed)
+                output += "No points for " + std::to_string(c.passed - c.earning) +
+                          " of them until a values check of this step passes that the starter "
+                          "code fails: checks like these pass for the starter code too.\n\n";
+            output += list;
             if (c.passed < c.checks && !feedbackGiven) {
                 output += "\n**Feedback**\n\n" + mdBlock(g.message);
                 feedbackGiven = true;
@@ -83,7 +88,7 @@ json toGradescope(const GradeReport& r, const Assignment& a) {
                              {"number", number + "." + std::to_string(k + 1)},
                              {"score", c.score},
                              {"max_score", c.maxScore},
-                             {"status", c.passed == c.checks ? "passed" : "failed"},
+                             {"status", c.earning == c.checks ? "passed" : "failed"},
                              {"output", output},
                              {"output_format", "md"},
                              {"tags", {g.id, c.category}},
