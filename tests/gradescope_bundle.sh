@@ -3,8 +3,9 @@
 # build (cpack -G DEB), `pbrlab autograder` bundling it with an assignment of three steps,
 # the zip unpacked into a fake /autograder tree, setup.sh (the .deb unpacked with dpkg-deb -x:
 # no root) and run_autograder on two submissions: the reference solutions (full points) and
-# ndf's planted mistake alpha = roughness (the weights' share of the contract and the
-# invariants). Each results.json is validated against Gradescope's documented format.
+# two planted mistakes: ndf's alpha = roughness (no values check passes: nothing) and fresnel's
+# pow6 (the weights' share of what passed). Each results.json is validated against Gradescope's
+# documented format.
 # Usage: gradescope_bundle.sh BUILD_DIR RESULTS_CHECKER
 set -euo pipefail
 build=$(cd "$1" && pwd)
@@ -26,11 +27,11 @@ echo "== pbrlab autograder"
 cat > "$work/assignment.json" <<'JSON'
 {
   "name": "bundle test",
-  "steps": ["ndotl", "ndf", "g1"],
+  "steps": ["ndotl", "ndf", "fresnel"],
   "points": {"ndf": 3},
   "checks": {"contract": 1, "probe": 2, "scenes": 2, "random": 2, "sphere_grid": 1,
              "invariants": 2},
-  "visibility": {"default": "visible", "g1": "after_due_date"},
+  "visibility": {"default": "visible", "fresnel": "after_due_date"},
   "time_limit_seconds": 120
 }
 JSON
@@ -61,10 +62,13 @@ echo "== run_autograder: the reference solutions"
 "$work/root/usr/bin/pbrlab" kit --assignment "$work/assignment.json" --with-solutions \
     --out "$work/solutions" > /dev/null
 grade "$work/solutions" 5
-echo "== run_autograder: ndf's planted mistake"
+echo "== run_autograder: planted mistakes in ndf and fresnel"
 cp -r "$work/solutions" "$work/mistake"
-cp "$work/root/usr/share/pbrlab/labs/ndf/mistakes/alpha_is_roughness.glsl" "$work/mistake/ndf.glsl"
-# ndotl 1 + g1 1 + ndf 3 x (contract 1 + invariants 2) / 10.
-grade "$work/mistake" 2.9
+labs=$work/root/usr/share/pbrlab/labs
+cp "$labs/ndf/mistakes/alpha_is_roughness.glsl" "$work/mistake/ndf.glsl"
+cp "$labs/fresnel/mistakes/pow6.glsl" "$work/mistake/fresnel.glsl"
+# ndotl 1 + ndf 0 (its contract and invariants hold, and a stub's would too) + fresnel
+# 1 x (contract 1 + scenes 2 x 1/4 + invariants 2) / 10.
+grade "$work/mistake" 1.35
 grep -q '"visibility": "after_due_date"' "$work/autograder/results/results.json"
 echo "autograder bundle: installed from the .deb, results.json valid, scores as the weights say"

@@ -247,6 +247,13 @@ Assignment loadAssignment(const fs::path& file, const std::vector<std::string>& 
 std::vector<CategoryScore> categoryScores(const ModuleGrade& g, const Assignment& a) {
     std::vector<CategoryScore> out;
     if (!a.partialCredit || (g.status != "passed" && g.status != "failed")) return out;
+    // Points say that something of the step was done: none until a values check passed that
+    // the kit's stub fails (the grader marks it shows_work). The stub passes the contract,
+    // invariants such as 0 <= G <= 1, finite values, robustness, values where the reference
+    // is what it returns.
+    bool workShown = false;
+    for (const json& check : g.checks)
+        workShown = workShown || (check.value("shows_work", false) && check.value("passed", false));
     for (const std::string& c : checkCategories()) {
         CategoryScore s;
         s.category = c;
@@ -255,38 +262,47 @@ std::vector<CategoryScore> categoryScores(const ModuleGrade& g, const Assignment
             // A contract violation reads black where the step may not read: nothing else it
             // measured means anything.
             if (c == "contract" && !check.value("passed", false)) return {};
+            const bool passed = check.value("passed", false);
             ++s.checks;
-            s.passed += check.value("passed", false);
+            s.passed += passed;
+            s.earning += passed && workShown;
         }
         if (s.checks > 0 && a.weights.at(c) > 0) out.push_back(s);
     }
     double total = 0;
     for (const CategoryScore& s : out) total += a.weights.at(s.category);
     if (total <= 0) return {};
-    const double points = a.points.count(g.id) ? a.points.at(g.id) : 1;
-    // The last category takes what the others leave, so that the maxima add up to the points.
-    double given = 0;
+    // In whole micro-points (grade.h): the maxima add up to the points exactly, the last
+    // category taking what the others leave, and each score is its maximum's share rounded
+    // once.
+    const std::int64_t points = toMicroPoints(a.points.count(g.id) ? a.points.at(g.id) : 1);
+    std::int64_t given = 0;
     for (size_t k = 0; k < out.size(); ++k) {
         CategoryScore& s = out[k];
-        s.maxScore =
-            k + 1 < out.size() ? points * a.weights.at(s.category) / total : points - given;
-        given += s.maxScore;
-        s.score = s.passed == s.checks ? s.maxScore : s.maxScore * s.passed / s.checks;
+        const std::int64_t max =
+            k + 1 < out.size()
+                ? std::min<std::int64_t>(
+                      std::llround(double(points) * a.weights.at(s.category) / total),
+                      points - given)
+                : points - given;
+        given += max;
+        // max * earning / checks, rounded half up, in integers.
+        const std::int64_t score = (2 * max * s.earning + s.checks) / (2 * std::int64_t(s.checks));
+        s.maxScore = fromMicroPoints(max);
+        s.score = fromMicroPoints(score);
     }
     return out;
 }
 
 void scoreGrade(ModuleGrade& g, const Assignment& a) {
-    g.maxScore = a.points.count(g.id) ? a.points.at(g.id) : 1;
+    g.maxScore = roundPoints(a.points.count(g.id) ? a.points.at(g.id) : 1);
     const std::vector<CategoryScore> scores = categoryScores(g, a);
     if (scores.empty()) {
         g.score = g.status == "passed" ? g.maxScore : 0;
         return;
     }
     g.score = 0;
-    bool all = true;
-    for (const CategoryScore& s : scores) g.score += s.score, all = all && s.passed == s.checks;
-    if (all) g.score = g.maxScore;  // not a sum's rounding of it
+    for (const CategoryScore& s : scores) g.score = addPoints(g.score, s.score);
 }
 
 std::string releasedThrough(const std::vector<Assignment::Release>& schedule,

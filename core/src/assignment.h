@@ -51,17 +51,21 @@ Assignment parseAssignment(const nlohmann::json& j, const std::string& fileName,
 struct CategoryScore {
     std::string category;
     int checks = 0, passed = 0;
+    int earning = 0;  // of the passed checks, those that earn (all, or none: categoryScores)
     double score = 0, maxScore = 0;
 };
 
-// A grade's points by category: max = points * w_c / sum(w) over the categories the step's
-// checks have (weight > 0), score = max * passed / checks. Empty when the grade is
-// all-or-nothing: no partial credit, no graded checks (compile error, timeout, missing,
-// crashed), a failed contract check, or no category with weight.
+// A grade's points by category (docs/assignment.md): max = points * w_c / sum(w) over the
+// categories the step's checks have (weight > 0), score = max * earning / checks, in whole
+// micro-points (grade.h: the maxima add up to the points exactly). The passed checks earn once
+// one of them shows work (a values check that the kit's stub fails, CheckReport::showsWork);
+// until then none does: a stub earns nothing. Empty when the grade is all-or-nothing: no
+// partial credit, no graded checks (compile error, timeout, missing, crashed), a failed
+// contract check, or no category with weight.
 std::vector<CategoryScore> categoryScores(const ModuleGrade& grade, const Assignment& a);
 
 // Sets the grade's max_score (the step's points) and score (the sum of categoryScores, or
-// all-or-nothing).
+// all-or-nothing), rounded to the micro-point.
 void scoreGrade(ModuleGrade& grade, const Assignment& a);
 
 // The steps whose starter files (`schedule` = release) or solutions (= solutions) are out by

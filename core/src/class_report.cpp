@@ -241,7 +241,7 @@ std::string scoreHistogram(const std::vector<StudentTotal>& totals) {
       << " y1=" << number(margin + plotH) << " y2=" << number(margin + plotH)
       << " stroke=#777 /><text x=" << number(left + plotW / 2)
       << " y=" << number(margin + plotH + 32)
-      << " fill=#999 font-size=12 text-anchor=middle>total score (of " << number(top)
+      << " fill=#999 font-size=12 text-anchor=middle>total score (of " << formatPoints(top)
       << ")</text></svg>";
     return s.str();
 }
@@ -269,8 +269,8 @@ std::string classCsv(const std::vector<ClassRow>& rows) {
     std::string text = std::string(kClassHeader) + "\n";
     for (const ClassRow& r : rows)
         text += csvField(r.student) + "," + csvField(r.step) + "," + csvField(r.status) + "," +
-                number(r.score) + "," + number(r.maxScore) + "," + csvField(r.mistake) + "," +
-                csvField(r.namedBy) + "," + csvField(r.group) + "\n";
+                formatPoints(r.score) + "," + formatPoints(r.maxScore) + "," + csvField(r.mistake) +
+                "," + csvField(r.namedBy) + "," + csvField(r.group) + "\n";
     return text;
 }
 
@@ -285,8 +285,8 @@ std::vector<ClassRow> readClassCsv(const fs::path& file) {
 std::string summaryCsv(const std::vector<StudentTotal>& totals) {
     std::string text = std::string(kSummaryHeader) + "\n";
     for (const StudentTotal& t : totals)
-        text += csvField(t.student) + "," + number(t.score) + "," + number(t.maxScore) + "," +
-                number(t.seconds) + "," + csvField(t.error) + "\n";
+        text += csvField(t.student) + "," + formatPoints(t.score) + "," + formatPoints(t.maxScore) +
+                "," + number(t.seconds) + "," + csvField(t.error) + "\n";
     return text;
 }
 
@@ -308,7 +308,7 @@ std::string classHtml(const std::vector<ClassRow>& rows, const std::vector<Stude
             ++errors;
             continue;
         }
-        sum += t.score;
+        sum = addPoints(sum, t.score);
         top = std::max(top, t.maxScore);
     }
     const size_t graded = totals.size() - errors;
@@ -325,7 +325,8 @@ std::string classHtml(const std::vector<ClassRow>& rows, const std::vector<Stude
          "</style>"
       << "<h1>pbrlab class report: " << escape(title) << "</h1><p>" << graded
       << " submissions graded";
-    if (graded) h << ", mean score " << number(sum / double(graded)) << " / " << number(top);
+    if (graded)
+        h << ", mean score " << formatPoints(sum / double(graded)) << " / " << formatPoints(top);
     h << "; " << byStep(rows).size() << " steps.";
     if (errors) h << " <span style=color:#f85>" << errors << " could not be graded</span> (below).";
     h << "</p><h2>Steps</h2><table><tr><th>step</th><th>passed</th><th>outcomes</th>"

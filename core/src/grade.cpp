@@ -30,8 +30,8 @@ json gradeJson(const ModuleGrade& g) {
     return {{"id", g.id},
             {"title", g.title},
             {"status", g.status},
-            {"score", g.score},
-            {"max_score", g.maxScore},
+            {"score", roundPoints(g.score)},
+            {"max_score", roundPoints(g.maxScore)},
             {"message", g.message},
             {"mistake", g.mistake},
             {"named_by", g.namedBy},
@@ -427,20 +427,48 @@ GradeReport gradeSubmission(const ModuleRegistry& modules, const DataPaths& path
         else
             g.score = g.status == "passed" ? g.maxScore : 0;
         g.message = validUtf8(g.message);
-        report.score += g.score;
-        report.maxScore += g.maxScore;
+        g.score = roundPoints(g.score);
+        g.maxScore = roundPoints(g.maxScore);
+        report.score = addPoints(report.score, g.score);
+        report.maxScore = addPoints(report.maxScore, g.maxScore);
     }
     report.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return report;
 }
 
+std::int64_t toMicroPoints(double points) {
+    return std::isfinite(points) ? std::llround(points * 1e6) : 0;
+}
+
+double fromMicroPoints(std::int64_t micro) {
+    return double(micro) / 1e6;  // correctly rounded: the double nearest the decimal
+}
+
+double roundPoints(double points) {
+    return fromMicroPoints(toMicroPoints(points));
+}
+
+double addPoints(double a, double b) {
+    return fromMicroPoints(toMicroPoints(a) + toMicroPoints(b));
+}
+
+std::string formatPoints(double points) {
+    const std::int64_t micro = toMicroPoints(points);
+    const std::uint64_t magnitude = micro < 0 ? 0 - std::uint64_t(micro) : std::uint64_t(micro);
+    std::string text = (micro < 0 ? "-" : "") + std::to_string(magnitude / 1000000);
+    std::string fraction = std::to_string(magnitude % 1000000);
+    fraction.insert(0, 6 - fraction.size(), '0');
+    while (!fraction.empty() && fraction.back() == '0') fraction.pop_back();
+    return fraction.empty() ? text : text + "." + fraction;
+}
+
 json toJson(const GradeReport& r) {
     json modules = json::array();
     for (const auto& g : r.modules) modules.push_back(gradeJson(g));
     return {{"submission", r.submission.string()},
-            {"score", r.score},
-            {"max_score", r.maxScore},
+            {"score", roundPoints(r.score)},
+            {"max_score", roundPoints(r.maxScore)},
             {"seconds", r.seconds},
             {"modules", modules}};
 }
@@ -451,14 +479,16 @@ json toGradescope(const GradeReport& r) {
     for (const auto& g : r.modules) {
         std::string output = g.status + (g.message.empty() ? "" : ": " + g.message);
         tests.push_back({{"name", g.id + ": " + g.title},
-                         {"score", g.score},
-                         {"max_score", g.maxScore},
+                         {"score", roundPoints(g.score)},
+                         {"max_score", roundPoints(g.maxScore)},
                          {"status", g.status == "passed" ? "passed" : "failed"},
                          {"output", output}});
         summary += g.id + " " + g.status + "\n";
     }
-    return {
-        {"score", r.score}, {"execution_time", r.seconds}, {"output", summary}, {"tests", tests}};
+    return {{"score", roundPoints(r.score)},
+            {"execution_time", r.seconds},
+            {"output", summary},
+            {"tests", tests}};
 }
 
 std::string readWholeFile(const fs::path& file) {
@@ -493,14 +523,15 @@ void writeHtml(const GradeReport& r, const fs::path& folder) {
          ".passed{color:#6d6}.failed,.compile_error,.crashed,.timeout{color:#f85}.missing{color:#"
          "999}"
          "pre{white-space:pre-wrap;font-size:12px}</style>"
-      << "<h1>pbrlab: " << escape(r.submission.string()) << "</h1><p>score " << r.score << " / "
-      << r.maxScore << " (" << r.seconds << " s)</p><table><tr><th>step</th><th>status</th>"
+      << "<h1>pbrlab: " << escape(r.submission.string()) << "</h1><p>score "
+      << formatPoints(r.score) << " / " << formatPoints(r.maxScore) << " (" << r.seconds
+      << " s)</p><table><tr><th>step</th><th>status</th>"
       << "<th>student</th><th>reference</th><th>difference</th><th>feedback</th></tr>\n";
     for (const auto& g : r.modules) {
         bool images = fs::exists(folder / g.id / "student.png");
         h << "<tr><td>" << escape(g.id) << "<br><small>" << escape(g.title)
-          << "</small></td><td class=" << g.status << ">" << g.status << "<br>" << g.score << " / "
-          << g.maxScore << "</td>";
+          << "</small></td><td class=" << g.status << ">" << g.status << "<br>"
+          << formatPoints(g.score) << " / " << formatPoints(g.maxScore) << "</td>";
         for (const std::string img : {"student", "reference", "difference"})
             h << "<td>" << (images ? "<img width=160 src=\"" + g.id + "/" + img + ".png\">" : "")
               << (images && img == "difference" ? colourBar(folder / g.id / "difference.json") : "")

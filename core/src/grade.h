@@ -3,6 +3,7 @@
 // through gradeStep (grading.h), with feedback that names the mistake.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -69,6 +70,16 @@ std::vector<ModuleGrade> gradeJobs(const std::vector<GradeJob>& jobs, const Data
 // whatever is wrong with one file is that step's status and message.
 GradeReport gradeSubmission(const ModuleRegistry& modules, const DataPaths& paths,
                             const GradeOptions& options);
+
+// Points as every report gives them (docs/assignment.md, "Rounding"): whole micro-points.
+// A score is a whole number of millionths of a point, held as the double nearest that decimal
+// (which JSON and the text reports print as the decimal); a sum of scores is the sum of those
+// whole numbers, so that a total is exactly the sum of its parts in every report.
+std::int64_t toMicroPoints(double points);  // the nearest whole number of micro-points
+double fromMicroPoints(std::int64_t micro);
+double roundPoints(double points);        // to the nearest micro-point
+double addPoints(double a, double b);     // the exact sum of two rounded scores
+std::string formatPoints(double points);  // "2.025", "3", "0.083333": no trailing zeros
 
 nlohmann::json toJson(const GradeReport& report);
 nlohmann::json toGradescope(const GradeReport& report);

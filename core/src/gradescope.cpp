@@ -4,7 +4,6 @@
 #include <cstdint>
 #include <fstream>
 #include <iterator>
-#include <sstream>
 
 #include "paths.h"
 #include "pbrlab/contract.h"
@@ -33,13 +32,6 @@ std::string mdBlock(std::string s) {
     return "```text\n" + s + "\n```\n";
 }
 
-std::string points(double v) {
-    std::ostringstream o;
-    o.precision(3);
-    o << v;
-    return o.str();
-}
-
 std::string stepNumber(const std::string& id) {
     const ContractStep* s = findContractStep(id);
     return s ? std::to_string(s->step) : "0";
@@ -61,8 +53,8 @@ json toGradescope(const GradeReport& r, const Assignment& a) {
             tests.push_back(
                 {{"name", g.id + ": " + g.title},
                  {"number", number},
-                 {"score", g.score},
-                 {"max_score", g.maxScore},
+                 {"score", roundPoints(g.score)},
+                 {"max_score", roundPoints(g.maxScore)},
                  {"status", g.score >= g.maxScore ? "passed" : "failed"},
                  {"output", output},
                  {"output_format", "md"},
@@ -81,8 +73,13 @@ json toGradescope(const GradeReport& r, const Assignment& a) {
                         ": " + mdText(check.value("name", "")) + " (" +
                         mdText(check.value("detail", "")) + ")\n";
             }
-            std::string output = std::to_string(c.passed) + " of " + std::to_string(c.checks) +
-                                 " checks passed\n\n" + list;
+            std::string output =
+                std::to_string(c.passed) + " of " + std::to_string(c.checks) + " checks passed\n\n";
+            if (c.earning < c.passed)
+                output += "No points for " + std::to_string(c.passed - c.earning) +
+                          " of them until a values check of this step passes that the starter "
+                          "code fails: checks like these pass for the starter code too.\n\n";
+            output += list;
             if (c.passed < c.checks && !feedbackGiven) {
                 output += "\n**Feedback**\n\n" + mdBlock(g.message);
                 feedbackGiven = true;
@@ -91,7 +88,7 @@ json toGradescope(const GradeReport& r, const Assignment& a) {
                              {"number", number + "." + std::to_string(k + 1)},
                              {"score", c.score},
                              {"max_score", c.maxScore},
-                             {"status", c.passed == c.checks ? "passed" : "failed"},
+                             {"status", c.earning == c.checks ? "passed" : "failed"},
                              {"output", output},
                              {"output_format", "md"},
                              {"tags", {g.id, c.category}},
@@ -105,18 +102,19 @@ json toGradescope(const GradeReport& r, const Assignment& a) {
         // The summary is shown with the result as a whole: steps whose rows are not visible
         // now are left out of it.
         if (a.visibilityOf(g.id) == "visible")
-            summary += "| " + g.id + " | " + g.status + " | " + points(g.score) + " / " +
-                       points(g.maxScore) + " |\n";
+            summary += "| " + g.id + " | " + g.status + " | " + formatPoints(g.score) + " / " +
+                       formatPoints(g.maxScore) + " |\n";
     }
+    // Every score is a whole number of micro-points (grade.h): the sum is exact.
     double score = 0;
-    for (const json& t : tests) score += t["score"].get<double>();
+    for (const json& t : tests) score = addPoints(score, t["score"].get<double>());
     return {{"score", score},
             {"execution_time", r.seconds},
             {"output", (a.name.empty() ? "" : "**" + mdText(a.name) + "**\n\n") + summary},
             {"output_format", "md"},
             {"visibility", a.visibilityOf("", "")},
             {"stdout_visibility", "hidden"},
-            {"extra_data", {{"assignment", a.name}, {"max_score", r.maxScore}}},
+            {"extra_data", {{"assignment", a.name}, {"max_score", roundPoints(r.maxScore)}}},
             {"tests", tests}};
 }
 

@@ -193,7 +193,8 @@ StepResult gradeStep(LabRenderer& renderer, const LoadedModule& module, const Da
 
 nlohmann::json toJson(const CheckReport& c) {
     nlohmann::json j = {{"name", c.name},     {"kind", c.kind},         {"category", c.category},
-                        {"passed", c.passed}, {"deducted", c.deducted}, {"detail", c.detail}};
+                        {"passed", c.passed}, {"deducted", c.deducted}, {"shows_work", c.showsWork},
+                        {"detail", c.detail}};
     if (c.kind == "values" || c.kind == "quality") {
         j["points"] = c.points;
         j["outside"] = c.outside;

@@ -48,7 +48,11 @@ struct CheckReport {
     std::string category;  // one of checkCategories()
     bool passed = true;
     bool deducted = true;  // robustness and quality are reported, not deducted
-    std::string detail;    // one line: what was measured and the rule
+    // A values check passed that the step's stub (the kit's starter code) fails: the function
+    // computes something. Asked until one check of the step is found; what opens the step's
+    // points with partial credit (assignment.h).
+    bool showsWork = false;
+    std::string detail;  // one line: what was measured and the rule
     // values: points compared and where the band was left worst
     int points = 0, outside = 0, nan = 0, inf = 0, negative = 0;
     double worstExcess = 0;  // distance outside the band at the worst point, in tolerances

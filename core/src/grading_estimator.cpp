@@ -192,6 +192,7 @@ void StepGrader::gradeEstimator(const Scene& scene) {
             run.width = set.width;
             run.height = set.height;
             run.worstIndex = c.worstIndex;
+            run.outlierFraction = e.systematic.outlierFraction;
             keep(std::move(run));
         }
         meanError.push_back(errorCount ? errorSum / errorCount : 0);

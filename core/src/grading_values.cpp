@@ -1,8 +1,14 @@
 // Values checks of gradeStep (step_grader.h): the step against its reference's band on the
 // probe, its scenes, random inputs, every exercised parameter value and coloured lights.
 
-#include <algorithm>
+#include <unistd.h>
 
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include "kit.h"
+#include "pbrlab/error.h"
 #include "step_grader.h"
 
 namespace pbrlab::step_grading {
@@ -46,10 +52,63 @@ ValuesRun StepGrader::runValues(const std::string& name, const std::string& cate
     run.width = width;
     run.height = height;
     run.worstIndex = e.comparison.worstIndex;
+    run.outlierFraction = d_.tolerance.outlierFraction;
     return run;
 }
 
+StepGrader::~StepGrader() {
+    std::error_code ec;
+    if (!stubDir_.empty()) std::filesystem::remove_all(stubDir_, ec);
+}
+
+// The stub is the kit's (kit.h stubSolution: the solution's body replaced by `return 0`), the
+// file a student starts from. When it cannot be made (no solution.glsl with its markers) or
+// does not render, a passed values check is taken as work. An estimator's stub is not
+// rescaled (StepGrader::rescale): its values are 0, which no scale changes. Mutation testing
+// (stopAtFirstFailure) asks for the verdict only, which this does not change.
+void StepGrader::noteWork(ValuesRun& run) {
+    CheckReport& report = run.report;
+    if (workShown_ || settings_.stopAtFirstFailure || !report.passed || !report.deducted ||
+        report.kind != "values")
+        return;
+    try {
+        if (stubDir_.empty()) {
+            const std::filesystem::path solution = m_.sourceDir / "solution.glsl";
+            std::ifstream in(solution, std::ios::binary);
+            std::stringstream text;
+            text << in.rdbuf();
+            if (!in) throw Error(solution.string() + ": cannot read it");
+            const std::string stub = stubSolution(text.str(), d_.function, solution.string());
+            const std::filesystem::path dir =
+                std::filesystem::temp_directory_path() /
+                ("pbrlab-stub-" + std::to_string(::getpid()) + "-" + d_.id);
+            std::filesystem::create_directories(dir);
+            stubDir_ = dir;
+            std::ofstream(dir / (d_.id + ".glsl"), std::ios::binary) << stub;
+        }
+        stage(report.name + ": the stub");
+        RenderRequest request{&m_,
+                              &run.params,
+                              &run.scene,
+                              {stubDir_, false},
+                              run.fromScene ? nullptr : &run.surfaces,
+                              run.width,
+                              run.height};
+        request.seamlessCubes = false;
+        request.isolatePoints = !run.fromScene;
+        request.cacheGBuffer = true;
+        const Image stub = renderer_.render(request).value;
+        const Comparison c = compareWithBand(stub, run.surfaces, run.band, d_.components,
+                                             d_.nonNegative, run.outlierFraction);
+        report.showsWork = !c.passes(d_.nonNegative, run.outlierFraction);
+    } catch (const std::exception&) {
+        report.showsWork = true;
+    }
+    workShown_ = report.showsWork;
+}
+
 void StepGrader::keep(ValuesRun&& run) {
+    noteWork(run);
     const CheckReport report = run.report;
     if (!run.report.passed && run.report.deducted &&
         (!failed_ || run.report.worstExcess > failed_->report.worstExcess))

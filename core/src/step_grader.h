@@ -10,6 +10,7 @@
 #pragma once
 
 #include <chrono>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -50,7 +51,8 @@ struct ValuesRun {
     ParamValues params;
     bool fromScene = false;  // the scene's G-buffer (else the surfaces were uploaded)
     int width = 0, height = 0;
-    int worstIndex = -1;  // the point outside the band by most
+    int worstIndex = -1;         // the point outside the band by most
+    double outlierFraction = 0;  // of the band (Tolerance::outlierFraction)
 };
 
 // The report of a values check from its comparison; `probe` or `width` say how its worst
@@ -70,6 +72,8 @@ public:
           source_(source),
           settings_(settings) {}
 
+    ~StepGrader();
+
     StepResult run();
 
 private:
@@ -84,6 +88,10 @@ private:
                         const ParamValues& params, const std::vector<Surface>* surfaces, int width,
                         int height, const Probe* probe);
     void keep(ValuesRun&& run);
+    // Sets run.report.showsWork when it is a values check passed that the step's stub fails
+    // (the stub rendered on the same inputs, against the same band): asked until one such
+    // check is found.
+    void noteWork(ValuesRun& run);
     void gradeCase(const std::string& name, GradeCase::Inputs inputs, const Scene& scene,
                    const ParamValues& params, const std::string& sceneCategory = "scenes");
     void gradeValues(const Scene& scene);
@@ -123,6 +131,8 @@ private:
     std::string stageName_;              // the stage running, and since when
     std::chrono::steady_clock::time_point stageStart_;
     double stageCpuMs_ = 0;
+    bool workShown_ = false;         // a check showed work (noteWork)
+    std::filesystem::path stubDir_;  // the stub's <id>.glsl, written when first needed
 };
 
 }  // namespace pbrlab::step_grading

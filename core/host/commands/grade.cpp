@@ -84,10 +84,14 @@ private:
             throw Error(options_.submission.string() + ": not a directory");
         options_.submission = fs::canonical(options_.submission);
         GradeReport report = gradeSubmission(*session.modules, session.paths, options_);
+        // The points as every report has them (formatPoints: the micro-point, no rounding
+        // of its own).
         for (const auto& g : report.modules)
-            std::printf("%-12s %-14s %4.1f / %-4.1f %s\n", g.id.c_str(), g.status.c_str(), g.score,
-                        g.maxScore, g.message.substr(0, 160).c_str());
-        std::printf("total %.1f / %.1f in %.1f s\n", report.score, report.maxScore, report.seconds);
+            std::printf("%-12s %-14s %8s / %-8s %s\n", g.id.c_str(), g.status.c_str(),
+                        formatPoints(g.score).c_str(), formatPoints(g.maxScore).c_str(),
+                        g.message.substr(0, 160).c_str());
+        std::printf("total %s / %s in %.1f s\n", formatPoints(report.score).c_str(),
+                    formatPoints(report.maxScore).c_str(), report.seconds);
         if (!jsonFile_.empty()) writeFileAtomically(jsonFile_, jsonText(toJson(report)));
         if (!gradescopeFile_.empty())
             writeFileAtomically(gradescopeFile_, jsonText(gradescopeResults(report, assignment)));
