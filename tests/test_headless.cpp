@@ -78,8 +78,10 @@ TEST(Headless, ProgramsAreCachedByDefineSet) {
     h.check("ndotl");
     EXPECT_EQ(h.renderer.programs().compileCount(), compiles);
     // G-buffer; scene views for one and four lights (the lesson's grid); probe views for one,
-    // three (does it read the scene's lights?) and five (the stability sweep's) lights.
-    EXPECT_EQ(compiles, 6);
+    // three (does it read the scene's lights?) and five (the stability sweep's) lights; the
+    // kit's stub on the first passed values check (does the grade show work? assignment.h),
+    // compiled once: a second check compiles nothing.
+    EXPECT_EQ(compiles, 7);
 }
 
 TEST(Headless, NdotlLoadsNoTextures) {

@@ -56,11 +56,6 @@ ValuesRun StepGrader::runValues(const std::string& name, const std::string& cate
     return run;
 }
 
-StepGrader::~StepGrader() {
-    std::error_code ec;
-    if (!stubDir_.empty()) std::filesystem::remove_all(stubDir_, ec);
-}
-
 // The stub is the kit's (kit.h stubSolution: the solution's body replaced by `return 0`), the
 // file a student starts from. When it cannot be made (no solution.glsl with its markers) or
 // does not render, a passed values check is taken as work. An estimator's stub is not
@@ -79,12 +74,21 @@ void StepGrader::noteWork(ValuesRun& run) {
             text << in.rdbuf();
             if (!in) throw Error(solution.string() + ": cannot read it");
             const std::string stub = stubSolution(text.str(), d_.function, solution.string());
-            const std::filesystem::path dir =
-                std::filesystem::temp_directory_path() /
-                ("pbrlab-stub-" + std::to_string(::getpid()) + "-" + d_.id);
-            std::filesystem::create_directories(dir);
+            // In the cache, written only when its text changes: the stub's program is then
+            // compiled once, not once per grade (a rewritten file is a changed program).
+            const std::filesystem::path dir = renderer_.cacheRoot() / "stubs" / d_.id;
+            const std::filesystem::path file = dir / (d_.id + ".glsl");
+            std::ifstream old(file, std::ios::binary);
+            std::stringstream oldText;
+            oldText << old.rdbuf();
+            if (!old || oldText.str() != stub) {
+                std::filesystem::create_directories(dir);
+                const std::filesystem::path tmp =
+                    dir / (d_.id + ".glsl.tmp" + std::to_string(::getpid()));
+                std::ofstream(tmp, std::ios::binary) << stub;
+                std::filesystem::rename(tmp, file);  // a reader never sees half a stub
+            }
             stubDir_ = dir;
-            std::ofstream(dir / (d_.id + ".glsl"), std::ios::binary) << stub;
         }
         stage(report.name + ": the stub");
         RenderRequest request{&m_,

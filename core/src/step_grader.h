@@ -72,8 +72,6 @@ public:
           source_(source),
           settings_(settings) {}
 
-    ~StepGrader();
-
     StepResult run();
 
 private:
