@@ -54,15 +54,16 @@ void Lab::update(GuiState& state, Requests& requests) {
     if (!studentFile(state).empty() && studentWatch_.changed(studentFile(state), submission_))
         dirty_ = true;
     const ModuleDesc& m = module(state);
-    // The first render of an environment precomputes for seconds: show a frame that says so.
+    // The first render of an environment precomputes for seconds: show a frame that says so,
+    // once per step and environment (a step that reads no derived map never has them all:
+    // a notice every other frame would halve its frame rate).
+    const Scene scene = currentScene(state);
     if (dirty_ && (m.needs & NeedsEnvironment) &&
-        !renderer_->hasEnvironmentMaps(currentScene(state), iblFor(currentScene(state))) &&
-        !precomputeNoticeShown_) {
-        precomputeNoticeShown_ = true;
+        !renderer_->hasEnvironmentMaps(scene, iblFor(scene)) &&
+        precomputeNoticed_.insert(m.id + "|" + scene.environment + "|" + iblFor(scene).key())
+            .second)
         return;
-    }
-    precomputeNoticeShown_ = false;
-    if (m.needs & NeedsEnvironment) useBudgetSettings(currentScene(state));
+    if (m.needs & NeedsEnvironment) useBudgetSettings(scene);
     // While the input moves, only the picture is drawn (on the GPU, mapped for display there,
     // nothing read back): 30 frames a second at least. The evaluation against the CPU
     // reference, the probes and the statistics follow once it has been still for a moment

@@ -122,7 +122,8 @@ private:
     std::set<std::filesystem::path> warnedModels_;
     std::map<std::string, IblSettings> budgetSettings_;  // --error-budget, per environment
     // The evaluation is out of date (dirty_) and the input last moved at lastMove_.
-    bool dirty_ = true, precomputeNoticeShown_ = false;
+    bool dirty_ = true;
+    std::set<std::string> precomputeNoticed_;  // step|environment|settings noticed already
     std::chrono::steady_clock::time_point lastMove_{};
     int liveSize_ = kRenderSize;      // the live picture's side (kLiveBudgetMs)
     std::vector<int> liveSizes_;      // of every live frame, for --orbit's report
