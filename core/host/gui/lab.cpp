@@ -92,6 +92,7 @@ void Lab::select(GuiState& state, int index) {
     state.sceneName.clear();
     state.plotRow = module(state).probe.height / 2;
     studentWatch_.forget();
+    live_.reset();  // another view, another cost (render() measures it)
     loadScene(state);
     std::ifstream in(loaded(state).sourceDir / "README.md");
     std::stringstream s;

@@ -18,6 +18,7 @@
 #include "compare.h"
 #include "display_pass.h"
 #include "gui.h"
+#include "live_size.h"
 #include "paths.h"
 #include "plugins.h"
 #include "renderer.h"
@@ -56,6 +57,7 @@ struct Shown {
     int imageWidth = 1, imageHeight = 1, nanCount = 0, infCount = 0;
     GLuint liveTexture = 0;    // while the input moves: the live picture (0: the settled image)
     const char* liveWho = "";  // whose function the live picture is
+    int liveSide = 0;          // the live picture's side (kRenderSize: not reduced)
     // The step's programs for the scene on screen: (label, defines) as compiled() lists them.
     std::set<std::pair<std::string, std::string>> permutation;
     double frameMs = 0, renderMs = 0;
@@ -91,6 +93,7 @@ public:
     const Shown& shown() const { return shown_; }
     Shown& shown() { return shown_; }
     const std::vector<int>& liveSizes() const { return liveSizes_; }  // for --orbit's report
+    LiveSize& liveSize() { return live_; }  // the live picture's side (tests set it)
     // The term views of the loaded steps (term_views.h), in the view chooser's order.
     const std::vector<TermView>& termViews() const { return termViews_; }
 
@@ -125,9 +128,8 @@ private:
     bool dirty_ = true;
     std::set<std::string> precomputeNoticed_;  // step|environment|settings noticed already
     std::chrono::steady_clock::time_point lastMove_{};
-    int liveSize_ = kRenderSize;      // the live picture's side (kLiveBudgetMs)
-    std::vector<int> liveSizes_;      // of every live frame, for --orbit's report
-    std::vector<double> liveWindow_;  // the live frames' times since the last resize
+    LiveSize live_{kRenderSize};  // the live picture's side
+    std::vector<int> liveSizes_;  // of every live frame, for --orbit's report
 };
 
 }  // namespace pbrlab
