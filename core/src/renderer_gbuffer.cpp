@@ -76,8 +76,9 @@ GLuint LabRenderer::texture(const TextureSource& source) {
 }
 
 // A chord spanning 2 pi / n of a circle of radius r strays r (1 - cos(pi / n)), about
-// r pi^2 / (2 n^2), from it: within half a pixel when n >= pi sqrt(r). The vertices' normals are
-// the sphere's, and interpolated they stay radial, so the shading follows the outline.
+// r pi^2 / (2 n^2), from it: within half a pixel when n >= pi sqrt(r). The normals interpolated
+// between the vertices' are the sphere's at the point drawn, which is as near the round
+// sphere's: the shading moves by under a pixel with the outline (tests/test_live_view.cpp).
 int sphereSegments(double radiusPixels) {
     for (int n : {16, 24, 32, 48, 64})
         if (n >= std::numbers::pi * std::sqrt(radiusPixels)) return n;
