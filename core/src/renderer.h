@@ -77,6 +77,12 @@ struct RenderRequest {
     // Scene: read the value back into RenderResult::value (off: only valueTexture, for a view
     // drawn straight from the GPU while the input moves).
     bool readValue = true;
+    // Scene: the built-in sphere drawn with as few segments as keep its outline within half a
+    // pixel of the full mesh's at this size (sphereSegments), for the GUI's live frames: the
+    // G-buffer's vertices are transformed on one thread on llvmpipe, and the lesson's grid of
+    // 49 full spheres takes longer than a frame at 30 a second at any picture size. Off for
+    // every image that is saved, compared or graded.
+    bool coarseSpheres = false;
     // GL_TEXTURE_CUBE_MAP_SEAMLESS in the view pass: on for pictures; off for checks, so the
     // GPU reads the texels CubeSampler reads on the CPU.
     bool seamlessCubes = true;
@@ -169,7 +175,8 @@ private:
     const gl::GpuMesh& mesh(const MeshData* data);  // nullptr: the unit sphere
     // Draws (or reads from the disk cache) the scene's G-buffer; returns the view-projection
     // it drew with.
-    glm::mat4 drawGBuffer(const Scene& scene, unsigned needs, int width, int height, bool cache);
+    glm::mat4 drawGBuffer(const Scene& scene, unsigned needs, int width, int height, bool cache,
+                          bool coarseSpheres);
     // drawGBuffer's disk cache, for the lesson's sphere grid above all (49 spheres of 9216
     // triangles: half a second of llvmpipe in every grading process). The file for these draws
     // (empty: not cacheable), and the attachments read from it or written to it.
@@ -198,6 +205,7 @@ private:
     // GPU meshes by the CPU mesh they came from; the models stay alive while cached, so no
     // address is reused for another mesh.
     std::map<const MeshData*, std::unique_ptr<gl::GpuMesh>> meshes_;
+    std::map<int, std::unique_ptr<gl::GpuMesh>> coarseSpheres_;  // by segments
     std::set<std::shared_ptr<const ModelData>> keepModels_;
     std::map<std::string, gl::Handle> textures_;            // by TextureSource::key
     std::map<const MeshData*, std::uint64_t> meshDigests_;  // for the G-buffer cache's key
@@ -215,6 +223,10 @@ private:
     std::map<std::string, Environment> environments_;  // by source and settings key
     std::unique_ptr<IblPrecompute> precompute_;
 };
+
+// The segments (rings: half as many) of a sphere whose outline stays within half a pixel of a
+// round one when its radius is `radiusPixels` on screen; 96 (the built-in sphere's) at most.
+int sphereSegments(double radiusPixels);
 
 // Loads an environment: "sky", "sky-soft", "smooth" (generated) or an equirectangular
 // .hdr/.exr file. The generated ones are kept in `cache` (when not empty) after the first time:

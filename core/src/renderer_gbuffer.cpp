@@ -1,9 +1,12 @@
 // The G-buffer pass of LabRenderer: a scene's draws into kGBufferTextures float targets, the
 // materials' maps read and uploaded on first use, and the disk cache of G-buffers that read no
 // image.
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <glm/gtc/matrix_transform.hpp>
+#include <limits>
+#include <numbers>
 
 #include "cache_file.h"
 #include "digest.h"
@@ -19,9 +22,27 @@ namespace pbrlab {
 namespace {
 
 // The built-in unit sphere of JSON scenes (DrawItem::mesh == nullptr).
+constexpr int kSphereSegments = 96;
 const MeshData& unitSphere() {
-    static const MeshData sphere = makeUvSphere(96, 48);
+    static const MeshData sphere = makeUvSphere(kSphereSegments, kSphereSegments / 2);
     return sphere;
+}
+
+// The radius in pixels of a built-in sphere drawn with `transform` (a unit sphere placed and
+// scaled), seen from `camera` in a picture `height` pixels high; infinite (the full sphere)
+// when the camera is inside it.
+double sphereRadiusPixels(const glm::dmat4& transform, const Camera& camera, int height) {
+    const double radius =
+        std::max({glm::length(glm::dvec3(transform[0])), glm::length(glm::dvec3(transform[1])),
+                  glm::length(glm::dvec3(transform[2]))});
+    const glm::dvec3 toCentre = glm::dvec3(transform[3]) - camera.position;
+    const double d2 = glm::dot(toCentre, toCentre) - radius * radius;  // tangent length^2
+    if (d2 <= 0) return std::numeric_limits<double>::infinity();
+    // tan of the angle the sphere subtends, over tan of half the field of view, times half
+    // the height; doubled, a margin over the stretch towards the picture's corners (1.2 at a
+    // field of view of 45 degrees).
+    const double halfFov = std::tan(glm::radians(camera.fovY) / 2);
+    return 2 * radius / std::sqrt(d2) / halfFov * height / 2;
 }
 
 GLint glWrap(TextureSource::Wrap wrap) {
@@ -54,6 +75,16 @@ GLuint LabRenderer::texture(const TextureSource& source) {
     return id;
 }
 
+// A chord spanning 2 pi / n of a circle of radius r strays r (1 - cos(pi / n)), about
+// r pi^2 / (2 n^2), from it: within half a pixel when n >= pi sqrt(r). The normals interpolated
+// between the vertices' are the sphere's at the point drawn, which is as near the round
+// sphere's: the shading moves by under a pixel with the outline (tests/test_live_view.cpp).
+int sphereSegments(double radiusPixels) {
+    for (int n : {16, 24, 32, 48, 64})
+        if (n >= std::numbers::pi * std::sqrt(radiusPixels)) return n;
+    return kSphereSegments;
+}
+
 const gl::GpuMesh& LabRenderer::mesh(const MeshData* data) {
     auto& slot = meshes_[data];
     if (!slot) slot = std::make_unique<gl::GpuMesh>(data ? *data : unitSphere());
@@ -82,7 +113,7 @@ std::vector<LabRenderer::MaterialMap> LabRenderer::materialMaps(const MaterialDe
 }
 
 glm::mat4 LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int height,
-                                   bool cache) {
+                                   bool cache, bool coarseSpheres) {
     if (!gbuffer_ || gbuffer_->width() != width || gbuffer_->height() != height) {
         gbuffer_ = std::make_unique<gl::RenderTarget>(width, height, kGBufferTextures);
         gbufferHolds_.clear();
@@ -99,8 +130,9 @@ glm::mat4 LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width
     for (const SceneModel& model : scene.models) keepModels_.insert(model.data);
 
     const std::vector<DrawItem> items = drawItems(scene);
-    const fs::path cached =
-        cache ? gbufferCacheFile(scene, items, needs, viewProjection) : fs::path();
+    const fs::path cached = cache && !coarseSpheres
+                                ? gbufferCacheFile(scene, items, needs, viewProjection)
+                                : fs::path();
     if (!cached.empty() && (cached == gbufferHolds_ || readGBuffer(cached))) {
         gbufferHolds_ = cached;
         // Compiled all the same: what a scene compiles stays observable (--stats, the GUI).
@@ -142,7 +174,18 @@ glm::mat4 LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width
             gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, glWrap(map.source->wrapV));
             program->set(map.sampler, unit++);
         }
-        mesh(item.mesh).draw();
+        const int segments =
+            coarseSpheres && !item.mesh
+                ? sphereSegments(sphereRadiusPixels(item.transform, scene.camera, height))
+                : kSphereSegments;
+        if (segments < kSphereSegments) {
+            auto& sphere = coarseSpheres_[segments];
+            if (!sphere)
+                sphere = std::make_unique<gl::GpuMesh>(makeUvSphere(segments, segments / 2));
+            sphere->draw();
+        } else {
+            mesh(item.mesh).draw();
+        }
     }
     gl::Disable(GL_DEPTH_TEST);
     gl::checkError("G-buffer pass");

@@ -18,10 +18,13 @@ namespace {
 
 // How long the input must be still before the full evaluation runs (the live view until then).
 constexpr std::chrono::milliseconds kSettleDelay{200};
-// The live picture's time budget: its side shrinks (to 128 at least) while a frame of it takes
-// longer, and grows back (to kRenderSize) while it takes much less, so that dragging stays at
-// 30 frames a second or more whatever the step costs per pixel. The settled image is full size.
-constexpr double kLiveBudgetMs = 18;
+
+// What the renderer has done that is not drawing (compiles, texture loads, precompute
+// passes): a frame that did any says nothing about what the picture costs.
+int setupWorkDone() {
+    return eventCount(Counter::ProgramCompiles) + eventCount(Counter::TextureLoads) +
+           eventCount(Counter::PrecomputePasses);
+}
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -59,15 +62,16 @@ void Lab::update(GuiState& state, Requests& requests) {
     if (!studentFile(state).empty() && studentWatch_.changed(studentFile(state), submission_))
         dirty_ = true;
     const ModuleDesc& m = module(state);
-    // The first render of an environment precomputes for seconds: show a frame that says so.
+    // The first render of an environment precomputes for seconds: show a frame that says so,
+    // once per step and environment (a step that reads no derived map never has them all:
+    // a notice every other frame would halve its frame rate).
+    const Scene scene = currentScene(state);
     if (dirty_ && (m.needs & NeedsEnvironment) &&
-        !renderer_->hasEnvironmentMaps(currentScene(state), iblFor(currentScene(state))) &&
-        !precomputeNoticeShown_) {
-        precomputeNoticeShown_ = true;
+        !renderer_->hasEnvironmentMaps(scene, iblFor(scene)) &&
+        precomputeNoticed_.insert(m.id + "|" + scene.environment + "|" + iblFor(scene).key())
+            .second)
         return;
-    }
-    precomputeNoticeShown_ = false;
-    if (m.needs & NeedsEnvironment) useBudgetSettings(currentScene(state));
+    if (m.needs & NeedsEnvironment) useBudgetSettings(scene);
     // While the input moves, only the picture is drawn (on the GPU, mapped for display there,
     // nothing read back): 30 frames a second at least. The evaluation against the CPU
     // reference, the probes and the statistics follow once it has been still for a moment
@@ -133,9 +137,10 @@ bool Lab::settled(const GuiState& state) const {
 }
 
 // The picture the student is looking at (theirs when their file has compiled, else the
-// solution's), rendered at the live size (kLiveBudgetMs) and mapped for display on the GPU.
+// solution's), rendered at the live size (LiveSize) and mapped for display on the GPU.
 void Lab::drawLive(const GuiState& state) {
     const auto start = std::chrono::steady_clock::now();
+    const int setupWork = setupWorkDone();
     const Scene scene = currentScene(state);
     const bool student = state.view != View::Solution && !shown_.studentValue.pixels.empty();
     const ModuleDesc& m = module(state);
@@ -143,14 +148,15 @@ void Lab::drawLive(const GuiState& state) {
         RenderRequest request{
             &loaded(state), &state.params.at(m.id),
             &scene,         student ? StudentSource{submission_, false} : StudentSource{},
-            nullptr,        liveSize_,
-            liveSize_};
+            nullptr,        live_.side(),
+            live_.side()};
         request.seamlessCubes = false;  // as the settled picture: no jump when it lands
         request.readValue = false;
+        request.coarseSpheres = true;  // the outline within half a pixel; the settled one exact
         request.ibl = iblFor(scene);
         const RenderResult r = renderer_->render(request);
         shown_.liveTexture =
-            displayPass_->run(r.valueTexture, liveSize_, liveSize_, m.display, m.components);
+            displayPass_->run(r.valueTexture, live_.side(), live_.side(), m.display, m.components);
         shown_.liveWho = student ? "your" : "the solution's";
     } catch (const Error& e) {
         // The student's file, saved while the input moves, does not compile (or may not be
@@ -160,18 +166,13 @@ void Lab::drawLive(const GuiState& state) {
         render(state);
         return;
     }
+    // Magnified smoothly, as dynamic resolution does (the line under it gives its size).
+    gl::BindTexture(GL_TEXTURE_2D, shown_.liveTexture);
+    gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     shown_.renderMs = millisecondsSince(start);
-    liveSizes_.push_back(liveSize_);
-    // Resized at most every 4 frames, from the slowest of them (a new size reallocates the
-    // targets; one slow frame is not a trend), with a gap between shrink and grow.
-    liveWindow_.push_back(shown_.renderMs);
-    if (liveWindow_.size() < 4) return;
-    const double slowest = *std::max_element(liveWindow_.begin(), liveWindow_.end());
-    liveWindow_.clear();
-    if (slowest > kLiveBudgetMs)
-        liveSize_ = std::max(128, int(liveSize_ * 0.8) / 8 * 8);
-    else if (slowest < 0.4 * kLiveBudgetMs)
-        liveSize_ = std::min(kRenderSize, int(liveSize_ * 1.25) / 8 * 8);
+    shown_.liveSide = live_.side();
+    liveSizes_.push_back(live_.side());
+    if (setupWorkDone() == setupWork) live_.frameTook(shown_.renderMs);  // the next side
 }
 
 void Lab::render(const GuiState& state) {
@@ -193,6 +194,7 @@ void Lab::render(const GuiState& state) {
         request.render.ibl = iblFor(scene);
         Evaluation solution = evaluate(*renderer_, request);
         shown_.solutionValue = solution.render.value;
+        live_.fullSizeTook(solution.render.milliseconds);
         shown_.surfaces = solution.render.surfaces;
         band_ = solution.band;
         shown_.solutionStats = solution.comparison;

@@ -64,6 +64,9 @@ void loadFont(std::string& messages) {
     messages += std::string("font ") + file + " not found: Greek letters show as '?'\n";
 }
 
+// The windows' background.
+const ImVec4 kBackground(0.11f, 0.115f, 0.13f, 1);
+
 void styleUi() {
     ImGui::StyleColorsDark();
     ImGuiStyle& s = ImGui::GetStyle();
@@ -72,7 +75,10 @@ void styleUi() {
     s.GrabRounding = 3;
     s.WindowBorderSize = 0;
     s.ItemSpacing = ImVec2(8, 6);
-    s.Colors[ImGuiCol_WindowBg] = ImVec4(0.11f, 0.115f, 0.13f, 1);
+    // The windows tile the screen: their background is the screen's clear colour (kBackground),
+    // not a filled rectangle each, which llvmpipe would shade and blend pixel by pixel (a third
+    // of a frame at 1600x960).
+    s.Colors[ImGuiCol_WindowBg] = ImVec4(0, 0, 0, 0);
     s.Colors[ImGuiCol_Header] = ImVec4(0.24f, 0.32f, 0.45f, 1);
     s.Colors[ImGuiCol_HeaderHovered] = ImVec4(0.30f, 0.40f, 0.56f, 1);
 }
@@ -149,7 +155,7 @@ public:
             glfwGetFramebufferSize(window, &w, &h);
             gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
             gl::Viewport(0, 0, w, h);
-            gl::ClearColor(0.08f, 0.08f, 0.09f, 1);
+            gl::ClearColor(kBackground.x, kBackground.y, kBackground.z, 1);
             gl::Clear(GL_COLOR_BUFFER_BIT);
             ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
             ++frame;

@@ -93,6 +93,7 @@ void Lab::select(GuiState& state, int index) {
     state.plotRow = module(state).probe.height / 2;
     studentWatch_.forget();
     showCompile(module(state).id);
+    live_.reset();  // another view, another cost (render() measures it)
     loadScene(state);
     std::ifstream in(loaded(state).sourceDir / "README.md");
     std::stringstream s;

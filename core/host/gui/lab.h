@@ -18,6 +18,7 @@
 #include "compare.h"
 #include "display_pass.h"
 #include "gui.h"
+#include "live_size.h"
 #include "paths.h"
 #include "plugins.h"
 #include "renderer.h"
@@ -66,6 +67,7 @@ struct Shown {
     int imageWidth = 1, imageHeight = 1, nanCount = 0, infCount = 0;
     GLuint liveTexture = 0;    // while the input moves: the live picture (0: the settled image)
     const char* liveWho = "";  // whose function the live picture is
+    int liveSide = 0;          // the live picture's side (kRenderSize: not reduced)
     // The step's programs for the scene on screen: (label, defines) as compiled() lists them.
     std::set<std::pair<std::string, std::string>> permutation;
     double frameMs = 0, renderMs = 0;
@@ -104,6 +106,7 @@ public:
     // The picture is evaluated for the state, and the step's badge graded for the file on
     // disk: nothing is left to update (the console's `wait`).
     bool settled(const GuiState& state) const;
+    LiveSize& liveSize() { return live_; }  // the live picture's side (tests set it)
     // The term views of the loaded steps (term_views.h), in the view chooser's order.
     const std::vector<TermView>& termViews() const { return termViews_; }
 
@@ -148,11 +151,11 @@ private:
     std::set<std::filesystem::path> warnedModels_;
     std::map<std::string, IblSettings> budgetSettings_;  // --error-budget, per environment
     // The evaluation is out of date (dirty_) and the input last moved at lastMove_.
-    bool dirty_ = true, precomputeNoticeShown_ = false;
+    bool dirty_ = true;
+    std::set<std::string> precomputeNoticed_;  // step|environment|settings noticed already
     std::chrono::steady_clock::time_point lastMove_{};
-    int liveSize_ = kRenderSize;      // the live picture's side (kLiveBudgetMs)
-    std::vector<int> liveSizes_;      // of every live frame, for --orbit's report
-    std::vector<double> liveWindow_;  // the live frames' times since the last resize
+    LiveSize live_{kRenderSize};  // the live picture's side
+    std::vector<int> liveSizes_;  // of every live frame, for --orbit's report
 };
 
 }  // namespace pbrlab

@@ -187,10 +187,16 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
     ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(shownTexture)),
                  ImVec2(side, side));
     handleCamera(lab, state, requests, origin, side);
-    // The live picture is the student's (or the solution's): other views follow when still.
+    // The live picture is the student's (or the solution's), drawn at a reduced size while the
+    // input moves: say so, and what follows when it stops.
     if (shown.liveTexture && state.view != View::Student && state.view != View::Solution)
-        ImGui::TextDisabled("moving: %s picture; the %s view follows when you stop", shown.liveWho,
-                            viewName(state.view, state.term, lab.termViews()).c_str());
+        ImGui::TextDisabled("moving: %s picture at %dx%d; the %s view, %dx%d, when you stop",
+                            shown.liveWho, shown.liveSide, shown.liveSide,
+                            viewName(state.view, state.term, lab.termViews()).c_str(), kRenderSize,
+                            kRenderSize);
+    else if (shown.liveTexture)
+        ImGui::TextDisabled("moving: %s picture at %dx%d; %dx%d when you stop", shown.liveWho,
+                            shown.liveSide, shown.liveSide, kRenderSize, kRenderSize);
     if (legend > 0) {
         ImGui::SameLine();
         drawLegend(difference ? 0.0 : d.display.lo,

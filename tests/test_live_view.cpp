@@ -1,0 +1,171 @@
+// The GUI's live view while the input moves (core/host/gui/frame.cpp), without a window: the
+// picture at a reduced side that follows a time budget (LiveSize), with coarse spheres, and
+// once the input is still the full-size picture, exactly what the headless renderer draws.
+// The mechanism, not its speed: docs/speed.md has the frame times.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <thread>
+
+#include "gl/context.h"
+#include "gui/lab.h"
+#include "gui/live_size.h"
+#include "renderer.h"
+#include "test_support.h"
+
+using namespace pbrlab;
+
+TEST(LiveView, TheLiveSideFollowsTheTimeBudget) {
+    const double budget = LiveSize::kBudgetMs;
+    LiveSize live(512);
+    for (int i = 0; i < 8; ++i) live.frameTook(0.5 * budget);
+    EXPECT_EQ(live.side(), 512);  // within the budget: full size, never more
+    // One frame far over the budget is not a trend (another process had the cores) ...
+    live.frameTook(20 * budget);
+    live.frameTook(0.5 * budget);
+    live.frameTook(0.5 * budget);
+    live.frameTook(0.5 * budget);
+    EXPECT_EQ(live.side(), 512);
+    // ... two in a row are: at once, to the side that would have fitted (cost per pixel).
+    live.frameTook(4 * budget);
+    live.frameTook(4 * budget);
+    EXPECT_EQ(live.side(), 256);
+    // A little over the budget for 4 frames: a fifth smaller.
+    for (int i = 0; i < 4; ++i) live.frameTook(1.1 * budget);
+    EXPECT_EQ(live.side(), 200);
+    // Much under it: a quarter larger every 4 frames, back to full size.
+    for (int i = 0; i < 4; ++i) live.frameTook(0.1 * budget);
+    EXPECT_EQ(live.side(), 248);
+    for (int i = 0; i < 40; ++i) live.frameTook(0.1 * budget);
+    EXPECT_EQ(live.side(), 512);
+    // A view that costs seconds at full size (the settled frame measured it): the next drag
+    // starts small, and no side goes below the smallest.
+    live.fullSizeTook(5000);
+    EXPECT_EQ(live.side(), 24);
+    for (int i = 0; i < 8; ++i) live.frameTook(100 * budget);
+    EXPECT_EQ(live.side(), LiveSize::kMinSide);
+    // From the smallest side it grows too.
+    for (int i = 0; i < 4; ++i) live.frameTook(0.1 * budget);
+    EXPECT_EQ(live.side(), 24);
+    live.reset();  // another step
+    EXPECT_EQ(live.side(), 512);
+}
+
+// n >= pi sqrt(r) keeps a chord within half a pixel of a circle of radius r pixels.
+TEST(LiveView, CoarseSpheresHaveTheSegmentsTheirSizeOnScreenNeeds) {
+    EXPECT_EQ(sphereSegments(1), 16);
+    EXPECT_EQ(sphereSegments(56), 24);   // the lesson's grid at 512: 28 pixels, doubled
+    EXPECT_EQ(sphereSegments(100), 32);  // pi * 10 = 31.4
+    EXPECT_EQ(sphereSegments(400), 64);
+    EXPECT_EQ(sphereSegments(1000), 96);  // the full sphere
+}
+
+// The lesson's grid, drawn with coarse spheres (the live frames') and with the full ones: the
+// same picture, moved by under a pixel. The outline moves only onto its neighbours, and every
+// other value is one the full picture has within a pixel (a fraction of a pixel is a change
+// of N.L of a few hundredths where the normal turns quickly, but not a new value).
+TEST(LiveView, CoarseSpheresMoveThePictureByUnderAPixel) {
+    auto context = createHeadlessContext();
+    DataPaths paths{PBRLAB_SOURCE_DIR};
+    ModuleRegistry modules{PBRLAB_MODULE_DIR};
+    LabRenderer renderer{paths, RendererOptions{{}, {}}};
+    const LoadedModule& ndotl = modules.find("ndotl");
+    const ParamValues params(ndotl.desc->params);
+    const Scene scene = loadScene(paths.scene("sphere-grid"));
+    const int side = 256;
+    RenderRequest request{&ndotl, &params, &scene, {}, nullptr, side, side};
+    const Image full = renderer.render(request).value;
+    request.coarseSpheres = true;
+    const Image coarse = renderer.render(request).value;
+    request.coarseSpheres = false;
+    EXPECT_EQ(renderer.render(request).value.pixels, full.pixels);  // nothing left behind
+    auto covered = [&](const Image& im, int x, int y) {
+        return x >= 0 && y >= 0 && x < side && y < side && im.at(x, y, 3) > 0.5f;
+    };
+    int coveredPixels = 0, changedCoverage = 0, changedValue = 0;
+    for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x) {
+            coveredPixels += covered(full, x, y);
+            bool outline = false;         // a neighbour in the full picture is on the other side
+            float lo = 1e9f, hi = -1e9f;  // the full picture's values within a pixel
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    outline = outline || covered(full, x + dx, y + dy) != covered(full, x, y);
+                    if (!covered(full, x + dx, y + dy)) continue;
+                    lo = std::min(lo, full.at(x + dx, y + dy, 0));
+                    hi = std::max(hi, full.at(x + dx, y + dy, 0));
+                }
+            if (covered(full, x, y) != covered(coarse, x, y)) {
+                ++changedCoverage;
+                EXPECT_TRUE(outline) << "pixel " << x << ", " << y;
+            } else if (covered(full, x, y)) {
+                const float v = coarse.at(x, y, 0);
+                changedValue += v != full.at(x, y, 0);
+                if (!outline) {
+                    EXPECT_GE(v, lo - 1e-3f) << "pixel " << x << ", " << y;
+                    EXPECT_LE(v, hi + 1e-3f) << "pixel " << x << ", " << y;
+                }
+            }
+        }
+    EXPECT_GT(coveredPixels, side * side / 4);
+    EXPECT_GT(changedValue, coveredPixels / 2);  // coarse they were
+    EXPECT_LT(changedCoverage, coveredPixels / 20);
+}
+
+// Dragging, then still, as the window's frames do it (Lab::update): every moving frame is a
+// live picture at the controller's side, nothing evaluated; the frame once the input is still
+// is full size and exactly what the headless renderer (`pbrlab render`) draws for that camera.
+TEST(LiveView, MovingFramesAreReducedAndTheStillFrameIsTheHeadlessRender) {
+    auto context = createHeadlessContext();
+    test::TempDir dir;
+    // No remembered step, scene or model (gui.json), for this test only.
+    const char* config = std::getenv("XDG_CONFIG_HOME");
+    const std::string oldConfig = config ? config : "";
+    setenv("XDG_CONFIG_HOME", dir.path.c_str(), 1);
+    struct Restore {
+        std::string value;
+        ~Restore() {
+            if (value.empty())
+                unsetenv("XDG_CONFIG_HOME");
+            else
+                setenv("XDG_CONFIG_HOME", value.c_str(), 1);
+        }
+    } restore{oldConfig};
+    GuiOptions options;
+    options.modulesDirs = {PBRLAB_MODULE_DIR};
+    options.module = "ndf";
+    options.scene = "sphere-grid";
+    GuiState state;
+    Lab lab(options, state);
+    Requests requests;
+    lab.update(state, requests);  // still from the start: the evaluation
+    ASSERT_EQ(lab.shown().liveTexture, 0u);
+    const Image first = lab.shown().solutionValue;
+    ASSERT_EQ(first.width, kRenderSize);
+
+    lab.liveSize().fullSizeTook(4 * LiveSize::kBudgetMs);  // as a costly view would
+    ASSERT_EQ(lab.liveSize().side(), kRenderSize / 2);
+    for (int frame = 0; frame < 3; ++frame) {
+        state.camera.yaw += 0.02;  // a step of a mouse drag
+        requests.moved = true;
+        lab.update(state, requests);
+        const Shown& shown = lab.shown();
+        ASSERT_NE(shown.liveTexture, 0u);
+        EXPECT_EQ(shown.liveSide, kRenderSize / 2);          // what the line under the picture says
+        EXPECT_EQ(lab.liveSizes().back(), kRenderSize / 2);  // what it was drawn at
+        EXPECT_EQ(shown.solutionValue.pixels, first.pixels);  // not evaluated while moving
+    }
+
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // past the settle delay
+    lab.update(state, requests);
+    const Shown& shown = lab.shown();
+    EXPECT_EQ(shown.liveTexture, 0u);
+    ASSERT_EQ(shown.solutionValue.width, kRenderSize);
+    EXPECT_NE(shown.solutionValue.pixels, first.pixels);  // the camera turned
+    LabRenderer headless{lab.paths(), RendererOptions{{}, {}}};
+    const Scene scene = lab.currentScene(state);
+    const RenderResult r = headless.renderScene(lab.loaded(state), state.params.at("ndf"), scene,
+                                                {}, kRenderSize, kRenderSize, false);
+    EXPECT_EQ(r.value.pixels, shown.solutionValue.pixels);
+}
