@@ -144,7 +144,11 @@ TEST(LiveView, MovingFramesAreReducedAndTheStillFrameIsTheHeadlessRender) {
     const Image first = lab.shown().solutionValue;
     ASSERT_EQ(first.width, kRenderSize);
 
-    lab.liveSize().fullSizeTook(4 * LiveSize::kBudgetMs);  // as a costly view would
+    // Reduced, as after a view that cost 4 budgets at full size (reset first: the settled frame
+    // above measured this machine's cost). The frames below may shrink it further, by their
+    // times; they cannot grow it back within 3 frames.
+    lab.liveSize().reset();
+    lab.liveSize().fullSizeTook(4 * LiveSize::kBudgetMs);
     ASSERT_EQ(lab.liveSize().side(), kRenderSize / 2);
     for (int frame = 0; frame < 3; ++frame) {
         state.camera.yaw += 0.02;  // a step of a mouse drag
@@ -152,8 +156,11 @@ TEST(LiveView, MovingFramesAreReducedAndTheStillFrameIsTheHeadlessRender) {
         lab.update(state, requests);
         const Shown& shown = lab.shown();
         ASSERT_NE(shown.liveTexture, 0u);
-        EXPECT_EQ(shown.liveSide, kRenderSize / 2);          // what the line under the picture says
-        EXPECT_EQ(lab.liveSizes().back(), kRenderSize / 2);  // what it was drawn at
+        if (frame == 0) {
+            EXPECT_EQ(shown.liveSide, kRenderSize / 2);
+        }
+        EXPECT_LE(shown.liveSide, kRenderSize / 2);         // what the line under the picture says
+        EXPECT_EQ(lab.liveSizes().back(), shown.liveSide);  // what it was drawn at
         EXPECT_EQ(shown.solutionValue.pixels, first.pixels);  // not evaluated while moving
     }
 

@@ -194,9 +194,12 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
                             shown.liveWho, shown.liveSide, shown.liveSide,
                             viewName(state.view, state.term, lab.termViews()).c_str(), kRenderSize,
                             kRenderSize);
-    else if (shown.liveTexture)
+    else if (shown.liveTexture && shown.liveSide < kRenderSize)
         ImGui::TextDisabled("moving: %s picture at %dx%d; %dx%d when you stop", shown.liveWho,
                             shown.liveSide, shown.liveSide, kRenderSize, kRenderSize);
+    else if (shown.liveTexture)
+        ImGui::TextDisabled("moving: %s picture at %dx%d, full size", shown.liveWho, shown.liveSide,
+                            shown.liveSide);
     if (legend > 0) {
         ImGui::SameLine();
         drawLegend(difference ? 0.0 : d.display.lo,
