@@ -12,22 +12,10 @@
 
 using namespace pbrlab;
 namespace fs = std::filesystem;
+using test::CommandRun;
+using test::run;
 
 namespace {
-
-struct CommandRun {
-    int status = -1;
-    std::string output;  // stdout and stderr
-};
-
-CommandRun run(const test::TempDir& dir, const std::string& command) {
-    const fs::path log = dir.path / "log.txt";
-    const int status = std::system((command + " > " + log.string() + " 2>&1").c_str());
-    std::ifstream in(log);
-    std::stringstream text;
-    text << in.rdbuf();
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
-}
 
 // The environment of a command that cannot open libpbrlab_oiio.so (so cannot use OpenImageIO).
 std::string withoutOpenImageIo(const test::TempDir& dir) {

@@ -1,9 +1,13 @@
 // Helpers shared by the tests: temporary folders and a headless GL session.
 #pragma once
 
+#include <sys/wait.h>
+
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
 
 namespace pbrlab::test {
@@ -28,5 +32,21 @@ struct TempDir {
         return p;
     }
 };
+
+// A shell command run to its end, its output kept (stdin from /dev/null: nothing it starts can
+// wait for input).
+struct CommandRun {
+    int status = -1;
+    std::string output;  // stdout and stderr
+};
+
+inline CommandRun run(const TempDir& dir, const std::string& command) {
+    const std::filesystem::path log = dir.path / "log.txt";
+    const int status = std::system((command + " > " + log.string() + " 2>&1 < /dev/null").c_str());
+    std::ifstream in(log);
+    std::stringstream text;
+    text << in.rdbuf();
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
 
 }  // namespace pbrlab::test

@@ -169,30 +169,33 @@ std::string mapCompilerLog(const std::string& log, const std::vector<std::string
 
 namespace {
 
-// The line (1-based) of a definition or prototype of function `name` in `text`, or 0.
-int definitionLine(const std::string& text, const std::string& name) {
-    const std::regex definition("^\\s*(\\w+\\s+)+" + name + "\\s*\\(");
+// The line (1-based) of the first line of `text` that `matches`, or 0.
+template <class Matches>
+int firstLine(const std::string& text, Matches matches) {
     std::istringstream in(text);
     int lineNo = 0;
     for (std::string line; std::getline(in, line);) {
         ++lineNo;
-        std::smatch m;
-        if (std::regex_search(line, m, definition) && m[1].str().rfind("return", 0) != 0)
-            return lineNo;
+        if (matches(line)) return lineNo;
     }
     return 0;
 }
 
-// The line (1-based) of the first call of function `name` in `text`, or 0.
+// The line of a definition or prototype of function `name` in `text`, or 0.
+int definitionLine(const std::string& text, const std::string& name) {
+    const std::regex definition("^\\s*(\\w+\\s+)+" + name + "\\s*\\(");
+    return firstLine(text, [&](const std::string& line) {
+        std::smatch m;
+        return std::regex_search(line, m, definition) && m[1].str().rfind("return", 0) != 0;
+    });
+}
+
+// The line of the first call of function `name` in `text` (comments left out), or 0.
 int callLine(const std::string& text, const std::string& name) {
     const std::regex call("\\b" + name + "\\s*\\(");
-    std::istringstream in(text);
-    int lineNo = 0;
-    for (std::string line; std::getline(in, line);) {
-        ++lineNo;
-        if (std::regex_search(line.substr(0, line.find("//")), call)) return lineNo;
-    }
-    return 0;
+    return firstLine(text, [&](const std::string& line) {
+        return std::regex_search(line.substr(0, line.find("//")), call);
+    });
 }
 
 // The body of the first definition of `name` (its braces), or "".
