@@ -108,8 +108,9 @@ TEST(CompilerLog, MapsSourceNumbersToFiles) {
 // that is not its own.
 namespace {
 
-// A program of three parts, as viewRecipe lays them out: a reference solution linked as host
-// code (with a private helper), the student's file, the host's code after it.
+// A program as viewRecipe lays it out: a reference solution linked as host code (with a private
+// helper), the student's file, the host's code after it (an empty generated part among it: a
+// step without parameters declares none).
 struct StudentProgram {
     TempDir dir;
     std::filesystem::path kit = dir.path / "kit";
@@ -127,7 +128,8 @@ struct StudentProgram {
         ShaderPart student(kit / "step.glsl");
         student.studentFolder = kit;
         return ShaderPreprocessor({dir.path / "host"})
-            .expand({solution, student, after}, {{"NUM_LIGHTS", "2"}});
+            .expand({solution, student, ShaderPart("<parameters>", ""), after},
+                    {{"NUM_LIGHTS", "2"}});
     }
     // The refusal's text, or "" when the file is accepted.
     std::string refusal(const std::string& studentText) {

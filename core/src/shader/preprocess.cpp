@@ -51,44 +51,46 @@ struct CodeLine {
 // end (0 when none). Continuations are joined before comments are found, as the compiler
 // does, so a name hidden by `*\` + newline + `/` is seen where the compiler sees it.
 std::vector<CodeLine> codeLines(const std::string& text, int* openComment) {
-    std::vector<CodeLine> result(1);
-    int line = 1, commentStart = 0;
-    bool block = false, lineComment = false;
-    auto put = [&](char c) {
-        result.back().code += c;
-        result.back().lines.push_back(line);
-    };
-    for (size_t i = 0; i < text.size(); ++i) {
-        const char c = text[i];
-        // A backslash before the end of a line joins the next line to this one.
-        if (c == '\\' &&
+    // Continuations joined first, each character keeping the line it was on.
+    std::string joined;
+    std::vector<int> lineOf;
+    for (size_t i = 0, line = 1; i < text.size(); ++i) {
+        if (text[i] == '\\' &&
             (text.compare(i + 1, 1, "\n") == 0 || text.compare(i + 1, 2, "\r\n") == 0)) {
             i += text[i + 1] == '\r' ? 2 : 1;
             ++line;
             continue;
         }
+        joined += text[i];
+        lineOf.push_back(int(line));
+        if (text[i] == '\n') ++line;
+    }
+    std::vector<CodeLine> result(1);
+    int commentStart = 0;
+    bool block = false, lineComment = false;
+    for (size_t i = 0; i < joined.size(); ++i) {
+        const char c = joined[i];
+        const char next = i + 1 < joined.size() ? joined[i + 1] : '\0';
         if (c == '\n') {
-            ++line;
             lineComment = false;
             if (!block) result.emplace_back();
-            continue;
-        }
-        if (lineComment) continue;
-        if (block) {
-            if (c == '*' && i + 1 < text.size() && text[i + 1] == '/') {
+        } else if (lineComment) {
+            continue;  // up to the end of the line
+        } else if (block) {
+            if (c == '*' && next == '/') {
                 block = false;
                 ++i;
-                put(' ');
+                result.back().code += ' ';
+                result.back().lines.push_back(lineOf[i]);
             }
-            continue;
-        }
-        if (c == '/' && i + 1 < text.size() && (text[i + 1] == '/' || text[i + 1] == '*')) {
-            (text[i + 1] == '/' ? lineComment : block) = true;
-            commentStart = line;
+        } else if (c == '/' && (next == '/' || next == '*')) {
+            (next == '/' ? lineComment : block) = true;
+            commentStart = lineOf[i];
             ++i;
-            continue;
+        } else {
+            result.back().code += c;
+            result.back().lines.push_back(lineOf[i]);
         }
-        put(c);
     }
     *openComment = block ? commentStart : 0;
     return result;
@@ -282,8 +284,8 @@ ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
     for (const auto& part : parts) {
         afterStudent = afterStudent || !part.studentFolder.empty();
         if (!part.studentFolder.empty() || (part.solutionOf.empty() && !afterStudent)) continue;
-        for (const std::string& f :
-             definedFunctions(part.text.empty() ? readText(part.file) : part.text)) {
+        const bool generated = !part.text.empty() || part.file.empty();
+        for (const std::string& f : definedFunctions(generated ? part.text : readText(part.file))) {
             if (!part.solutionOf.empty() && f != part.solutionOf)
                 ex.privateHelpers.emplace(f, "the reference solution of " + part.solutionOf);
             else if (part.solutionOf.empty() && f.rfind("pbrlab_", 0) == 0)
