@@ -126,6 +126,34 @@ TEST(Reachable, EveryNameAStepsFileCanSeeIsOneTheContractAllows) {
     }
 }
 
+// What the screening costs a grade: the largest program (split_sum's) expanded with the
+// reference solution as the student's file (screened) and without a student's file, 20 times
+// each; the difference is the screening. Printed for docs/grading.md; it must stay far below
+// a compile of the program (tens of ms or more on llvmpipe).
+TEST(Reachable, TheScreeningCostsLittleNextToACompile) {
+    Lab lab;
+    const LoadedModule* splitSum = nullptr;
+    for (const LoadedModule& m : lab.modules.modules())
+        if (m.desc->id == "split_sum") splitSum = &m;
+    ASSERT_NE(splitSum, nullptr);
+    test::TempDir kit;
+    kit.write("split_sum.glsl", readFile(splitSum->sourceDir / "solution.glsl"));
+    auto millisecondsPerExpansion = [&](const StudentSource& source) {
+        const ProgramRecipe r = lab.renderer.viewRecipe(*splitSum, source, true, 1);
+        const auto start = std::chrono::steady_clock::now();
+        for (int i = 0; i < 20; ++i)
+            lab.renderer.programs().preprocessor().expand(r.fragment, r.defines);
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                   .count() /
+               20;
+    };
+    const double screened = millisecondsPerExpansion({kit.path}),
+                 reference = millisecondsPerExpansion({});
+    std::cout << "split_sum's program expanded: " << screened << " ms with a student's file, "
+              << reference << " ms without\n";
+    EXPECT_LT(screened - reference, 20.0);
+}
+
 // No function a step's file can see computes the step: each helper mutant (a file returning
 // one of them called with the step's own arguments) fails grading, by a refusal, a compile
 // error or a failed check.

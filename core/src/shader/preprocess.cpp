@@ -1,6 +1,7 @@
 #include "shader/preprocess.h"
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <regex>
 #include <set>
@@ -96,18 +97,37 @@ std::vector<CodeLine> codeLines(const std::string& text, int* openComment) {
     return result;
 }
 
+// Calls f(identifier, its offset) for each identifier of a line of code (a letter or _, then
+// letters, digits and _; a number's suffix, as in 1e5 or 2u, is part of the number).
+template <class F>
+void forEachIdentifier(const std::string& code, F f) {
+    auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    for (size_t i = 0; i < code.size();) {
+        if (!word(code[i])) {
+            ++i;
+            continue;
+        }
+        size_t end = i;
+        while (end < code.size() && word(code[end])) ++end;
+        if (!std::isdigit(static_cast<unsigned char>(code[i]))) f(code.substr(i, end - i), i);
+        i = end;
+    }
+}
+
 // The names of the functions a host file defines: a return type and a name at the start of a
-// line, then `(`, and the body's `{` on that line or the signature going on after it (not a
-// prototype's `;`). The host's files are written that way.
+// line (column 0), then `(`, and the body's `{` on that line or the signature going on after it
+// (not a prototype's `;`). The host's files are written that way.
 std::vector<std::string> definedFunctions(const std::string& text) {
-    static const std::regex definition(R"(^\s*(\w+)\s+(\w+)\s*\((?:[^)]*\)\s*\{.*|[^;]*)$)");
+    static const std::regex definition(R"(^(\w+)\s+(\w+)\s*\((?:[^)]*\)\s*\{.*|[^;]*)$)");
     std::vector<std::string> names;
     std::istringstream in(text);
     for (std::string line; std::getline(in, line);) {
+        // Only lines that can start a definition reach the (slow) regular expression.
+        if (line.empty() || !std::isalpha(static_cast<unsigned char>(line[0])) ||
+            line.find('(') == std::string::npos)
+            continue;
         std::smatch m;
-        if (std::regex_search(line, m, definition) && m[1].str() != "return" &&
-            m[1].str() != "else")
-            names.push_back(m[2].str());
+        if (std::regex_search(line, m, definition)) names.push_back(m[2].str());
     }
     return names;
 }
@@ -173,10 +193,11 @@ struct Expander {
         int openComment = 0;
         const std::vector<CodeLine> lines = codeLines(text, &openComment);
         static const std::regex directive(R"(^\s*#\s*(\w+)\s*(\w*))");
-        static const std::regex identifier(R"([A-Za-z_]\w*)");
         for (const CodeLine& l : lines) {
             std::smatch d;
-            const bool isDirective = std::regex_search(l.code, d, directive);
+            const size_t first = l.code.find_first_not_of(" \t\r");
+            const bool isDirective = first != std::string::npos && l.code[first] == '#' &&
+                                     std::regex_search(l.code, d, directive);
             if (isDirective && d[1].str() == "include") continue;  // its path is no name
             if (isDirective && (d[1].str() == "define" || d[1].str() == "undef")) {
                 const std::string macro = d[2].str();
@@ -193,16 +214,15 @@ struct Expander {
                 refuse(l.lineAt(l.code.find("##")),
                        "token pasting (##) is not allowed in a step's file: it can form a name "
                        "the file does not write, such as a private helper of pbrlab's");
-            for (auto it = std::sregex_iterator(l.code.begin(), l.code.end(), identifier);
-                 it != std::sregex_iterator(); ++it) {
-                auto helper = privateHelpers.find(it->str());
+            forEachIdentifier(l.code, [&](const std::string& identifier, size_t at) {
+                auto helper = privateHelpers.find(identifier);
                 if (helper != privateHelpers.end())
-                    refuse(l.lineAt(size_t(it->position())),
+                    refuse(l.lineAt(at),
                            helper->first + " is private to " + helper->second +
                                ", which this program links: a step's file may not name it, nor "
                                "define a function of that name. Write that computation "
                                "yourself.");
-            }
+            });
         }
         if (openComment)
             refuse(openComment,
@@ -280,8 +300,11 @@ ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
     // every reference solution in the program, and the host's pbrlab_ functions after the
     // first student's part (common.glsl's, before it, are utilities that compute no step, and
     // the reference solutions call them).
+    const bool anyStudent = std::any_of(
+        parts.begin(), parts.end(), [](const ShaderPart& p) { return !p.studentFolder.empty(); });
     bool afterStudent = false;
     for (const auto& part : parts) {
+        if (!anyStudent) break;  // no one to screen
         afterStudent = afterStudent || !part.studentFolder.empty();
         if (!part.studentFolder.empty() || (part.solutionOf.empty() && !afterStudent)) continue;
         const bool generated = !part.text.empty() || part.file.empty();
