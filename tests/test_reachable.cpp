@@ -127,9 +127,12 @@ TEST(Reachable, EveryNameAStepsFileCanSeeIsOneTheContractAllows) {
 }
 
 // What the screening costs a grade: the largest program (split_sum's) expanded with the
-// reference solution as the student's file (screened) and without a student's file, 20 times
-// each; the difference is the screening. Printed for docs/grading.md; it must stay far below
-// a compile of the program (tens of ms or more on llvmpipe).
+// reference solution as the student's file (screened) and without a student's file, the
+// fastest of 20 expansions each (the least disturbed by other processes); the difference is
+// the screening. Measured 0.1 to 1.8 ms (mean of 20, five runs, the machine shared with four
+// other builds); the bound, 5 ms, is what the cheapest compile of this program takes (from
+// Mesa's disk cache: 3 to 5 ms, `pbrlab render split_sum --stats`; 10 to 20 ms without), so
+// the screening never costs more than a compile it precedes.
 TEST(Reachable, TheScreeningCostsLittleNextToACompile) {
     Lab lab;
     const LoadedModule* splitSum = nullptr;
@@ -138,20 +141,22 @@ TEST(Reachable, TheScreeningCostsLittleNextToACompile) {
     ASSERT_NE(splitSum, nullptr);
     test::TempDir kit;
     kit.write("split_sum.glsl", readFile(splitSum->sourceDir / "solution.glsl"));
-    auto millisecondsPerExpansion = [&](const StudentSource& source) {
+    auto fastestExpansion = [&](const StudentSource& source) {
         const ProgramRecipe r = lab.renderer.viewRecipe(*splitSum, source, true, 1);
-        const auto start = std::chrono::steady_clock::now();
-        for (int i = 0; i < 20; ++i)
+        double fastest = 1e30;
+        for (int i = 0; i < 20; ++i) {
+            const auto start = std::chrono::steady_clock::now();
             lab.renderer.programs().preprocessor().expand(r.fragment, r.defines);
-        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                   .count() /
-               20;
+            fastest = std::min(fastest, std::chrono::duration<double, std::milli>(
+                                            std::chrono::steady_clock::now() - start)
+                                            .count());
+        }
+        return fastest;
     };
-    const double screened = millisecondsPerExpansion({kit.path}),
-                 reference = millisecondsPerExpansion({});
+    const double screened = fastestExpansion({kit.path}), reference = fastestExpansion({});
     std::cout << "split_sum's program expanded: " << screened << " ms with a student's file, "
-              << reference << " ms without\n";
-    EXPECT_LT(screened - reference, 20.0);
+              << reference << " ms without (fastest of 20)\n";
+    EXPECT_LT(screened - reference, 5.0);
 }
 
 // No function a step's file can see computes the step: each helper mutant (a file returning
