@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "feedback.h"
 #include "pbrlab/error.h"
 #include "shader/student_file.h"
 
@@ -223,6 +224,28 @@ struct Expander {
                                "define a function of that name. Write that computation "
                                "yourself.");
             });
+        }
+        // A loop with no way out (feedback.h reads it): what the compiler makes of it depends
+        // on the rest of the program (measured on Mesa: ndotl's `while (true) { x += 1.0; }`
+        // before its return gave 0 in a program with every step, the right value in one with
+        // steps 1..4), so the function's value would not be its own. Refused at the loop.
+        if (whyAlwaysZero(text).rfind("Your function has a loop that never ends", 0) == 0) {
+            static const std::regex endless(
+                R"(\bwhile\s*\(\s*(true|1)\s*\)|\bfor\s*\([^;()]*;\s*(true|1)?\s*;)");
+            int at = 1;
+            for (const CodeLine& l : lines) {
+                std::smatch m;
+                if (std::regex_search(l.code, m, endless)) {
+                    at = l.lineAt(size_t(m.position(0)));
+                    break;
+                }
+            }
+            refuse(at,
+                   "a loop that never ends (no break or return in it): a step's function "
+                   "must return, and what the compiler makes of such a loop depends on the "
+                   "rest of the program (it deletes the loop, or the code after it too), so "
+                   "your function's value would not be its own. Give the loop a condition "
+                   "that ends it.");
         }
         if (openComment)
             refuse(openComment,
