@@ -608,6 +608,9 @@ std::string classifyError(const FeedbackInputs& in, bool* exactOut) {
                 s += ": is a constant factor wrong?";
             else
                 s += ": a constant factor is off.";
+            // A term that is the same at every point of this check (the lesson's lights are
+            // all of colour 300) explains it as well: said too.
+            if (std::string t = nameTerm(in); !t.empty()) s += " " + t;
             return s;
         }
     }
