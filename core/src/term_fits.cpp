@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -421,9 +422,11 @@ const std::map<std::string, StepTerms>& table() {
             tonemap,
             {{Term::Exponent, "gamma", "the gamma", {&Knobs::gamma}, 1 / 2.2, {}, 0.1, 3,
               [](double e) {
+                  // The exponent is 1 / gamma; above 1 it decodes instead of encoding.
                   return std::abs(e - 1) < 1e-9 ? std::string("no gamma (exponent 1)")
-                                                : "gamma " + num(1 / e) + " (exponent 1/" +
-                                                      num(1 / e) + ")";
+                         : e > 1 ? "the exponent " + num(e) + " (it decodes: the display needs 1/" +
+                                       num(e) + ")"
+                                 : "gamma " + num(1 / e) + " (exponent 1/" + num(1 / e) + ")";
               }},
              {Term::Exponent, "(1 + hdr)", "Reinhard's denominator", {&Knobs::reinhard}, -1, {},
               -3, 1,
@@ -444,8 +447,7 @@ const std::map<std::string, StepTerms>& table() {
                 return grazingBand(s) * brdf(s, s.light, k);
             },
             joined(joined(specularTerms(), diffuseTerms()),
-                   {factor("N.L", "the cosine N.L (f_r has none: the reflectance equation "
-                                  "multiplies by it)",
+                   {factor("N.L", "the cosine N.L (it belongs to the reflectance equation, not to f_r)",
                            {&Knobs::cosine}, 0)})};
         t["reflectance"] = {
             reflected,
@@ -491,8 +493,9 @@ const std::map<std::string, StepTerms>& table() {
             {{Term::Exponent, "N.L", "the cosine N.L", {&Knobs::irradianceCosine}, 1, {0, 2}, 0,
               0,
               [](double e) {
-                  return e == 0 ? std::string("no cosine N.L")
-                                : "the cosine to the power " + num(e) + " (N.L)^" + num(e);
+                  return e == 0   ? std::string("no cosine N.L")
+                         : e == 1 ? std::string("the cosine N.L")
+                                  : "the cosine to the power " + num(e) + " (N.L)^" + num(e);
               }},
              onOff("light from below the horizon counted (|N.L| over the whole sphere, where "
                    "the reference has max(N.L, 0) over the hemisphere)",
@@ -648,7 +651,7 @@ std::string messageFor(const Term& t, double e) {
     else if (t.reference != 0 && e == 2 * t.reference)
         question = "is " + t.name + " applied twice?";
     else if (t.reference == 0)
-        question = e > 0 ? "is there an extra " + t.name + "?"
+        question = e > 0 ? "is " + t.name + " multiplied in where the reference has none?"
                          : "is there an extra division by " + t.name + "?";
     else
         question = t.symbol + "^" + num(e) + " where the reference has " + t.symbol + "^" +
@@ -663,6 +666,18 @@ bool hasNamedTerms(const std::string& stepId) {
 }
 
 std::string nameTerm(const FeedbackInputs& in) {
+    // PBRLAB_TERM_FITS_DEBUG: every candidate's shares and the time taken, on stderr (how the
+    // figures of docs/grading.md were measured).
+    struct Timer {
+        std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+        ~Timer() {
+            if (std::getenv("PBRLAB_TERM_FITS_DEBUG"))
+                std::fprintf(stderr, "term fit: %.1f ms\n",
+                             std::chrono::duration<double, std::milli>(
+                                 std::chrono::steady_clock::now() - start)
+                                 .count());
+        }
+    } timer;
     if (!in.module || !in.context || in.values.empty()) return "";
     const auto found = table().find(in.module->id);
     if (found == table().end()) return "";
