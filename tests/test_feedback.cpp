@@ -227,10 +227,9 @@ TEST(Feedback, AMissingOrDoubledTermIsNamed) {
             return specular(s) / ref::geometrySmith(s.normal, s.view, s.light, s.roughness);
         }));
     EXPECT_TRUE(contains(noG, "divided by G:") && contains(noG, "geometry term G missing")) << noG;
-    const std::string noNL = classifyError(
-        stepInputs(d, "specular", highlightDomain, context, specular, [](const Surface& s) {
-            return specular(s) * std::max(glm::dot(s.normal, s.light), 0.0);
-        }));
+    const std::string noNL = classifyError(stepInputs(
+        d, "specular", highlightDomain, context, specular,
+        [](const Surface& s) { return specular(s) * std::max(glm::dot(s.normal, s.light), 0.0); }));
     EXPECT_TRUE(contains(noNL, "times N.L") && contains(noNL, "N.L in the denominator")) << noNL;
 }
 
@@ -266,10 +265,9 @@ TEST(Feedback, NoTermIsNamedWhenNoneExplainsTheError) {
     const ReferenceContext context{params, {}, glm::dvec3(0), nullptr};
     ModuleDesc d;
     // An error that follows no term: a ripple in roughness.
-    const std::string ripple = nameTerm(
-        stepInputs(d, "specular", highlightDomain, context, specular, [](const Surface& s) {
-            return specular(s) * (1 + 0.3 * std::sin(20 * s.roughness));
-        }));
+    const std::string ripple = nameTerm(stepInputs(
+        d, "specular", highlightDomain, context, specular,
+        [](const Surface& s) { return specular(s) * (1 + 0.3 * std::sin(20 * s.roughness)); }));
     EXPECT_EQ(ripple, "");
     // The reference itself: nothing to explain.
     EXPECT_EQ(nameTerm(stepInputs(d, "specular", highlightDomain, context, specular, specular)),

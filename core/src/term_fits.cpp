@@ -4,10 +4,10 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
-#include <map>
-#include <sstream>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <sstream>
 
 #include "pbrlab/ibl_reference.h"
 
@@ -26,17 +26,17 @@ struct Knobs {
     // Cook-Torrance's specular lobe D G F / (4 N.L N.V) and its parts.
     double D = 1, G1V = 1, G1L = 1, F = 1, F0 = 0;
     double four = -1, NL = -1, NV = -1;
-    double alphaPower = 2;   // alpha = roughness^alphaPower
-    double alpha2 = 1;       // alpha^2 in D's numerator (as a power of alpha^2)
-    double NHpower = 2;      // (N.H)^2 in D's denominator
-    double denominator = 2;  // D's denominator squared
-    double schlick = 5;      // the Schlick factor (1 - cos)^5
-    double oneMinusF0 = 1;   // (1 - F0) in front of it
-    double f0TimesSchlick = 0;     // F0 + F0 (1 - cos)^5
-    double fresnelAtNdotV = 0;     // F at N.V instead of H.V
-    double f0ForF = 0;             // F0 where F belongs
-    double NX = 1;                 // N.X in G1's numerator
-    double kChoice = 0;            // another remapping of k (kChoices)
+    double alphaPower = 2;              // alpha = roughness^alphaPower
+    double alpha2 = 1;                  // alpha^2 in D's numerator (as a power of alpha^2)
+    double NHpower = 2;                 // (N.H)^2 in D's denominator
+    double denominator = 2;             // D's denominator squared
+    double schlick = 5;                 // the Schlick factor (1 - cos)^5
+    double oneMinusF0 = 1;              // (1 - F0) in front of it
+    double f0TimesSchlick = 0;          // F0 + F0 (1 - cos)^5
+    double fresnelAtNdotV = 0;          // F at N.V instead of H.V
+    double f0ForF = 0;                  // F0 where F belongs
+    double NX = 1;                      // N.X in G1's numerator
+    double kChoice = 0;                 // another remapping of k (kChoices)
     double g1vTwice = 0, g1lTwice = 0;  // G1(N.V) for the light too, or G1(N.L) for the view
     // The IBL estimators' weight G (V.H) / ((N.H)(N.V)).
     double VH = 1, NH = -1;
@@ -109,18 +109,17 @@ Lobe cookTorrance(const Surface& s, const dvec3& L, const Knobs& k) {
     const dvec3 H = ref::halfwayVector(L, V);
     const dvec3 F0 = ref::baseReflectivity(s.albedo, s.metallic);
     const double NdotV = std::max(glm::dot(N, V), 0.0), NdotL = std::max(glm::dot(N, L), 0.0);
-    const dvec3 F = k.f0ForF != 0
-                        ? F0
-                        : fresnel(k.fresnelAtNdotV != 0 ? NdotV : std::max(glm::dot(H, V), 0.0),
-                                  F0, k);
+    const dvec3 F =
+        k.f0ForF != 0
+            ? F0
+            : fresnel(k.fresnelAtNdotV != 0 ? NdotV : std::max(glm::dot(H, V), 0.0), F0, k);
     const double G1v = g1(NdotV, s.roughness, k, 0);
     const double G1l = k.g1vTwice != 0 ? G1v : g1(NdotL, s.roughness, k, 0);
     const double denominator = std::max(4 * NdotV * NdotL, ref::kSpecularDenomFloor);
     // The reference's guarded denominator, then each of its factors at another power.
     const dvec3 specular = power(ggx(glm::dot(N, H), s.roughness, k), k.D) * power(G1v, k.G1V) *
                            power(G1l, k.G1L) * power(F, k.F) * power(F0, k.F0) / denominator *
-                           power(4.0, k.four + 1) * power(NdotL, k.NL + 1) *
-                           power(NdotV, k.NV + 1);
+                           power(4.0, k.four + 1) * power(NdotL, k.NL + 1) * power(NdotV, k.NV + 1);
     // kD = (1 - F)(1 - metallic), from F at H.V as the reference has it.
     const dvec3 Fd = fresnel(std::max(glm::dot(H, V), 0.0), F0, Knobs{});
     const dvec3 kD = (1.0 - Fd) * power(1.0 - s.metallic, k.metal);
@@ -165,10 +164,9 @@ dvec3 mcSpecular(const Surface& s, const ReferenceContext& c, const Knobs& k) {
         const double NdotH = std::max(glm::dot(N, H), ref::kIblMinNdotH);
         VdotH = std::max(VdotH, 0.0);
         const double G1v = g1(NdotV, s.roughness, k, 1);
-        const double G = power(G1v, k.G1V) *
-                         power(k.g1vTwice != 0 ? G1v : g1(NdotL, s.roughness, k, 1), k.G1L);
-        const dvec3 F =
-            k.f0ForF != 0 ? F0 : fresnel(k.fresnelAtNdotV != 0 ? NdotV : VdotH, F0, k);
+        const double G =
+            power(G1v, k.G1V) * power(k.g1vTwice != 0 ? G1v : g1(NdotL, s.roughness, k, 1), k.G1L);
+        const dvec3 F = k.f0ForF != 0 ? F0 : fresnel(k.fresnelAtNdotV != 0 ? NdotV : VdotH, F0, k);
         sum += c.ibl->environment.sample(L, 0) * power(F, k.F) * G * power(VdotH, k.VH) *
                power(NdotH, k.NH) * power(NdotV, k.NV);
     }
@@ -231,7 +229,8 @@ dvec3 irradiance(const Surface& s, const ReferenceContext& c, const Knobs& k) {
     for (size_t i = 0; i < t.direction.size(); ++i) {
         double cosine = glm::dot(s.normal, t.direction[i]);
         if (k.wholeSphere != 0) cosine = std::abs(cosine);
-        if (cosine > 0) sum += t.radiance[i] * (power(cosine, k.irradianceCosine) * t.solidAngle[i]);
+        if (cosine > 0)
+            sum += t.radiance[i] * (power(cosine, k.irradianceCosine) * t.solidAngle[i]);
     }
     return sum / kPi;
 }
@@ -281,6 +280,9 @@ struct Term {
     std::vector<double> tries;  // empty: the kind's defaults
     double lo = 0, hi = 0;      // Exponent: the range searched (lo < hi), where it is cheap
     std::string (*format)(double) = nullptr;
+    // Factor: it multiplies the whole value (the message may then say "the reference divided
+    // by G"), not one term of a sum or of an integral.
+    bool whole = false;
 };
 
 struct StepTerms {
@@ -297,8 +299,21 @@ std::string num(double v, int digits = 3) {
 }
 
 Term factor(std::string symbol, std::string name, std::vector<double Knobs::*> knobs,
-            double reference = 1) {
-    return {Term::Factor, std::move(symbol), std::move(name), std::move(knobs), reference, {}};
+            double reference = 1, bool whole = false) {
+    return {Term::Factor,
+            std::move(symbol),
+            std::move(name),
+            std::move(knobs),
+            reference,
+            {},
+            0,
+            0,
+            nullptr,
+            whole};
+}
+Term wholeFactor(std::string symbol, std::string name, std::vector<double Knobs::*> knobs,
+                 double reference = 1) {
+    return factor(std::move(symbol), std::move(name), std::move(knobs), reference, true);
 }
 Term onOff(std::string name, double Knobs::*knob) {
     return {Term::Switch, "", std::move(name), {knob}, 0, {1}};
@@ -307,26 +322,38 @@ Term removed(std::string name, double Knobs::*knob) {
     return {Term::Switch, "", std::move(name), {knob}, 1, {0}};
 }
 
-// The Cook-Torrance terms shared by specular, brdf and reflectance.
-std::vector<Term> specularTerms() {
+// The Cook-Torrance terms shared by specular (`whole`: the lobe is the step's value), brdf
+// and reflectance.
+std::vector<Term> specularTerms(bool whole) {
     return {
-        factor("D", "the distribution term D", {&Knobs::D}),
-        factor("G", "the geometry term G", {&Knobs::G1V, &Knobs::G1L}),
-        factor("G1(N.V)", "the masking term G1(N.V)", {&Knobs::G1V}),
-        factor("G1(N.L)", "the shadowing term G1(N.L)", {&Knobs::G1L}),
-        factor("F", "the Fresnel term F", {&Knobs::F}),
-        factor("F0", "F0", {&Knobs::F0}, 0),
-        factor("N.L", "N.L in the denominator 4 N.L N.V", {&Knobs::NL}, -1),
-        factor("N.V", "N.V in the denominator 4 N.L N.V", {&Knobs::NV}, -1),
-        factor("4 N.L N.V", "the denominator 4 N.L N.V", {&Knobs::four, &Knobs::NL, &Knobs::NV},
-               -1),
+        factor("D", "the distribution term D", {&Knobs::D}, 1, whole),
+        factor("G", "the geometry term G", {&Knobs::G1V, &Knobs::G1L}, 1, whole),
+        factor("G1(N.V)", "the masking term G1(N.V)", {&Knobs::G1V}, 1, whole),
+        factor("G1(N.L)", "the shadowing term G1(N.L)", {&Knobs::G1L}, 1, whole),
+        factor("F", "the Fresnel term F", {&Knobs::F}, 1, whole),
+        factor("F0", "F0", {&Knobs::F0}, 0, whole),
+        factor("N.L", "N.L in the denominator 4 N.L N.V", {&Knobs::NL}, -1, whole),
+        factor("N.V", "N.V in the denominator 4 N.L N.V", {&Knobs::NV}, -1, whole),
+        factor("4 N.L N.V", "the denominator 4 N.L N.V", {&Knobs::four, &Knobs::NL, &Knobs::NV}, -1,
+               whole),
         onOff("F0 where F belongs (F = F0 + (1 - F0)(1 - H.V)^5)", &Knobs::f0ForF),
         onOff("F evaluated at N.V, where the specular lobe has H.V", &Knobs::fresnelAtNdotV),
         onOff("F0 multiplying the Schlick factor (F0 + F0 (1 - cos)^5)", &Knobs::f0TimesSchlick),
         onOff("G1(N.V) for the light too, where the reference has G1(N.L)", &Knobs::g1vTwice),
-        {Term::Exponent, "alpha", "alpha", {&Knobs::alphaPower}, 2, {1, 4}, 0, 0,
+        {Term::Exponent,
+         "alpha",
+         "alpha",
+         {&Knobs::alphaPower},
+         2,
+         {1, 4},
+         0,
+         0,
          [](double e) { return "alpha = roughness^" + num(e); }},
-        {Term::Switch, "", "k = roughness^2 / 2 (the IBL remapping) in G1", {&Knobs::kChoice}, 0,
+        {Term::Switch,
+         "",
+         "k = roughness^2 / 2 (the IBL remapping) in G1",
+         {&Knobs::kChoice},
+         0,
          {1}},
     };
 }
@@ -351,8 +378,9 @@ const std::map<std::string, StepTerms>& table() {
     static const std::map<std::string, StepTerms> steps = [] {
         std::map<std::string, StepTerms> t;
         auto distance = [](double e) {
-            return e == 0 ? std::string("no falloff with distance")
-                          : e < 0 ? "1/d^" + num(-e) : "d^" + num(e);
+            return e == 0  ? std::string("no falloff with distance")
+                   : e < 0 ? "1/d^" + num(-e)
+                           : "d^" + num(e);
         };
         t["radiance"] = {
             [](const Surface& s, const ReferenceContext&, const Knobs& k) {
@@ -360,33 +388,69 @@ const std::map<std::string, StepTerms>& table() {
                 return power(s.lightColor, k.lightColor) *
                        power(std::max(glm::dot(d, d), ref::kMinDistance2), k.distance / 2);
             },
-            {{Term::Exponent, "d", "the inverse square", {&Knobs::distance}, -2, {}, -6, 2,
+            {{Term::Exponent,
+              "d",
+              "the inverse square",
+              {&Knobs::distance},
+              -2,
+              {},
+              -6,
+              2,
               distance},
-             factor("the light's colour", "the light's colour", {&Knobs::lightColor})}};
-        t["ndf"] = {
-            [](const Surface& s, const ReferenceContext&, const Knobs& k) {
-                return dvec3(
-                    ggx(glm::dot(s.normal, ref::halfwayVector(s.light, s.view)), s.roughness, k));
-            },
-            {{Term::Exponent, "alpha", "alpha", {&Knobs::alphaPower}, 2, {}, 0.25, 8,
-              [](double e) { return "alpha = roughness^" + num(e); }},
-             {Term::Exponent, "alpha^2", "the numerator alpha^2", {&Knobs::alpha2}, 1, {}, 0, 3,
-              [](double e) { return "(alpha^2)^" + num(e) + " in the numerator"; }},
-             {Term::Exponent, "N.H", "N.H", {&Knobs::NHpower}, 2, {}, 0.25, 6,
-              [](double e) { return "(N.H)^" + num(e) + " in the denominator"; }},
-             {Term::Exponent, "denominator", "the denominator", {&Knobs::denominator}, 2, {},
-              0.25, 4, [](double e) { return "the denominator to the power " + num(e); }}}};
-        t["g1"] = {
-            [](const Surface& s, const ReferenceContext&, const Knobs& k) {
-                return dvec3(g1(glm::dot(s.normal, s.view), s.roughness, k, 0));
-            },
-            {factor("N.X", "N.X in the numerator", {&Knobs::NX})}};
+             wholeFactor("the light's colour", "the light's colour", {&Knobs::lightColor})}};
+        t["ndf"] = {[](const Surface& s, const ReferenceContext&, const Knobs& k) {
+                        return dvec3(ggx(glm::dot(s.normal, ref::halfwayVector(s.light, s.view)),
+                                         s.roughness, k));
+                    },
+                    {{Term::Exponent,
+                      "alpha",
+                      "alpha",
+                      {&Knobs::alphaPower},
+                      2,
+                      {},
+                      0.25,
+                      8,
+                      [](double e) { return "alpha = roughness^" + num(e); }},
+                     {Term::Exponent,
+                      "alpha^2",
+                      "the numerator alpha^2",
+                      {&Knobs::alpha2},
+                      1,
+                      {},
+                      0,
+                      3,
+                      [](double e) { return "(alpha^2)^" + num(e) + " in the numerator"; }},
+                     {Term::Exponent,
+                      "N.H",
+                      "N.H",
+                      {&Knobs::NHpower},
+                      2,
+                      {},
+                      0.25,
+                      6,
+                      [](double e) { return "(N.H)^" + num(e) + " in the denominator"; }},
+                     {Term::Exponent,
+                      "denominator",
+                      "the denominator",
+                      {&Knobs::denominator},
+                      2,
+                      {},
+                      0.25,
+                      4,
+                      [](double e) { return "the denominator to the power " + num(e); }}}};
+        t["g1"] = {[](const Surface& s, const ReferenceContext&, const Knobs& k) {
+                       return dvec3(g1(glm::dot(s.normal, s.view), s.roughness, k, 0));
+                   },
+                   {wholeFactor("N.X", "N.X in the numerator", {&Knobs::NX})}};
         for (int i = 1; i < int(std::size(kChoices)); ++i)
-            t["g1"].terms.push_back({Term::Switch, "",
+            t["g1"].terms.push_back({Term::Switch,
+                                     "",
                                      kChoices[i].name + std::string(", where the direct-light "
                                                                     "remapping is k = "
                                                                     "(roughness + 1)^2 / 8"),
-                                     {&Knobs::kChoice}, 0, {double(i)}});
+                                     {&Knobs::kChoice},
+                                     0,
+                                     {double(i)}});
         t["smith"] = {
             [](const Surface& s, const ReferenceContext&, const Knobs& k) {
                 const double l = g1(glm::dot(s.normal, s.light), s.roughness, k, 0);
@@ -394,15 +458,17 @@ const std::map<std::string, StepTerms>& table() {
                     k.g1lTwice != 0 ? l : g1(glm::dot(s.normal, s.view), s.roughness, k, 0);
                 return dvec3(power(v, k.G1V) * power(k.g1vTwice != 0 ? v : l, k.G1L));
             },
-            {factor("G1(N.V)", "the masking term G1(N.V)", {&Knobs::G1V}),
-             factor("G1(N.L)", "the shadowing term G1(N.L)", {&Knobs::G1L}),
-             onOff("G1(N.V) for the light too, where the reference has G1(N.L)",
-                   &Knobs::g1vTwice),
-             onOff("G1(N.L) for the view too, where the reference has G1(N.V)",
-                   &Knobs::g1lTwice),
-             {Term::Switch, "", "k = roughness^2 / 2 (the IBL remapping), where direct light has "
-                                "k = (roughness + 1)^2 / 8",
-              {&Knobs::kChoice}, 0, {1}}}};
+            {wholeFactor("G1(N.V)", "the masking term G1(N.V)", {&Knobs::G1V}),
+             wholeFactor("G1(N.L)", "the shadowing term G1(N.L)", {&Knobs::G1L}),
+             onOff("G1(N.V) for the light too, where the reference has G1(N.L)", &Knobs::g1vTwice),
+             onOff("G1(N.L) for the view too, where the reference has G1(N.V)", &Knobs::g1lTwice),
+             {Term::Switch,
+              "",
+              "k = roughness^2 / 2 (the IBL remapping), where direct light has "
+              "k = (roughness + 1)^2 / 8",
+              {&Knobs::kChoice},
+              0,
+              {1}}}};
         t["fresnel"] = {
             [](const Surface& s, const ReferenceContext& c, const Knobs& k) {
                 const double cosine =
@@ -411,8 +477,15 @@ const std::map<std::string, StepTerms>& table() {
                         : std::max(glm::dot(s.normal, s.view), 0.0);
                 return fresnel(cosine, ref::baseReflectivity(s.albedo, s.metallic), k);
             },
-            {{Term::Exponent, "(1 - cos)", "the Schlick factor", {&Knobs::schlick}, 5, {}, 0.5,
-              10, [](double e) { return "the Schlick factor (1 - cos)^" + num(e); }},
+            {{Term::Exponent,
+              "(1 - cos)",
+              "the Schlick factor",
+              {&Knobs::schlick},
+              5,
+              {},
+              0.5,
+              10,
+              [](double e) { return "the Schlick factor (1 - cos)^" + num(e); }},
              factor("(1 - F0)", "the factor (1 - F0) in front of the Schlick factor",
                     {&Knobs::oneMinusF0}),
              onOff("F0 multiplying the Schlick factor (F0 + F0 (1 - cos)^5), where the "
@@ -420,7 +493,14 @@ const std::map<std::string, StepTerms>& table() {
                    &Knobs::f0TimesSchlick)}};
         t["tonemap"] = {
             tonemap,
-            {{Term::Exponent, "gamma", "the gamma", {&Knobs::gamma}, 1 / 2.2, {}, 0.1, 3,
+            {{Term::Exponent,
+              "gamma",
+              "the gamma",
+              {&Knobs::gamma},
+              1 / 2.2,
+              {},
+              0.1,
+              3,
               [](double e) {
                   // The exponent is 1 / gamma; above 1 it decodes instead of encoding.
                   return std::abs(e - 1) < 1e-9 ? std::string("no gamma (exponent 1)")
@@ -428,8 +508,14 @@ const std::map<std::string, StepTerms>& table() {
                                        num(e) + ")"
                                  : "gamma " + num(1 / e) + " (exponent 1/" + num(1 / e) + ")";
               }},
-             {Term::Exponent, "(1 + hdr)", "Reinhard's denominator", {&Knobs::reinhard}, -1, {},
-              -3, 1,
+             {Term::Exponent,
+              "(1 + hdr)",
+              "Reinhard's denominator",
+              {&Knobs::reinhard},
+              -1,
+              {},
+              -3,
+              1,
               [](double e) {
                   return e == 0 ? std::string("no Reinhard denominator (hdr, not hdr / (1 + hdr))")
                                 : "hdr (1 + hdr)^" + num(e) + " before the gamma";
@@ -437,26 +523,32 @@ const std::map<std::string, StepTerms>& table() {
              onOff("the gamma applied before Reinhard's x / (1 + x), where the reference "
                    "tonemaps first",
                    &Knobs::gammaFirst)}};
-        t["specular"] = {
-            [](const Surface& s, const ReferenceContext&, const Knobs& k) {
-                return grazingBand(s) * cookTorrance(s, s.light, k).specular;
-            },
-            specularTerms()};
+        t["specular"] = {[](const Surface& s, const ReferenceContext&, const Knobs& k) {
+                             return grazingBand(s) * cookTorrance(s, s.light, k).specular;
+                         },
+                         specularTerms(true)};
         t["brdf"] = {
             [](const Surface& s, const ReferenceContext&, const Knobs& k) {
                 return grazingBand(s) * brdf(s, s.light, k);
             },
-            joined(joined(specularTerms(), diffuseTerms()),
-                   {factor("N.L", "the cosine N.L (it belongs to the reflectance equation, not to f_r)",
-                           {&Knobs::cosine}, 0)})};
-        t["reflectance"] = {
-            reflected,
-            joined(joined(specularTerms(), diffuseTerms()),
-                   {factor("N.L", "the cosine N.L", {&Knobs::NLcos}),
-                    {Term::Exponent, "d", "the inverse square", {&Knobs::distance}, -2, {}, -6, 2,
-                     distance},
-                    factor("ao", "ao in the ambient term", {&Knobs::ao}),
-                    removed("the ambient term 0.03 albedo ao", &Knobs::ambient)})};
+            joined(joined(specularTerms(false), diffuseTerms()),
+                   {wholeFactor(
+                       "N.L", "the cosine N.L (it belongs to the reflectance equation, not to f_r)",
+                       {&Knobs::cosine}, 0)})};
+        t["reflectance"] = {reflected,
+                            joined(joined(specularTerms(false), diffuseTerms()),
+                                   {factor("N.L", "the cosine N.L", {&Knobs::NLcos}),
+                                    {Term::Exponent,
+                                     "d",
+                                     "the inverse square",
+                                     {&Knobs::distance},
+                                     -2,
+                                     {},
+                                     -6,
+                                     2,
+                                     distance},
+                                    factor("ao", "ao in the ambient term", {&Knobs::ao}),
+                                    removed("the ambient term 0.03 albedo ao", &Knobs::ambient)})};
         t["mc_specular"] = {
             mcSpecular,
             {factor("G", "the geometry term G", {&Knobs::G1V, &Knobs::G1L}),
@@ -468,9 +560,13 @@ const std::map<std::string, StepTerms>& table() {
              factor("N.V", "N.V in the weight G V.H / (N.H N.V)", {&Knobs::NV}, -1),
              onOff("F0 where F belongs (F = F0 + (1 - F0)(1 - V.H)^5)", &Knobs::f0ForF),
              onOff("F evaluated at N.V, where each sample has V.H", &Knobs::fresnelAtNdotV),
-             {Term::Switch, "", "k = (roughness + 1)^2 / 8 (direct light), where IBL has "
-                                "k = roughness^2 / 2",
-              {&Knobs::kChoice}, 0, {double(-1)}}},
+             {Term::Switch,
+              "",
+              "k = (roughness + 1)^2 / 8 (direct light), where IBL has "
+              "k = roughness^2 / 2",
+              {&Knobs::kChoice},
+              0,
+              {double(-1)}}},
             32};
         t["brdf_lut"] = {
             brdfLut,
@@ -480,17 +576,33 @@ const std::map<std::string, StepTerms>& table() {
              factor("V.H", "V.H in G_vis = G V.H / (N.H N.V)", {&Knobs::VH}),
              factor("N.H", "N.H in G_vis = G V.H / (N.H N.V)", {&Knobs::NH}, -1),
              factor("N.V", "N.V in G_vis = G V.H / (N.H N.V)", {&Knobs::NV}, -1),
-             {Term::Exponent, "(1 - V.H)", "the Schlick factor", {&Knobs::schlick}, 5,
-              {1, 2, 3, 4, 6}, 0, 0,
+             {Term::Exponent,
+              "(1 - V.H)",
+              "the Schlick factor",
+              {&Knobs::schlick},
+              5,
+              {1, 2, 3, 4, 6},
+              0,
+              0,
               [](double e) { return "the Schlick factor Fc = (1 - V.H)^" + num(e); }},
              onOff("Fc = (1 - N.V)^5, where each sample has (1 - V.H)^5", &Knobs::fresnelAtNdotV),
-             {Term::Switch, "", "k = (roughness + 1)^2 / 8 (direct light), where IBL has "
-                                "k = roughness^2 / 2",
-              {&Knobs::kChoice}, 0, {double(-1)}}},
+             {Term::Switch,
+              "",
+              "k = (roughness + 1)^2 / 8 (direct light), where IBL has "
+              "k = roughness^2 / 2",
+              {&Knobs::kChoice},
+              0,
+              {double(-1)}}},
             32};
         t["irradiance"] = {
             irradiance,
-            {{Term::Exponent, "N.L", "the cosine N.L", {&Knobs::irradianceCosine}, 1, {0, 2}, 0,
+            {{Term::Exponent,
+              "N.L",
+              "the cosine N.L",
+              {&Knobs::irradianceCosine},
+              1,
+              {0, 2},
+              0,
               0,
               [](double e) {
                   return e == 0   ? std::string("no cosine N.L")
@@ -503,7 +615,7 @@ const std::map<std::string, StepTerms>& table() {
             48};
         t["split_sum"] = {
             splitSum,
-            {factor("ao", "ao", {&Knobs::ao}),
+            {wholeFactor("ao", "ao", {&Knobs::ao}),
              factor("kD", "the diffuse weight kD", {&Knobs::kD}),
              factor("(1 - metallic)", "(1 - metallic) in kD", {&Knobs::metal}),
              factor("albedo", "the albedo in the diffuse term", {&Knobs::albedo}),
@@ -561,7 +673,8 @@ struct Evaluation {
             for (size_t p = 0; p < out.size(); ++p)
                 for (int c = 0; c < in.module->components; ++c) {
                     const double t = in.expected[points.index[p]][c];
-                    if (std::abs(t) > 1e-3 && std::isfinite(out[p][c])) ratios.push_back(out[p][c] / t);
+                    if (std::abs(t) > 1e-3 && std::isfinite(out[p][c]))
+                        ratios.push_back(out[p][c] / t);
                 }
             if (!ratios.empty()) {
                 std::nth_element(ratios.begin(), ratios.begin() + long(ratios.size() / 2),
@@ -633,18 +746,27 @@ struct Candidate {
 
 std::string messageFor(const Term& t, double e) {
     if (t.kind == Term::Switch)
-        return t.reference != 0 ? "Your value is the reference without " + t.name + ": is it missing?"
-                                : "Your value fits the reference with " + t.name + ".";
+        return t.reference != 0
+                   ? "Your value is the reference without " + t.name + ": is it missing?"
+                   : "Your value fits the reference with " + t.name + ".";
     if (t.kind == Term::Exponent)
         return "Your value fits " + t.format(e) + " where the reference has " +
                t.format(t.reference) + ": is an exponent wrong?";
     const double q = e - t.reference;
     const std::string S = t.symbol;
-    std::string head = "Your value is the reference " +
-                       (q == 1    ? "times " + S
-                        : q == -1 ? "divided by " + S
-                        : q > 0   ? "times " + S + "^" + num(q)
-                                  : "divided by " + S + "^" + num(-q));
+    // A factor of the whole value is a ratio to the reference; one inside a sum or an
+    // integral is not, and is said as the reference written with it changed.
+    const std::string head =
+        t.whole ? "Your value is the reference " + (q == 1    ? "times " + S
+                                                    : q == -1 ? "divided by " + S
+                                                    : q > 0   ? "times " + S + "^" + num(q)
+                                                              : "divided by " + S + "^" + num(-q))
+                : "Your value fits the reference " +
+                      (e == 0                      ? "without " + S
+                       : e == 2 * t.reference      ? "with " + S + " twice"
+                       : t.reference == 0 && e > 0 ? "with an extra factor " + S
+                       : t.reference == 0          ? "with an extra division by " + S
+                                                   : "with " + S + "^" + num(e));
     std::string question;
     if (t.reference != 0 && e == 0)
         question = "is " + t.name + " missing?";
@@ -682,8 +804,11 @@ std::string nameTerm(const FeedbackInputs& in) {
     const auto found = table().find(in.module->id);
     if (found == table().end()) return "";
     const StepTerms& step = found->second;
-    Evaluation ev{in, step, *in.context, {}, in.module->estimator &&
-                                                 in.module->estimator->scaleTolerance > 0};
+    Evaluation ev{in,
+                  step,
+                  *in.context,
+                  {},
+                  in.module->estimator && in.module->estimator->scaleTolerance > 0};
     // Up to step.points points: half of them among the wrong ones, the rest spread over all.
     std::vector<size_t> wrong, right;
     for (size_t i = 0; i < in.values.size(); ++i) {
@@ -704,15 +829,6 @@ std::string nameTerm(const FeedbackInputs& in) {
     for (size_t p = 0; p < chosen.size(); ++p) ev.points.wrong.push_back(p < fromWrong);
     ev.points.wrongCount = int(fromWrong);
 
-    if (std::getenv("PBRLAB_TERM_FITS_DEBUG")) {
-        const std::vector<dvec3> r = ev.values(Knobs{});
-        for (size_t p = 0; p < std::min<size_t>(r.size(), 4); ++p) {
-            const size_t i = ev.points.index[p];
-            std::fprintf(stderr, "point %zu: model %g %g %g expected %g %g %g value %g %g %g slack %g\n", i,
-                         r[p].x, r[p].y, r[p].z, in.expected[i].x, in.expected[i].y, in.expected[i].z,
-                         in.values[i].x, in.values[i].y, in.values[i].z, in.slack[i].x);
-        }
-    }
     std::vector<Candidate> candidates;
     auto consider = [&](const Term& t, double e) {
         const Share s = ev.share(with(t, e));
