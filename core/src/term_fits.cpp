@@ -120,8 +120,10 @@ Lobe cookTorrance(const Surface& s, const dvec3& L, const Knobs& k) {
     const dvec3 specular = power(ggx(glm::dot(N, H), s.roughness, k), k.D) * power(G1v, k.G1V) *
                            power(G1l, k.G1L) * power(F, k.F) * power(F0, k.F0) / denominator *
                            power(4.0, k.four + 1) * power(NdotL, k.NL + 1) * power(NdotV, k.NV + 1);
-    // kD = (1 - F)(1 - metallic), from F at H.V as the reference has it.
-    const dvec3 Fd = fresnel(std::max(glm::dot(H, V), 0.0), F0, Knobs{});
+    // kD = (1 - F)(1 - metallic), from the reference's F, or from F at N.V when the lobe's is
+    // (a BRDF computes F once and uses it in both).
+    const dvec3 Fd =
+        fresnel(k.fresnelAtNdotV != 0 ? NdotV : std::max(glm::dot(H, V), 0.0), F0, Knobs{});
     const dvec3 kD = (1.0 - Fd) * power(1.0 - s.metallic, k.metal);
     const dvec3 diffuse = power(kD, k.kD) * power(s.albedo, k.albedo) * power(kPi, k.pi);
     return {specular, diffuse};
