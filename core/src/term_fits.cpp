@@ -698,8 +698,9 @@ struct Evaluation {
             const size_t i = points.index[p];
             double d = 0;
             for (int c = 0; c < in.module->components; ++c) {
-                const double e = std::abs(in.values[i][c] - v[p][c]) /
-                                 (2 * in.slack[i][c] + 1e-4 * std::abs(v[p][c]));
+                const double apart = std::abs(in.values[i][c] - v[p][c]);
+                const double e =
+                    apart == 0 ? 0 : apart / (2 * in.slack[i][c] + 1e-4 * std::abs(v[p][c]));
                 d = std::max(d, std::isfinite(e) ? e : 1e300);
             }
             out.push_back(d);
@@ -784,10 +785,6 @@ std::string messageFor(const Term& t, double e) {
 }
 
 }  // namespace
-
-bool hasNamedTerms(const std::string& stepId) {
-    return table().count(stepId) != 0;
-}
 
 std::string nameTerm(const FeedbackInputs& in) {
     // PBRLAB_TERM_FITS_DEBUG: every candidate's shares and the time taken, on stderr (how the

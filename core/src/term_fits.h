@@ -16,9 +16,6 @@
 
 namespace pbrlab {
 
-// Whether `stepId` has a table of named terms here.
-bool hasNamedTerms(const std::string& stepId);
-
 // "Your value is the reference divided by G: is the geometry term missing?", or "" when no
 // term explains the error, or more than one does. Needs in.context for the steps that read
 // the scene's lights or the environment (reflectance, tonemap, IBL steps).
