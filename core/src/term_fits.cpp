@@ -505,6 +505,7 @@ const std::map<std::string, StepTerms>& table() {
               3,
               [](double e) {
                   // The exponent is 1 / gamma; above 1 it decodes instead of encoding.
+                  if (std::abs(e) < 1e-9) return std::string("the exponent 0 (every value 1)");
                   return std::abs(e - 1) < 1e-9 ? std::string("no gamma (exponent 1)")
                          : e > 1 ? "the exponent " + num(e) + " (it decodes: the display needs 1/" +
                                        num(e) + ")"
