@@ -94,6 +94,7 @@ StepResult StepGrader::run() {
         else
             gradeValues(scene);
         gradeInvariants(scene);
+        gradeCallerInputs(scene);
         if (settings_.robustness) gradeRobustness(scene);
     } catch (const Stopped&) {
         // stopAtFirstFailure: the verdict is known.

@@ -104,6 +104,7 @@ private:
     // grading_checks.cpp
     void checkSamplers(const Program& program);
     void gradeInvariants(const Scene& scene);
+    void gradeCallerInputs(const Scene& scene);
     void gradeRobustness(const Scene& scene);
 
     // grading_feedback.cpp
