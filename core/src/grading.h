@@ -5,7 +5,9 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -76,6 +78,10 @@ struct StepResult {
     // shown to the student, who would otherwise read the solution off the feedback).
     std::string instructorNote;
     double seconds = 0;
+    // Every value the host gave the step's program in its values checks, by the name the
+    // program reads it by (NUM_LIGHTS, uLightPositions, uPrefilterMaxLod, uBrdfLut's size,
+    // u_<parameter>, ...): what shows that each is graded at more than one value.
+    std::map<std::string, std::set<std::string>> hostValues;
 };
 
 // Throws ShaderError when the student's file does not compile, pbrlab::Error for refused
