@@ -229,6 +229,15 @@ void StepGrader::gradeValues(const Scene& scene) {
     for (const ParamDecl& p : d_.params)
         for (const std::string& assignment : exercisedValues(p)) {
             const ParamValues params = withSets(d_, {assignment});
+            if (p.type == ParamType::Int && params.number(p.name) > kFewPointsAbove) {
+                if (!d_.domain) continue;
+                const Grid few = grid(domainSurfaces(d_, settings_.seed, kFewPoints));
+                keep(runValues("random inputs with " + assignment + " (" +
+                                   std::to_string(kFewPoints) + " points)",
+                               "random", scene, params, &few.surfaces, few.width, few.height,
+                               nullptr));
+                continue;
+            }
             if (p.binding == ParamBinding::LightDirection) {
                 gradeCase("scene with " + assignment, GradeCase::Inputs::Scene, scene, params);
                 continue;
