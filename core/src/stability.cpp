@@ -108,9 +108,9 @@ ExtremeSet extremeSurfaces() {
 ExtremeSet callerSurfaces(double smallestRoughness) {
     ExtremeSet set;
     // One ulp of a float just above 1 (2^-23): the host normalises N, V, L and H in float, so
-    // their lengths are 1 within about 2 of these (measured: normalize() on llvmpipe leaves
-    // |v| - 1 within +-1.2e-7 over 1e5 random vectors), and a cosine of equal unit vectors
-    // reaches 1 + 2 ulps.
+    // their lengths are 1 within about 2 of these (measured on llvmpipe: normalize(L + V) over
+    // 65536 random pairs within 1.32 ulps of length 1, test_inputs.cpp), and a cosine of equal
+    // unit vectors reaches 1 + 2 ulps.
     constexpr double ulp = std::numeric_limits<float>::epsilon();
     // A unit vector as a float normalize() leaves it, then lengthened by `ulps` ulps.
     auto unit = [&](const glm::dvec3& d, double ulps) {
