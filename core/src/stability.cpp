@@ -186,6 +186,10 @@ ExtremeSet callerSurfaces(double smallestRoughness) {
             s.covered = true;
             s.normal = normals[3];
             s.view = s.light = unit(glm::dvec3(0.1, 0.2, 1), 2);
+            s.position = glm::dvec3(0.25, -0.5, 1);
+            s.lightPosition = s.position + 2.0 * s.light;  // not on the point (a note)
+            s.lightColor = glm::dvec3(1);
+            s.albedo = s.albedoTexel = glm::dvec3(0.5);
             s.roughness = r;
             s.extra = glm::dvec4(e, 0, 0);
             set.surfaces.push_back(s);
