@@ -154,8 +154,8 @@ void StepGrader::gradeInvariants(const Scene& scene) {
 // ulp when V = L), each built with the student's function and the reference solutions around
 // it, on callerSurfaces with the smallest roughness that view passes. NaN or Inf there fails
 // the step. Estimators (17-20) are graded by convergence, their values finite at every count.
-// Cost (2-core llvmpipe, warm): 0.1-0.6 s a step, most in the callers' program compiles
-// (fresnel: its view twice and 4 callers; measured, docs/grading.md).
+// Cost (2-core llvmpipe, warm caches, measured): 2-200 ms a step, 0.94 s over steps 1-16 and
+// 21, most in the callers' programs (f0: 199 ms, fresnel 185 ms; docs/grading.md).
 void StepGrader::gradeCallerInputs(const Scene& scene) {
     if (d_.estimator) return;
     stage("inputs its callers produce");
