@@ -19,7 +19,7 @@ constexpr double kViewMinNdotV = 1e-3;
 ModuleDesc describeModule() {
     ModuleDesc d;
     d.title = "Split-sum BRDF LUT (scale A, bias B)";
-    d.params = {intParam("samples", 256, 1, 4096,
+    d.params = {intParam("samples", 256, 1, 65536,
                          "GGX samples per value (the host's LUT precompute uses 512)")};
     d.components = 2;
     // A in red, B in green, as stored (linear, like the published LUT images).
@@ -74,7 +74,7 @@ ModuleDesc describeModule() {
     e.converged = [](const Surface& s, const ReferenceContext&, std::uint32_t samples) {
         const double NdotV = std::max(glm::dot(s.normal, s.view), kViewMinNdotV);
         const ref::Moments m = ref::brdfLutMoments(NdotV, s.roughness, std::min(samples, 2048u));
-        return Estimate{m.mean, m.sigma};
+        return Estimate{m.mean, m.sigma, m.error};
     };
     e.systematic = {2e-4, 2e-3, 0, 0.02};
     d.estimator = e;

@@ -14,7 +14,7 @@ namespace {
 ModuleDesc describeModule() {
     ModuleDesc d;
     d.title = "Specular IBL by Monte Carlo";
-    d.params = {intParam("samples", 64, 1, 4096, "Samples per pixel (GGX importance sampling)")};
+    d.params = {intParam("samples", 64, 1, 65536, "Samples per pixel (GGX importance sampling)")};
     d.components = 3;
     d.display = {DisplayMode::HdrColor};
     d.needs = NeedsMaterial | NeedsEnvironment;
@@ -68,7 +68,7 @@ ModuleDesc describeModule() {
         const ref::Moments m = ref::specularIBLMoments(env, s.normal, s.view,
                                                        ref::baseReflectivity(s.albedo, s.metallic),
                                                        s.roughness, samples);
-        return Estimate{m.mean, m.sigma};
+        return Estimate{m.mean, m.sigma, m.error};
     };
     e.systematic = {1e-3, 3e-3, 0, 0.02};
     d.estimator = e;

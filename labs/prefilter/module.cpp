@@ -21,8 +21,8 @@ std::uint32_t samples(const ReferenceContext& c) {
 ModuleDesc describeModule() {
     ModuleDesc d;
     d.title = "Prefiltered environment (GGX lobe average)";
-    d.params = {
-        intParam("samples", 64, 1, 4096, "GGX samples per pixel (the host's precompute uses 256)")};
+    d.params = {intParam("samples", 64, 1, 65536,
+                         "GGX samples per pixel (the host's precompute uses 256)")};
     d.components = 3;
     d.display = {DisplayMode::HdrColor};
     d.needs = NeedsRoughness | NeedsEnvironment;
@@ -69,7 +69,7 @@ ModuleDesc describeModule() {
         const ref::CubeEnvironment env(c.ibl->environment);
         const glm::dvec3 R = glm::reflect(-s.view, s.normal);
         const ref::Moments m = ref::prefilterMoments(env, R, s.roughness, samples);
-        return Estimate{m.mean, m.sigma};
+        return Estimate{m.mean, m.sigma, m.error};
     };
     e.systematic = {1e-3, 1e-2, 0, 0.02};
     d.estimator = e;
