@@ -9,8 +9,8 @@
 // measures seeds 1..200 (seed 0 is the file as it is, graded by test_variants.cpp) and prints,
 // per family and check, the failures and the worst statistic (docs/grading.md, "Estimators:
 // dynamic range, linearity, false failures"). Without PBRLAB_SEEDS: seed 1 only.
-// PBRLAB_SEEDS_STEPS=mc_specular,brdf_lut: those steps' families only (to share the work
-// among processes).
+// PBRLAB_SEEDS_STEPS=mc_specular,brdf_lut: those steps' families only, PBRLAB_SEEDS_FAMILY=TEXT
+// the families whose file name holds TEXT (to share the work among processes).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -22,6 +22,8 @@
 #include "gl/context.h"
 #include "grade.h"
 #include "pbrlab/contract.h"
+#include "pbrlab/envgen.h"
+#include "pbrlab/error.h"
 #include "renderer.h"
 #include "step_grader.h"
 #include "test_support.h"
@@ -50,6 +52,8 @@ std::vector<Family> seededFamilies() {
             std::ifstream in(f.path());
             std::stringstream text;
             text << in.rdbuf();
+            const char* family = std::getenv("PBRLAB_SEEDS_FAMILY");
+            if (family && f.path().filename().string().find(family) == std::string::npos) continue;
             if (std::regex_search(text.str(), kSeedLine)) out.push_back({id, f.path(), text.str()});
         }
     }
@@ -117,4 +121,27 @@ TEST(EstimatorSeeds, NoCorrectEstimatorFailsAtAnySeed) {
             std::printf("[ seeds    ] %s: %s: %d of %d failed, worst statistic %.4g\n",
                         family.c_str(), name.c_str(), s.failures, s.runs, s.worst);
     }
+}
+
+// The environments of the estimator checks (envgen.h): sky-hdr is the soft sky plus the lobe,
+// texel by texel; a factor scales every texel; the lobe spans 1e4 to 1e5 (in the sun's colour).
+TEST(EstimatorEnvironments, SkyHdrIsTheSoftSkyPlusTheLobeAndScalesExactly) {
+    const Image soft = generateEnvironment("sky-soft"), lobe = generateEnvironment("hdr-lobe");
+    const Image sum = generateEnvironment("sky-hdr");
+    const Image scaled = generateEnvironment("sky-hdr*1024");
+    ASSERT_EQ(sum.pixels.size(), soft.pixels.size());
+    ASSERT_EQ(lobe.pixels.size(), soft.pixels.size());
+    float lo = 1e30f, hi = 0;
+    for (size_t i = 0; i < sum.pixels.size(); ++i) {
+        ASSERT_EQ(sum.pixels[i], float(double(soft.pixels[i]) + double(lobe.pixels[i]))) << i;
+        ASSERT_EQ(scaled.pixels[i], 1024.0f * sum.pixels[i]) << i;
+        if (i % 3 == 0) lo = std::min(lo, lobe.pixels[i]), hi = std::max(hi, lobe.pixels[i]);
+    }
+    // Red is the sun colour's largest channel (1.0): the lobe's own range, sampled at texel
+    // centres (within a texel of either end).
+    EXPECT_NEAR(lo, 1e4, 1e4 * 1e-3);
+    EXPECT_NEAR(hi, 1e5, 1e5 * 1e-3);
+    EXPECT_TRUE(isGeneratedEnvironment("sky-hdr*0.0009765625"));
+    EXPECT_FALSE(isGeneratedEnvironment("sky-hdr*x"));
+    EXPECT_THROW(generateEnvironment("nothing"), Error);
 }

@@ -55,6 +55,12 @@ glm::dvec3 noiseAt(const Estimate& t, int n) {
     return glm::sqrt(t.sigma * t.sigma / double(std::max(n, 1)) + t.error * t.error);
 }
 
+// The bias test's limit on |z|. Over the seed sweep (docs/grading.md, "Estimators: dynamic
+// range, linearity, false failures") correct estimators of five kinds reached |z| = 5.38 (a
+// stratified one, on sky-hdr); 7 is 1.3 x that, and the typical mistakes sit at 36 or more.
+// Under normal noise |z| > 7 has probability 3e-12 per region.
+constexpr double kBiasLimit = 7;
+
 }  // namespace
 
 // Points an estimator is judged on (the subsampled probe, the random inputs) with their
@@ -179,10 +185,16 @@ void StepGrader::gradeConvergence(const Scene& scene, const std::string& environ
                     ++errorCount;
                 }
             }
+            if (n == counts.back()) set.last = r.value;
+            // The smallest count measures the error's fall only. Four samples are far from
+            // normal: Chebyshev lets 4% of the points of a correct estimator pass 5 sigma /
+            // sqrt(n), the band allows 2%, and over 200 seeds correct estimators reached 2.9%
+            // (rotated Hammersley) and 9.6% (filtered importance sampling, whose blur at 4
+            // samples is a bias of its own that vanishes as n grows); docs/grading.md.
+            if (counts.size() > 1 && n == counts.front()) continue;
             const Comparison c = compareWithBand(r.value, set.surfaces, band, d_.components,
                                                  d_.nonNegative, e.systematic.outlierFraction);
             ValuesRun run;
-            if (n == counts.back()) set.last = r.value;
             run.report = reportFor(name, d_, c, set.surfaces, e.systematic.outlierFraction,
                                    set.probe, set.width);
             // Against the converged integral: the estimator's own category, not the probe's
@@ -446,12 +458,10 @@ void StepGrader::rescale(const std::string& name, Image& value,
 // At the largest count a correct estimator's error is noise of scale sigma / sqrt(n),
 // independent from point to point or (for one low-discrepancy set shared by every point)
 // far smaller than that; a mistake's is a bias that keeps its sign over a region of
-// inputs. Per region (4 x 4 blocks of the probe, the random points by roughness), the sum
+// inputs. Per region (the random points by quarter of roughness), the sum
 // of the points' errors in units of sqrt(sigma^2 / n + error^2) (the converged value's own
 // error, independent from point to point, included), beyond the systematic allowance, over
-// the square root of their number must stay within 5 (a correct estimator: |z| > 5 with
-// probability 6e-7 per region; measured over 200 seeds of correct estimators of five kinds:
-// docs/grading.md, "Estimators: dynamic range, linearity, false failures").
+// the square root of their number must stay within kBiasLimit (above).
 void StepGrader::biasTest(const std::vector<PointSet>& sets, int n,
                           const std::string& onEnvironment) {
     const EstimatorSpec& e = *d_.estimator;
@@ -463,20 +473,20 @@ void StepGrader::biasTest(const std::vector<PointSet>& sets, int n,
     for (const auto& set : sets)
         for (size_t i = 0; i < set.surfaces.size(); ++i) {
             const Surface& s = set.surfaces[i];
-            if (!s.covered) continue;
-            std::string region;
-            if (set.probe) {
-                const int x = int(i % size_t(set.width)), y = int(i / size_t(set.width));
-                region = "probe x " + std::to_string(4 * x / set.width) + "/4, y " +
-                         std::to_string(3 - 4 * y / set.height) + "/4";
-            } else {
-                region = "random inputs, roughness " +
-                         std::to_string(std::min(3, int(s.roughness * 4))) + "/4";
-            }
+            // The random inputs only: their points differ in every input, so an estimator
+            // whose random numbers are a function of its inputs has independent errors there.
+            // The probe's do not: its rows differ in roughness alone, and an estimator seeded
+            // by N and V (correct) gives a column the same samples, one error counted four
+            // times in a 4 x 4 block (measured on probe and random points together: |z| to 26
+            // within 19 seeds of a stratified estimator, 5.4 within 15 of independent random
+            // numbers; on the random points alone: docs/grading.md).
+            if (!s.covered || set.probe) continue;
+            const std::string region = "random inputs, roughness " +
+                                       std::to_string(std::min(3, int(s.roughness * 4))) + "/4";
             // One term per point: the mean of its components' errors in noise units. The
             // components of one point share its samples (radiance's channels move together),
-            // so they are counted as one (counted as independent, noise alone reached |z| = 6.1
-            // at one seed of 200: their sum has up to sqrt(3) x the spread assumed).
+            // so they are counted as one (counted as three, noise alone reached |z| = 6.1 for
+            // independent random numbers at seed 1: up to sqrt(3) x the spread assumed).
             const Estimate& t = set.truth[i];
             double term = 0;
             int terms = 0;
@@ -508,14 +518,14 @@ void StepGrader::biasTest(const std::vector<PointSet>& sets, int n,
         if (std::abs(z) > std::abs(worstZ)) worstZ = z, worst = name;
     }
     c.measured = worstZ;
-    c.expected = "|z| <= 5";
-    c.passed = std::abs(worstZ) <= 5;
+    c.expected = "|z| <= " + number(kBiasLimit);
+    c.passed = std::abs(worstZ) <= kBiasLimit;
     c.detail = "the errors at " + std::to_string(n) + " samples sum to z = " + number(worstZ, 3) +
                " noise units in " + (worst.empty() ? "no region" : worst) +
-               (c.passed ? " (noise: |z| <= 5)"
+               (c.passed ? " (noise: |z| <= " + number(kBiasLimit) + ")"
                          : ": a bias that keeps its sign there, " +
                                std::string(worstZ < 0 ? "too low" : "too high") +
-                               " (noise alone stays within |z| <= 5)");
+                               " (noise alone stays within |z| <= " + number(kBiasLimit) + ")");
     record(c);
 }
 

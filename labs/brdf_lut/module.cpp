@@ -76,7 +76,11 @@ ModuleDesc describeModule() {
         const ref::Moments m = ref::brdfLutMoments(NdotV, s.roughness, std::min(samples, 2048u));
         return Estimate{m.mean, m.sigma, m.error};
     };
-    e.systematic = {2e-4, 2e-3, 0, 0.02};
+    // 4% of the points may be outside the band: Chebyshev's bound for any correct estimator
+    // (with the true sigma, P(|error| > 5 sigma / sqrt(n)) <= 1/25). 2% failed estimators
+    // seeded by N and V on the probe, whose rows share their samples (2.5% at one seed of
+    // independent random numbers, docs/grading.md).
+    e.systematic = {2e-4, 2e-3, 0, 0.04};
     d.estimator = e;
     d.domain = [](DomainRandom& r) {
         Surface s;

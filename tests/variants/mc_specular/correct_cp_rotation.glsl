@@ -1,6 +1,7 @@
 // correct: Hammersley points under a Cranley-Patterson rotation (every point of the set
-// shifted by one random offset modulo 1, drawn from SEED, the same at every pixel), GGX
-// sampling of its own in a frame built from the x axis, and the weight with the IBL k.
+// shifted by one random offset modulo 1, drawn from a hash of N, V and SEED: another at every
+// pixel), GGX sampling of its own in a frame built from the x axis, and the weight with the
+// IBL k.
 // tests/test_estimator_seeds.cpp grades it at 200 values of SEED.
 const uint SEED = 0u;
 
@@ -23,8 +24,11 @@ vec3 specularIBLReference(vec3 N, vec3 V, vec3 F0, float roughness, uint sampleC
     vec3 axis = abs(N.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 0.0, 1.0);
     vec3 T = normalize(cross(N, axis));
     vec3 B = cross(T, N);
-    vec2 shift = vec2(float(rotationHash(2u * SEED + 1u) >> 8u),
-                      float(rotationHash(2u * SEED + 2u) >> 8u)) / 16777216.0;
+    uint pixel = rotationHash(floatBitsToUint(N.x - 2.0 * V.z) ^
+                              rotationHash(floatBitsToUint(N.y + V.x) ^
+                                           rotationHash(floatBitsToUint(N.z + 3.0 * V.y) + SEED)));
+    vec2 shift = vec2(float(rotationHash(2u * pixel + 1u) >> 8u),
+                      float(rotationHash(2u * pixel + 2u) >> 8u)) / 16777216.0;
     uint n = max(sampleCount, 1u);
     vec3 sum = vec3(0.0);
     for (uint i = 0u; i < n; ++i) {
