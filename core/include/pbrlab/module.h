@@ -336,12 +336,13 @@ struct Estimate {
 };
 struct EstimatorSpec {
     std::string samplesParam;       // the parameter that sets the sample count ("" none)
-    std::vector<int> sampleCounts;  // graded counts, smallest first
+    // Graded counts, smallest first; the smallest measures the error's fall only (no band).
+    std::vector<int> sampleCounts;
     // The environment correctness is judged on: one where legitimate estimators converge (no
     // sub-degree sun). The module's own scene stays for the quality report.
     std::string environment = "sky-soft";
-    // Judged the same way on this one too ("" none): radiance of real dynamic range, smooth
-    // lobes of 1e3 to 1e5 on the soft sky (envgen.h), where every correct estimator still
+    // Judged the same way on this one too ("" none): radiance of real dynamic range, a smooth
+    // lobe of 1e4 to 1e5 on the soft sky (envgen.h), where every correct estimator still
     // converges and a clamp or tone map on radiance is off by orders of magnitude.
     std::string hdrEnvironment = "sky-hdr";
     // The converged value and one sample's spread at a point, measured with `truthSamples`
@@ -349,8 +350,9 @@ struct EstimatorSpec {
     std::function<Estimate(const Surface&, const ReferenceContext&, std::uint32_t truthSamples)>
         converged;
     std::uint32_t truthSamples = 16384;
-    // At n samples: |v - mean| <= t + sigmas * sigma / sqrt(n), t from `systematic` (what
-    // correct estimators differ by beyond noise: filtering, quadrature; measured).
+    // At n samples: |v - mean| <= t + sigmas * sqrt(sigma^2 / n + error^2), t from
+    // `systematic` (what correct estimators differ by beyond noise: filtering, quadrature;
+    // measured), on all but systematic.outlierFraction of the points.
     double sigmas = 5;
     Tolerance systematic;
     // The mean error at the smallest count must be at least this many times the mean error at
