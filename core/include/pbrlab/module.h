@@ -335,7 +335,7 @@ struct Estimate {
     glm::dvec3 error{0};
 };
 struct EstimatorSpec {
-    std::string samplesParam;       // the parameter that sets the sample count ("" none)
+    std::string samplesParam;  // the parameter that sets the sample count ("" none)
     // Graded counts, smallest first; the smallest measures the error's fall only (no band).
     std::vector<int> sampleCounts;
     // The environment correctness is judged on: one where legitimate estimators converge (no
