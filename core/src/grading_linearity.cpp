@@ -24,7 +24,7 @@ constexpr double kScales[] = {1024.0, 1.0 / 1024.0};
 // reference solution). The sum: float rounding of the two environments' texels summed once
 // (sky-hdr) against the two results summed after; measured on the reference solutions: 8.6e-6
 // of the value (irradiance), 6.3e-7 (prefilter), 5.2e-7 (mc_specular); 1e-4 is 11x the largest,
-// and the nonlinearities tried (tests/exploits) are off by 0.5 to 0.999 of the value.
+// and the nonlinearities tried (tests/exploits) fail the scales by 0.998 of the value and more.
 constexpr double kTolerance = 1e-4;
 
 // Random points of the domain for the linearity checks, apart from the graded ones (the seed's
