@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <utility>
 
 #include "parallel.h"
 #include "pbrlab/error.h"
@@ -174,6 +175,75 @@ Image generateSmoothEnvironment(int width) {
                             dvec3(0.3, 0.2, 0.1) * (0.5 + 0.5 * d.x + 0.2 * d.z * d.y);
             for (int c = 0; c < 3; ++c) image.at(x, y, c) = float(L[c]);
         }
+    return image;
+}
+
+Image generateHdrLobe(int width) {
+    if (width < 16 || width > 8192 || width % 2 != 0)
+        throw Error("hdr-lobe environment: width " + std::to_string(width) +
+                    " must be even and in [16, 8192]");
+    Image image;
+    image.width = width;
+    image.height = width / 2;
+    image.channels = 3;
+    image.pixels.resize(size_t(image.width) * image.height * 3);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const double phi = ((x + 0.5) / image.width - 0.5) * 2.0 * kPi;
+            const double theta = (y + 0.5) / image.height * kPi;
+            const dvec3 d(std::sin(theta) * std::sin(phi), std::cos(theta),
+                          -std::sin(theta) * std::cos(phi));
+            const dvec3 L = kSunColour * (1e4 * std::pow(10.0, 0.5 * (1.0 + glm::dot(d, kSunDir))));
+            for (int c = 0; c < 3; ++c) image.at(x, y, c) = float(L[c]);
+        }
+    return image;
+}
+
+namespace {
+
+// "NAME*K" -> (NAME, K); K = 1 when there is no factor.
+std::pair<std::string, double> splitFactor(const std::string& name) {
+    const size_t star = name.rfind('*');
+    if (star == std::string::npos) return {name, 1.0};
+    try {
+        size_t used = 0;
+        const double k = std::stod(name.substr(star + 1), &used);
+        if (used == name.size() - star - 1 && std::isfinite(k)) return {name.substr(0, star), k};
+    } catch (const std::exception&) {
+    }
+    return {name, 1.0};
+}
+
+}  // namespace
+
+bool isGeneratedEnvironment(const std::string& name) {
+    const std::string base = splitFactor(name).first;
+    return base == "sky" || base == "sky-soft" || base == "smooth" || base == "hdr-lobe" ||
+           base == "sky-hdr";
+}
+
+Image generateEnvironment(const std::string& name) {
+    const auto [base, factor] = splitFactor(name);
+    Image image;
+    if (base == "sky")
+        image = generateSkyEnvironment(512);
+    else if (base == "sky-soft")
+        image = generateSkyEnvironment(512, true);
+    else if (base == "smooth")
+        image = generateSmoothEnvironment(256);
+    else if (base == "hdr-lobe")
+        image = generateHdrLobe(512);
+    else if (base == "sky-hdr") {
+        image = generateSkyEnvironment(512, true);
+        const Image lobes = generateHdrLobe(512);
+        // The sum in double, rounded once: the texel of sky-hdr is the float nearest to the
+        // sum of the two environments' texels.
+        for (size_t i = 0; i < image.pixels.size(); ++i)
+            image.pixels[i] = float(double(image.pixels[i]) + double(lobes.pixels[i]));
+    } else
+        throw Error("no generated environment is called '" + name + "'");
+    if (factor != 1.0)
+        for (float& v : image.pixels) v = float(double(v) * factor);
     return image;
 }
 

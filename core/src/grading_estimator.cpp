@@ -26,9 +26,9 @@ void addSurface(Digest& d, const Surface& s) {
     d.add(s.emissive), d.add(s.extra);
 }
 
-// Converged integrals on disk (cache_file.h): their count, then (mean, sigma) per point as
-// doubles.
-constexpr char kConvergedMagic[8] = {'P', 'B', 'R', 'L', 'C', 'N', 'V', '2'};
+// Converged integrals on disk (cache_file.h): their count, then (mean, sigma, error) per
+// point as doubles.
+constexpr char kConvergedMagic[8] = {'P', 'B', 'R', 'L', 'C', 'N', 'V', '3'};
 
 bool readConverged(const fs::path& file, std::vector<Estimate>& truth) {
     CacheReader in(file, kConvergedMagic);
@@ -36,7 +36,7 @@ bool readConverged(const fs::path& file, std::vector<Estimate>& truth) {
     if (!in.get(count) || count != truth.size()) return false;
     std::vector<Estimate> values(truth.size());
     for (Estimate& e : values)
-        if (!in.get(e.mean) || !in.get(e.sigma)) return false;
+        if (!in.get(e.mean) || !in.get(e.sigma) || !in.get(e.error)) return false;
     if (!in.atEnd()) return false;
     truth = std::move(values);
     return true;
@@ -45,9 +45,21 @@ bool readConverged(const fs::path& file, std::vector<Estimate>& truth) {
 void writeConverged(const fs::path& file, const std::vector<Estimate>& truth) {
     CacheWriter out(kConvergedMagic);
     out.put(std::uint64_t(truth.size()));
-    for (const Estimate& e : truth) out.put(e.mean), out.put(e.sigma);
+    for (const Estimate& e : truth) out.put(e.mean), out.put(e.sigma), out.put(e.error);
     out.commit(file);
 }
+
+// The noise a value at n samples has around the converged value: the estimator's own,
+// sigma / sqrt(n), and the converged value's own error (independent of it).
+glm::dvec3 noiseAt(const Estimate& t, int n) {
+    return glm::sqrt(t.sigma * t.sigma / double(std::max(n, 1)) + t.error * t.error);
+}
+
+// The bias test's limit on |z|. Over the seed sweep (docs/grading.md, "Estimators: dynamic
+// range, linearity, false failures") correct estimators of five kinds reached |z| = 5.38 (a
+// stratified one, on sky-hdr); 7 is 1.3 x that, and the typical mistakes sit at 36 or more.
+// Under normal noise |z| > 7 has probability 3e-12 per region.
+constexpr double kBiasLimit = 7;
 
 }  // namespace
 
@@ -62,13 +74,13 @@ struct StepGrader::PointSet {
     Image last;  // the values at the largest count
 };
 
-// Estimators: against the converged integral on an environment where every correct
-// estimator converges, at several sample counts, within a noise-aware band; the error
-// must fall as the count grows. The module's own scene is the quality report.
-void StepGrader::gradeEstimator(const Scene& scene) {
+// One environment ("" the scene's own): the converged integrals, the band at every graded
+// count, the error's fall, no systematic error; on the first, the counts above.
+void StepGrader::gradeConvergence(const Scene& scene, const std::string& environment, bool first) {
     const EstimatorSpec& e = *d_.estimator;
     Scene judged = scene;
-    if (!e.environment.empty()) judged.environment = e.environment;
+    if (!environment.empty()) judged.environment = environment;
+    const std::string onEnvironment = environment.empty() ? "" : " (" + environment + ")";
     const ParamValues defaults(d_.params);
     const ReferenceContext context = referenceContext(renderer_, d_, judged, defaults, kGradingIbl);
     std::vector<PointSet> sets;
@@ -89,7 +101,7 @@ void StepGrader::gradeEstimator(const Scene& scene) {
         sets.push_back(
             {"random inputs", std::move(g.surfaces), g.width, g.height, nullptr, {}, {}});
     }
-    stage("converged integrals");
+    stage("converged integrals" + onEnvironment);
     std::vector<const Surface*> points;
     for (const PointSet& set : sets)
         for (const Surface& surface : set.surfaces) points.push_back(&surface);
@@ -104,7 +116,7 @@ void StepGrader::gradeEstimator(const Scene& scene) {
             buildIds({m_.library.filename().string(), "libm.so.6", "libstdc++.so.6"});
         !code.empty() && !renderer_.cacheRoot().empty()) {
         Digest key;
-        key.add(std::string("converged integrals v1"));
+        key.add(std::string("converged integrals v2"));
         key.add(code);
         key.add(d_.id);
         key.add(e.truthSamples);
@@ -141,13 +153,12 @@ void StepGrader::gradeEstimator(const Scene& scene) {
     for (int n : counts) {
         const ParamValues params =
             n > 0 ? withSets(d_, {e.samplesParam + "=" + std::to_string(n)}) : defaults;
-        const double noise = n > 0 ? e.sigmas / std::sqrt(double(n)) : 0.0;
         double errorSum = 0;
         int errorCount = 0;
         for (PointSet& set : sets) {
             const std::string name =
                 set.name + (n > 0 ? " with " + e.samplesParam + " = " + std::to_string(n) : "") +
-                (e.environment.empty() ? "" : " (" + e.environment + ")");
+                onEnvironment;
             stage(name);
             RenderRequest request{&m_,           &params,   &judged,   source_,
                                   &set.surfaces, set.width, set.height};
@@ -161,10 +172,11 @@ void StepGrader::gradeEstimator(const Scene& scene) {
                 if (!set.surfaces[i].covered) continue;
                 const Estimate& t = set.truth[i];
                 band.expected[i] = band.lo[i] = band.hi[i] = t.mean;
+                const glm::dvec3 noise = n > 0 ? noiseAt(t, n) : glm::dvec3(0);
                 for (int c = 0; c < d_.components; ++c)
                     band.slack[i][c] = std::max(e.systematic.absolute,
                                                 e.systematic.relative * std::abs(t.mean[c])) +
-                                       noise * t.sigma[c];
+                                       e.sigmas * noise[c];
                 for (int c = 0; c < d_.components; ++c) {
                     const double v = r.value.pixels[i * 4 + size_t(c)];
                     if (!std::isfinite(v)) continue;
@@ -173,17 +185,24 @@ void StepGrader::gradeEstimator(const Scene& scene) {
                     ++errorCount;
                 }
             }
+            if (n == counts.back()) set.last = r.value;
+            // The smallest count measures the error's fall only. Four samples are far from
+            // normal: Chebyshev lets 4% of the points of a correct estimator pass 5 sigma /
+            // sqrt(n), the band allows 2%, and over 200 seeds correct estimators reached 2.9%
+            // (rotated Hammersley) and 9.6% (filtered importance sampling, whose blur at 4
+            // samples is a bias of its own that vanishes as n grows); docs/grading.md.
+            if (counts.size() > 1 && n == counts.front()) continue;
             const Comparison c = compareWithBand(r.value, set.surfaces, band, d_.components,
                                                  d_.nonNegative, e.systematic.outlierFraction);
             ValuesRun run;
-            if (n == counts.back()) set.last = r.value;
             run.report = reportFor(name, d_, c, set.surfaces, e.systematic.outlierFraction,
                                    set.probe, set.width);
             // Against the converged integral: the estimator's own category, not the probe's
             // or the random inputs' band of the reference.
             run.report.category = "estimator";
             run.report.detail += "; band: converged integral +- (" + number(e.systematic.relative) +
-                                 " of it + " + number(e.sigmas) + " sigma / sqrt(n))";
+                                 " of it + " + number(e.sigmas) +
+                                 " sqrt(sigma^2 / n + its own error^2))";
             run.surfaces = set.surfaces;
             run.value = std::move(r.value);
             run.band = std::move(band);
@@ -199,7 +218,7 @@ void StepGrader::gradeEstimator(const Scene& scene) {
     }
     if (counts.size() > 1) {
         CheckReport fall;
-        fall.name = "the error falls as the sample count grows";
+        fall.name = "the error falls as the sample count grows" + onEnvironment;
         fall.kind = "convergence";
         fall.category = "estimator";
         const double ratio = meanError.front() / std::max(meanError.back(), 1e-12);
@@ -212,7 +231,27 @@ void StepGrader::gradeEstimator(const Scene& scene) {
                       "x (an estimator of n samples: >= " + number(e.minimumFall) + "x)";
         record(fall);
     }
-    if (counts.back() > 0) biasTest(sets, counts.back());
+    if (counts.back() > 0) biasTest(sets, counts.back(), onEnvironment);
+    if (first && counts.back() > 0 && sets.size() > 1) gradeHighCounts(judged, sets.back());
+}
+
+// Estimators: against the converged integral on environments where every correct
+// estimator converges (the soft sky, and the same with radiance of real dynamic range), at
+// several sample counts, within a noise-aware band; the error must fall as the count grows,
+// and the values must keep changing with counts above the graded ones. The module's own
+// scene is the quality report.
+void StepGrader::gradeEstimator(const Scene& scene) {
+    const EstimatorSpec& e = *d_.estimator;
+    std::vector<std::string> environments;
+    if (d_.needs & NeedsEnvironment)
+        for (const std::string& name : {e.environment, e.hdrEnvironment})
+            if (!name.empty()) environments.push_back(name);
+    if (environments.empty()) environments.push_back("");  // the scene's own (none read)
+    for (size_t k = 0; k < environments.size(); ++k)
+        gradeConvergence(scene, environments[k], k == 0);
+    if (statisticsOnly_) return;
+    const ParamValues defaults(d_.params);
+    const std::vector<int> counts = e.sampleCounts.empty() ? std::vector<int>{0} : e.sampleCounts;
     // NaN, Inf and negatives are never excused: the module's own scene (64^2) at the
     // smallest count (other samples than the default's; the quality report below checks
     // that one).
@@ -291,6 +330,94 @@ void StepGrader::gradeEstimator(const Scene& scene) {
     }
 }
 
+// Counts above the graded ones (EstimatorSpec::highCounts), at the first few random points:
+// within the band of the converged integral, and different from the values at the count
+// before. An estimator of n samples changes with n (other samples, or more of them); one
+// that stops using its count above some N returns the same floats at every count above N.
+void StepGrader::gradeHighCounts(const Scene& judged, const PointSet& random) {
+    const EstimatorSpec& e = *d_.estimator;
+    const size_t points = std::min(size_t(e.highCountPoints), random.surfaces.size());
+    const Grid g =
+        grid(std::vector<Surface>(random.surfaces.begin(), random.surfaces.begin() + long(points)));
+    const std::vector<Estimate> truth(random.truth.begin(), random.truth.begin() + long(points));
+    int before = e.sampleCounts.back();
+    std::vector<glm::dvec3> previous = pointValues(random.last, points);
+    for (int n : e.highCounts) {
+        const std::string with = e.samplesParam + " = " + std::to_string(n);
+        stage(std::to_string(points) + " random inputs with " + with);
+        const ParamValues params = withSets(d_, {e.samplesParam + "=" + std::to_string(n)});
+        RenderRequest request{&m_, &params, &judged, source_, &g.surfaces, g.width, g.height};
+        request.seamlessCubes = false;
+        request.isolatePoints = true;
+        RenderResult r = renderer_.render(request);
+        Band band;
+        band.resize(g.surfaces.size());
+        for (size_t i = 0; i < points; ++i) {
+            const Estimate& t = truth[i];
+            band.expected[i] = band.lo[i] = band.hi[i] = t.mean;
+            const glm::dvec3 noise = noiseAt(t, n);
+            for (int c = 0; c < d_.components; ++c)
+                band.slack[i][c] =
+                    std::max(e.systematic.absolute, e.systematic.relative * std::abs(t.mean[c])) +
+                    e.sigmas * noise[c];
+        }
+        // The same floats: within 4 units in the last place (the same sum in another order).
+        const std::vector<glm::dvec3> values = pointValues(r.value, points);
+        int same = 0;
+        for (size_t i = 0; i < points; ++i) {
+            bool equal = true;
+            for (int c = 0; c < d_.components; ++c)
+                equal = equal &&
+                        std::abs(values[i][c] - previous[i][c]) <=
+                            4.8e-7 * std::max(std::abs(values[i][c]), std::abs(previous[i][c]));
+            same += equal;
+        }
+        CheckReport changes;
+        changes.name = "uses its sample count: " + std::to_string(before) + " and " +
+                       std::to_string(n) + " samples give other values";
+        changes.kind = "convergence";
+        changes.category = "estimator";
+        changes.measured = same;
+        changes.expected = "< half of " + std::to_string(points) + " points the same";
+        // Correct estimators: 0 of 16 points the same at every seed measured (docs/grading.md).
+        changes.passed = 2 * same < int(points);
+        changes.detail =
+            std::to_string(same) + " of " + std::to_string(points) +
+            " points have the same value with " + e.samplesParam + " = " + std::to_string(before) +
+            " and " + std::to_string(n) +
+            (changes.passed ? ""
+                            : ": ignores its sample count above " + std::to_string(before) +
+                                  " (or less): an estimator of n samples changes with n; is the "
+                                  "count capped?");
+        record(changes);
+        const Comparison c = compareWithBand(r.value, g.surfaces, band, d_.components,
+                                             d_.nonNegative, e.systematic.outlierFraction);
+        ValuesRun run;
+        run.report =
+            reportFor(std::to_string(points) + " random inputs with " + with +
+                          ((d_.needs & NeedsEnvironment) ? " (" + judged.environment + ")" : ""),
+                      d_, c, g.surfaces, e.systematic.outlierFraction, nullptr, g.width);
+        run.report.category = "estimator";
+        run.report.detail += "; band: converged integral +- (" + number(e.systematic.relative) +
+                             " of it + " + number(e.sigmas) +
+                             " sqrt(sigma^2 / n + its own error^2))";
+        run.surfaces = g.surfaces;
+        run.value = std::move(r.value);
+        run.band = std::move(band);
+        run.scene = judged;
+        run.params = params;
+        run.width = g.width;
+        run.height = g.height;
+        run.worstIndex = c.worstIndex;
+        run.outlierFraction = e.systematic.outlierFraction;
+        keep(std::move(run));
+        previous = values;
+        before = n;
+        // The lowest count it ignores is said; the counts above say nothing more.
+        if (!changes.passed) break;
+    }
+}
+
 // EstimatorSpec::scaleTolerance: the overall factor between the value and the converged
 // integral (the median ratio) is checked on its own, and divided out before the band.
 void StepGrader::rescale(const std::string& name, Image& value,
@@ -331,11 +458,12 @@ void StepGrader::rescale(const std::string& name, Image& value,
 // At the largest count a correct estimator's error is noise of scale sigma / sqrt(n),
 // independent from point to point or (for one low-discrepancy set shared by every point)
 // far smaller than that; a mistake's is a bias that keeps its sign over a region of
-// inputs. Per region (4 x 4 blocks of the probe, the random points by roughness), the sum
-// of the errors in units of sigma / sqrt(n), beyond the systematic allowance, over the
-// square root of their number must stay within 5 (a correct estimator: |z| > 5 with
-// probability 6e-7 per region).
-void StepGrader::biasTest(const std::vector<PointSet>& sets, int n) {
+// inputs. Per region (the random points by quarter of roughness), the sum
+// of the points' errors in units of sqrt(sigma^2 / n + error^2) (the converged value's own
+// error, independent from point to point, included), beyond the systematic allowance, over
+// the square root of their number must stay within kBiasLimit (above).
+void StepGrader::biasTest(const std::vector<PointSet>& sets, int n,
+                          const std::string& onEnvironment) {
     const EstimatorSpec& e = *d_.estimator;
     struct Region {
         double sum = 0;
@@ -345,33 +473,42 @@ void StepGrader::biasTest(const std::vector<PointSet>& sets, int n) {
     for (const auto& set : sets)
         for (size_t i = 0; i < set.surfaces.size(); ++i) {
             const Surface& s = set.surfaces[i];
-            if (!s.covered) continue;
-            std::string region;
-            if (set.probe) {
-                const int x = int(i % size_t(set.width)), y = int(i / size_t(set.width));
-                region = "probe x " + std::to_string(4 * x / set.width) + "/4, y " +
-                         std::to_string(3 - 4 * y / set.height) + "/4";
-            } else {
-                region = "random inputs, roughness " +
-                         std::to_string(std::min(3, int(s.roughness * 4))) + "/4";
-            }
+            // The random inputs only: their points differ in every input, so an estimator
+            // whose random numbers are a function of its inputs has independent errors there.
+            // The probe's do not: its rows differ in roughness alone, and an estimator seeded
+            // by N and V (correct) gives a column the same samples, one error counted four
+            // times in a 4 x 4 block (measured on probe and random points together: |z| to 26
+            // within 19 seeds of a stratified estimator, 5.4 within 15 of independent random
+            // numbers; on the random points alone: docs/grading.md).
+            if (!s.covered || set.probe) continue;
+            const std::string region = "random inputs, roughness " +
+                                       std::to_string(std::min(3, int(s.roughness * 4))) + "/4";
+            // One term per point: the mean of its components' errors in noise units. The
+            // components of one point share its samples (radiance's channels move together),
+            // so they are counted as one (counted as three, noise alone reached |z| = 6.1 for
+            // independent random numbers at seed 1: up to sqrt(3) x the spread assumed).
             const Estimate& t = set.truth[i];
+            double term = 0;
+            int terms = 0;
             for (int c = 0; c < d_.components; ++c) {
                 const double v = set.last.pixels[i * 4 + size_t(c)];
-                const double scale = t.sigma[c] / std::sqrt(double(n));
+                const double scale = noiseAt(t, n)[c];
                 if (!std::isfinite(v) || scale <= 0) continue;
                 const double allowed =
                     std::max(e.systematic.absolute, e.systematic.relative * std::abs(t.mean[c]));
                 const double error = v - t.mean[c];
                 const double beyond =
                     std::copysign(std::max(std::abs(error) - allowed, 0.0), error);
-                Region& r = regions[region];
-                r.sum += beyond / scale;
-                ++r.count;
+                term += beyond / scale;
+                ++terms;
             }
+            if (terms == 0) continue;
+            Region& r = regions[region];
+            r.sum += term / terms;
+            ++r.count;
         }
     CheckReport c;
-    c.name = "no systematic error at " + std::to_string(n) + " samples";
+    c.name = "no systematic error at " + std::to_string(n) + " samples" + onEnvironment;
     c.kind = "convergence";
     c.category = "estimator";
     std::string worst;
@@ -381,15 +518,28 @@ void StepGrader::biasTest(const std::vector<PointSet>& sets, int n) {
         if (std::abs(z) > std::abs(worstZ)) worstZ = z, worst = name;
     }
     c.measured = worstZ;
-    c.expected = "|z| <= 5";
-    c.passed = std::abs(worstZ) <= 5;
+    c.expected = "|z| <= " + number(kBiasLimit);
+    c.passed = std::abs(worstZ) <= kBiasLimit;
     c.detail = "the errors at " + std::to_string(n) + " samples sum to z = " + number(worstZ, 3) +
                " noise units in " + (worst.empty() ? "no region" : worst) +
-               (c.passed ? " (noise: |z| <= 5)"
+               (c.passed ? " (noise: |z| <= " + number(kBiasLimit) + ")"
                          : ": a bias that keeps its sign there, " +
                                std::string(worstZ < 0 ? "too low" : "too high") +
-                               " (noise alone stays within |z| <= 5)");
+                               " (noise alone stays within |z| <= " + number(kBiasLimit) + ")");
     record(c);
+}
+
+StepResult StepGrader::runEstimatorStatistics() {
+    statisticsOnly_ = true;
+    const Scene scene = loadScene(paths_.scene(d_.scene));
+    try {
+        if (d_.estimator) gradeEstimator(scene);
+    } catch (const Stopped&) {
+    }
+    result_.passed = true;
+    for (const CheckReport& c : result_.checks)
+        if (c.deducted && !c.passed) result_.passed = false;
+    return std::move(result_);
 }
 
 }  // namespace pbrlab::step_grading

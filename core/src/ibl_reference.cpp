@@ -5,7 +5,9 @@
 #include "pbrlab/ibl_reference.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <utility>
 #include <vector>
 
@@ -221,55 +223,126 @@ dvec3 specularIBLReference(const Environment& env, const dvec3& N, const dvec3& 
     return sum / double(n);
 }
 
+namespace {
+
+// The randomised quasi-Monte Carlo of the Moments functions (ibl_reference.h).
+constexpr std::uint32_t kReplicates = 16;
+
+std::uint64_t splitMix(std::uint64_t x) {
+    x += 0x9E3779B97F4A7C15ull;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+    return x ^ (x >> 31);
+}
+
+class Replicates {
+public:
+    // Seeded by the point's inputs (their bits), so a point's truth is a function of it alone.
+    Replicates(std::initializer_list<double> inputs, std::uint32_t m)
+        : perSet_(std::max(m / kReplicates, 1u)) {
+        std::uint64_t h = 0x5EED;
+        for (double v : inputs) {
+            std::uint64_t bits = 0;
+            std::memcpy(&bits, &v, sizeof bits);
+            h = splitMix(h ^ bits);
+        }
+        for (dvec2& s : shift_) {
+            h = splitMix(h);
+            s.x = double(h >> 11) * 0x1p-53;
+            h = splitMix(h);
+            s.y = double(h >> 11) * 0x1p-53;
+        }
+    }
+    std::uint32_t perSet() const { return perSet_; }
+    // Point j of set r, in [0, 1)^2.
+    dvec2 xi(std::uint32_t r, std::uint32_t j) const {
+        const dvec2 p = hammersley(j, perSet_) + shift_[r];
+        return p - glm::floor(p);
+    }
+
+private:
+    std::uint32_t perSet_;
+    dvec2 shift_[kReplicates];
+};
+
+// The standard error of the mean of kReplicates independent estimates.
+dvec3 standardError(const std::array<dvec3, kReplicates>& estimates, const dvec3& mean) {
+    dvec3 sum(0.0);
+    for (const dvec3& e : estimates) sum += (e - mean) * (e - mean);
+    return glm::sqrt(sum / double(kReplicates * (kReplicates - 1)));
+}
+
+}  // namespace
+
 Moments specularIBLMoments(const Environment& env, const dvec3& N, const dvec3& V, const dvec3& F0,
                            double roughness, std::uint32_t m) {
     // The same one-sample estimate as specularIBLReference, its first two moments.
     const double NdotV = std::max(glm::dot(N, V), kIblMinNdotV);
-    const std::uint32_t n = std::max(m, 1u);
+    const Replicates sets({N.x, N.y, N.z, V.x, V.y, V.z, F0.x, F0.y, F0.z, roughness}, m);
+    const std::uint32_t n = sets.perSet() * kReplicates;
     dvec3 sum(0.0), sum2(0.0);
-    for (std::uint32_t i = 0; i < n; ++i) {
-        const dvec3 H = importanceSampleGGX(hammersley(i, n), N, roughness);
-        const double VdotH = glm::dot(V, H);
-        const dvec3 L = 2.0 * VdotH * H - V;
-        const double NdotL = glm::dot(N, L);
-        if (NdotL <= 0.0) continue;
-        const double NdotH = std::max(glm::dot(N, H), kIblMinNdotH);
-        const double VdotHc = std::max(VdotH, 0.0);
-        const dvec3 x = env.radiance(L) * fresnelSchlick(VdotHc, F0) *
-                        (geometrySmithIBL(NdotV, NdotL, roughness) * VdotHc / (NdotH * NdotV));
-        sum += x;
-        sum2 += x * x;
+    std::array<dvec3, kReplicates> estimates{};
+    for (std::uint32_t r = 0; r < kReplicates; ++r) {
+        dvec3 setSum(0.0);
+        for (std::uint32_t j = 0; j < sets.perSet(); ++j) {
+            const dvec3 H = importanceSampleGGX(sets.xi(r, j), N, roughness);
+            const double VdotH = glm::dot(V, H);
+            const dvec3 L = 2.0 * VdotH * H - V;
+            const double NdotL = glm::dot(N, L);
+            if (NdotL <= 0.0) continue;
+            const double NdotH = std::max(glm::dot(N, H), kIblMinNdotH);
+            const double VdotHc = std::max(VdotH, 0.0);
+            const dvec3 x = env.radiance(L) * fresnelSchlick(VdotHc, F0) *
+                            (geometrySmithIBL(NdotV, NdotL, roughness) * VdotHc / (NdotH * NdotV));
+            setSum += x;
+            sum2 += x * x;
+        }
+        sum += setSum;
+        estimates[r] = setSum / double(sets.perSet());
     }
     const dvec3 mean = sum / double(n);
-    return {mean, glm::sqrt(glm::max(sum2 / double(n) - mean * mean, dvec3(0.0)))};
+    return {mean, glm::sqrt(glm::max(sum2 / double(n) - mean * mean, dvec3(0.0))),
+            standardError(estimates, mean)};
 }
 
 Moments prefilterMoments(const Environment& env, const dvec3& R, double roughness,
                          std::uint32_t m) {
-    const std::uint32_t n = std::max(m, 1u);
+    const Replicates sets({R.x, R.y, R.z, roughness}, m);
     std::vector<dvec3> radiance;
     std::vector<double> weight;
     dvec3 sum(0.0);
     double total = 0.0;
-    for (std::uint32_t i = 0; i < n; ++i) {
-        const dvec3 H = importanceSampleGGX(hammersley(i, n), R, roughness);
-        const dvec3 L = 2.0 * glm::dot(R, H) * H - R;
-        const double w = std::max(glm::dot(R, L), 0.0);
-        const dvec3 r = w > 0 ? env.radiance(L) : dvec3(0.0);
-        radiance.push_back(r);
-        weight.push_back(w);
-        sum += r * w;
-        total += w;
-    }
-    if (total <= 0.0) return {env.radiance(R), dvec3(0.0)};
+    std::array<dvec3, kReplicates> setSum{};
+    std::array<double, kReplicates> setTotal{};
+    for (std::uint32_t r = 0; r < kReplicates; ++r)
+        for (std::uint32_t j = 0; j < sets.perSet(); ++j) {
+            const dvec3 H = importanceSampleGGX(sets.xi(r, j), R, roughness);
+            const dvec3 L = 2.0 * glm::dot(R, H) * H - R;
+            const double w = std::max(glm::dot(R, L), 0.0);
+            const dvec3 x = w > 0 ? env.radiance(L) : dvec3(0.0);
+            radiance.push_back(x);
+            weight.push_back(w);
+            sum += x * w;
+            total += w;
+            setSum[r] += x * w;
+            setTotal[r] += w;
+        }
+    if (total <= 0.0) return {env.radiance(R), dvec3(0.0), dvec3(0.0)};
     const dvec3 mean = sum / total;
     dvec3 var(0.0);
     for (size_t i = 0; i < radiance.size(); ++i) {
         const dvec3 d = weight[i] * (radiance[i] - mean);
         var += d * d;
     }
-    const double meanWeight = total / double(n);
-    return {mean, glm::sqrt(var / double(n)) / meanWeight};
+    const double meanWeight = total / double(radiance.size());
+    // Each set's ratio is an estimate of the mean (biased by O(1 / set size), far under its
+    // spread); a set without weight (none of its points above the horizon: for sets of a
+    // few points only) counts as the mean.
+    std::array<dvec3, kReplicates> estimates{};
+    for (std::uint32_t r = 0; r < kReplicates; ++r)
+        estimates[r] = setTotal[r] > 0 ? setSum[r] / setTotal[r] : mean;
+    return {mean, glm::sqrt(var / double(radiance.size())) / meanWeight,
+            standardError(estimates, mean)};
 }
 
 Moments brdfLutMoments(double NdotV, double roughness, std::uint32_t m) {

@@ -26,8 +26,7 @@ std::string environmentKey(const Scene& scene, const IblSettings& settings) {
 }  // namespace
 
 Image loadEnvironmentImage(const std::string& source, const fs::path& cache) {
-    const bool generated = source == "sky" || source == "sky-soft" || source == "smooth";
-    if (!generated) {
+    if (!isGeneratedEnvironment(source)) {
         Image image = readImage(source);
         if (image.width != 2 * image.height || image.channels < 3)
             throw Error(source +
@@ -36,11 +35,7 @@ Image loadEnvironmentImage(const std::string& source, const fs::path& cache) {
                         std::to_string(image.channels));
         return image;
     }
-    auto generate = [&] {
-        if (source == "sky") return generateSkyEnvironment(512);
-        if (source == "sky-soft") return generateSkyEnvironment(512, true);
-        return generateSmoothEnvironment(256);
-    };
+    auto generate = [&] { return generateEnvironment(source); };
     if (cache.empty()) return generate();
     // Its size and floats (cache_file.h); the generator's version is in the name, so an edit to
     // it never reads a stale image.

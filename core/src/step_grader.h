@@ -5,6 +5,7 @@
 //                          sphere grid among a step's declared cases), random inputs, every
 //                          exercised parameter value, coloured lights
 //   grading_estimator.cpp  estimators by convergence to the converged integral
+//   grading_linearity.cpp  linear in radiance: steps that read the environment
 //   grading_checks.cpp     the contract (what a step may read), invariants, robustness
 //   grading_feedback.cpp   the failure message and the mistake named from the error
 #pragma once
@@ -73,6 +74,9 @@ public:
           settings_(settings) {}
 
     StepResult run();
+    // The estimator's statistical checks alone (convergence on every environment, the counts
+    // above): what the false-failure measurement repeats per seed (tests/estimator_seeds.cpp).
+    StepResult runEstimatorStatistics();
 
 private:
     struct Stopped {};
@@ -103,9 +107,14 @@ private:
     // grading_estimator.cpp
     struct PointSet;
     void gradeEstimator(const Scene& scene);
+    void gradeConvergence(const Scene& scene, const std::string& environment, bool first);
+    void gradeHighCounts(const Scene& judged, const PointSet& random);
     void rescale(const std::string& name, Image& value, const std::vector<Surface>& surfaces,
                  const std::vector<Estimate>& truth);
-    void biasTest(const std::vector<PointSet>& sets, int n);
+    void biasTest(const std::vector<PointSet>& sets, int n, const std::string& onEnvironment);
+
+    // grading_linearity.cpp: steps that read the environment, on multiples and sums of it
+    void gradeLinearity(const Scene& scene);
 
     // grading_checks.cpp
     void checkSamplers(const Program& program);
@@ -137,6 +146,7 @@ private:
     std::chrono::steady_clock::time_point stageStart_;
     double stageCpuMs_ = 0;
     bool workShown_ = false;         // a check showed work (noteWork)
+    bool statisticsOnly_ = false;    // runEstimatorStatistics
     std::filesystem::path stubDir_;  // the stub's <id>.glsl, written when first needed
 };
 

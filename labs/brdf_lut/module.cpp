@@ -19,7 +19,7 @@ constexpr double kViewMinNdotV = 1e-3;
 ModuleDesc describeModule() {
     ModuleDesc d;
     d.title = "Split-sum BRDF LUT (scale A, bias B)";
-    d.params = {intParam("samples", 256, 1, 4096,
+    d.params = {intParam("samples", 256, 1, 65536,
                          "GGX samples per value (the host's LUT precompute uses 512)")};
     d.components = 2;
     // A in red, B in green, as stored (linear, like the published LUT images).
@@ -74,9 +74,13 @@ ModuleDesc describeModule() {
     e.converged = [](const Surface& s, const ReferenceContext&, std::uint32_t samples) {
         const double NdotV = std::max(glm::dot(s.normal, s.view), kViewMinNdotV);
         const ref::Moments m = ref::brdfLutMoments(NdotV, s.roughness, std::min(samples, 2048u));
-        return Estimate{m.mean, m.sigma};
+        return Estimate{m.mean, m.sigma, m.error};
     };
-    e.systematic = {2e-4, 2e-3, 0, 0.02};
+    // 4% of the points may be outside the band: Chebyshev's bound for any correct estimator
+    // (with the true sigma, P(|error| > 5 sigma / sqrt(n)) <= 1/25). 2% failed estimators
+    // seeded by N and V on the probe, whose rows share their samples (2.5% at one seed of
+    // independent random numbers, docs/grading.md).
+    e.systematic = {2e-4, 2e-3, 0, 0.04};
     d.estimator = e;
     d.domain = [](DomainRandom& r) {
         Surface s;

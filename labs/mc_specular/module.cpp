@@ -14,7 +14,7 @@ namespace {
 ModuleDesc describeModule() {
     ModuleDesc d;
     d.title = "Specular IBL by Monte Carlo";
-    d.params = {intParam("samples", 64, 1, 4096, "Samples per pixel (GGX importance sampling)")};
+    d.params = {intParam("samples", 64, 1, 65536, "Samples per pixel (GGX importance sampling)")};
     d.components = 3;
     d.display = {DisplayMode::HdrColor};
     d.needs = NeedsMaterial | NeedsEnvironment;
@@ -68,9 +68,13 @@ ModuleDesc describeModule() {
         const ref::Moments m = ref::specularIBLMoments(env, s.normal, s.view,
                                                        ref::baseReflectivity(s.albedo, s.metallic),
                                                        s.roughness, samples);
-        return Estimate{m.mean, m.sigma};
+        return Estimate{m.mean, m.sigma, m.error};
     };
-    e.systematic = {1e-3, 3e-3, 0, 0.02};
+    // 4% of the points may be outside the band: Chebyshev's bound for any correct estimator
+    // (with the true sigma, P(|error| > 5 sigma / sqrt(n)) <= 1/25). 2% failed estimators
+    // seeded by N and V on the probe, whose rows share their samples (2.5% at one seed of
+    // independent random numbers, docs/grading.md).
+    e.systematic = {1e-3, 3e-3, 0, 0.04};
     d.estimator = e;
     // N anywhere, V in its hemisphere (N.V 0.05 to 1), any material, roughness 0.05 to 1.
     d.domain = [](DomainRandom& r) {

@@ -21,8 +21,8 @@ std::uint32_t samples(const ReferenceContext& c) {
 ModuleDesc describeModule() {
     ModuleDesc d;
     d.title = "Prefiltered environment (GGX lobe average)";
-    d.params = {
-        intParam("samples", 64, 1, 4096, "GGX samples per pixel (the host's precompute uses 256)")};
+    d.params = {intParam("samples", 64, 1, 65536,
+                         "GGX samples per pixel (the host's precompute uses 256)")};
     d.components = 3;
     d.display = {DisplayMode::HdrColor};
     d.needs = NeedsRoughness | NeedsEnvironment;
@@ -69,9 +69,13 @@ ModuleDesc describeModule() {
         const ref::CubeEnvironment env(c.ibl->environment);
         const glm::dvec3 R = glm::reflect(-s.view, s.normal);
         const ref::Moments m = ref::prefilterMoments(env, R, s.roughness, samples);
-        return Estimate{m.mean, m.sigma};
+        return Estimate{m.mean, m.sigma, m.error};
     };
-    e.systematic = {1e-3, 1e-2, 0, 0.02};
+    // 4% of the points may be outside the band: Chebyshev's bound for any correct estimator
+    // (with the true sigma, P(|error| > 5 sigma / sqrt(n)) <= 1/25). 2% failed estimators
+    // seeded by N and V on the probe, whose rows share their samples (2.5% at one seed of
+    // independent random numbers, docs/grading.md).
+    e.systematic = {1e-3, 1e-2, 0, 0.04};
     d.estimator = e;
     // N anywhere, V in its hemisphere, roughness 0 to 1.
     d.domain = [](DomainRandom& r) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <string>
 
 #include "pbrlab/image.h"
 
@@ -31,7 +32,26 @@ Image generateSkyEnvironment(int width = 512, bool soft = false);
 
 // Bump when the generators below change what they make: caches of generated environments
 // are keyed by it.
-constexpr int kEnvironmentVersion = 2;
+constexpr int kEnvironmentVersion = 4;
+
+// A bright smooth lobe alone ("hdr-lobe" in scenes): 1e4 x 10^((1 + cos g) / 2) at the angle
+// g from the sun of generateSkyEnvironment, in the sun's colour: from 1e4 opposite the sun to
+// 1e5 towards it, radiance of real dynamic range in a feature every correct estimator still
+// converges on. Smooth in its logarithm (a factor 1.4 at most over 30 degrees), so that
+// filtered importance sampling, which reads coarse mips for the samples of small pdf (a 1 x 1
+// mip averages a whole cube face) and so blurs, stays within its tolerance. Measured: a lobe
+// of 1e5 a few degrees wide over the soft sky (e^-1 at 12 degrees) put the filtered
+// estimators 100 x their tolerance off at 1024 samples; 1e3 to 1e5 over the sphere (twice
+// this slope) still 1.1 to 2 x at 4 and 64 samples (docs/grading.md).
+Image generateHdrLobe(int width = 512);
+
+// An environment by the name scenes and grading give it, or nullopt when the name is no
+// generated one (a file path): "sky" (512), "sky-soft" (512), "smooth" (256), "hdr-lobe"
+// (512), "sky-hdr" (sky-soft plus hdr-lobe, texel by texel: the soft sky with real
+// dynamic range), and any of them times a constant, "NAME*K" (K a number: "sky-hdr*1024"),
+// for the linearity checks of the estimators (grading_linearity.cpp).
+bool isGeneratedEnvironment(const std::string& name);
+Image generateEnvironment(const std::string& name);
 
 // A smooth environment ("smooth" in scenes): low-order polynomials of the direction per
 // channel, from about 0.3 to 1.6, no feature at all. Any consistent quadrature of the

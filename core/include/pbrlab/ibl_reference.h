@@ -134,19 +134,23 @@ dvec3 equirectRadiance(const Image& image, const dvec3& dir);  // bilinear
 dvec3 specularIBLReference(const Environment& env, const dvec3& N, const dvec3& V, const dvec3& F0,
                            double roughness, std::uint32_t sampleCount);
 
-// What grading an estimator needs at one point (steps 17, 19, 20): its converged value and
-// the standard deviation of a one-sample estimate, both measured with `m` Hammersley-driven
-// samples of the reference's own estimator in double. An estimator of n samples is then
-// within a few sigma / sqrt(n) of the mean (docs/grading.md, "Estimators").
+// What grading an estimator needs at one point (steps 17, 19, 20): its converged value, the
+// standard deviation of a one-sample estimate, and the converged value's own standard error,
+// measured with `m` samples of the reference's own estimator in double. The samples are 16
+// Hammersley sets of m / 16 points, each shifted modulo 1 by an offset of its own (randomised
+// quasi-Monte Carlo: a Cranley-Patterson rotation), the offsets drawn from a hash of the
+// point's inputs: each set is an unbiased estimate, independent of the other sets and of other
+// points', so the spread of the 16 measures the mean's error. An estimator of n samples is then
+// within a few sqrt(sigma^2 / n + error^2) of the mean (docs/grading.md, "Estimators").
 struct Moments {
-    dvec3 mean{0}, sigma{0};
+    dvec3 mean{0}, sigma{0}, error{0};
 };
 Moments specularIBLMoments(const Environment& env, const dvec3& N, const dvec3& V, const dvec3& F0,
                            double roughness, std::uint32_t m);
 // The ratio estimator sum L (N.l) / sum (N.l): sigma from the delta method,
 // Var = E[w^2 (L - mean)^2] / E[w]^2 for one sample of weight w = (N.l)+.
 Moments prefilterMoments(const Environment& env, const dvec3& R, double roughness, std::uint32_t m);
-// (A, B) in x and y; the mean from brdfLutExact.
+// (A, B) in x and y; the mean from brdfLutExact (error 0).
 Moments brdfLutMoments(double NdotV, double roughness, std::uint32_t m);
 
 // ---- 18 irradiance --------------------------------------------------------------------------

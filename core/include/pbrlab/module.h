@@ -22,7 +22,7 @@
 namespace pbrlab {
 
 // Bump when ModuleDesc or anything it contains changes layout.
-constexpr int kModuleAbiVersion = 6;
+constexpr int kModuleAbiVersion = 7;
 
 // Everything a contract function may take, per pixel. The GPU fills the same fields in
 // GLSL (shaders/surface.glsl) from the G-buffer (scene) or from uploaded textures (probe), so
@@ -330,20 +330,29 @@ inline GradeCase lessonGridCase() {
 struct Estimate {
     glm::dvec3 mean{0};   // the converged value (the CPU double reference of the integral)
     glm::dvec3 sigma{0};  // standard deviation of a one-sample estimate (0: deterministic)
+    // The standard error of `mean` itself (0: exact), independent from point to point: the
+    // statistics add it to the estimator's noise, sigma^2 / n + error^2.
+    glm::dvec3 error{0};
 };
 struct EstimatorSpec {
-    std::string samplesParam;       // the parameter that sets the sample count ("" none)
-    std::vector<int> sampleCounts;  // graded counts, smallest first
+    std::string samplesParam;  // the parameter that sets the sample count ("" none)
+    // Graded counts, smallest first; the smallest measures the error's fall only (no band).
+    std::vector<int> sampleCounts;
     // The environment correctness is judged on: one where legitimate estimators converge (no
     // sub-degree sun). The module's own scene stays for the quality report.
     std::string environment = "sky-soft";
+    // Judged the same way on this one too ("" none): radiance of real dynamic range, a smooth
+    // lobe of 1e4 to 1e5 on the soft sky (envgen.h), where every correct estimator still
+    // converges and a clamp or tone map on radiance is off by orders of magnitude.
+    std::string hdrEnvironment = "sky-hdr";
     // The converged value and one sample's spread at a point, measured with `truthSamples`
     // samples of the reference's estimator where it is not known in closed form.
     std::function<Estimate(const Surface&, const ReferenceContext&, std::uint32_t truthSamples)>
         converged;
     std::uint32_t truthSamples = 16384;
-    // At n samples: |v - mean| <= t + sigmas * sigma / sqrt(n), t from `systematic` (what
-    // correct estimators differ by beyond noise: filtering, quadrature; measured).
+    // At n samples: |v - mean| <= t + sigmas * sqrt(sigma^2 / n + error^2), t from
+    // `systematic` (what correct estimators differ by beyond noise: filtering, quadrature;
+    // measured), on all but systematic.outlierFraction of the points.
     double sigmas = 5;
     Tolerance systematic;
     // The mean error at the smallest count must be at least this many times the mean error at
@@ -354,6 +363,11 @@ struct EstimatorSpec {
     // best-fit factor (the median ratio to the converged value), so an error that varies
     // with the inputs is held to `systematic` alone.
     double scaleTolerance = 0;
+    // Counts above the largest of sampleCounts, at `highCountPoints` random points of the
+    // domain: a function that stops using its count somewhere above the graded ones returns
+    // the same values at all of them (docs/grading.md, "Estimators").
+    std::vector<int> highCounts = {4096, 65536};
+    int highCountPoints = 16;
     int domainPoints = 384;  // random points of the domain per count
     int probeStride = 2;     // every probeStride-th row and column of the probe (ends kept)
 };

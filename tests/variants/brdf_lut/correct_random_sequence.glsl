@@ -1,5 +1,8 @@
 // correct: independent pseudo-random samples (an integer hash of the inputs and i) instead
-// of Hammersley points; V in the yz plane
+// of Hammersley points, seeded by the inputs and SEED (tests/test_estimator_seeds.cpp grades
+// it at 200 values); V in the yz plane
+const uint SEED = 0u;
+
 uint lutHash(uint x)
 {
     x ^= x >> 17u;
@@ -18,7 +21,7 @@ vec2 integrateBRDF(float NdotV, float roughness, uint sampleCount)
     vec3 V = vec3(0.0, sqrt(1.0 - NdotV * NdotV), NdotV);
     uint n = max(sampleCount, 1u);
     float k = max(roughness * roughness, 1e-3) * 0.5;
-    uint seed = lutHash(floatBitsToUint(NdotV) ^ lutHash(floatBitsToUint(roughness)));
+    uint seed = lutHash(floatBitsToUint(NdotV) ^ lutHash(floatBitsToUint(roughness) ^ lutHash(SEED)));
     vec2 sum = vec2(0.0);
     for (uint i = 0u; i < n; ++i) {
         uint h = lutHash(seed ^ (i * 0x9e3779b9u));

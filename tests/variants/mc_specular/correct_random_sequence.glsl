@@ -1,6 +1,9 @@
 // correct: independent pseudo-random samples instead of Hammersley points (a PCG hash seeded
-// by the point's own N and V, so neighbouring points get unrelated sequences), its own GGX
-// sampling in a branchless frame (Duff et al. 2017), and the weight with the IBL k
+// by the point's own N and V and by SEED, so neighbouring points get unrelated sequences),
+// its own GGX sampling in a branchless frame (Duff et al. 2017), and the weight with the IBL k.
+// tests/test_estimator_seeds.cpp grades it at 200 values of SEED.
+const uint SEED = 0u;
+
 uint pcgHash(uint v)
 {
     uint state = v * 747796405u + 2891336453u;
@@ -20,7 +23,7 @@ vec3 specularIBLReference(vec3 N, vec3 V, vec3 F0, float roughness, uint sampleC
     vec3 T = vec3(1.0 + sgn * N.x * N.x * p, sgn * q, -sgn * N.x);
     vec3 B = vec3(q, sgn + N.y * N.y * p, -N.y);
     uint seed = pcgHash(floatBitsToUint(N.x) ^ pcgHash(floatBitsToUint(N.y + 2.0 * V.x) ^
-                                                       pcgHash(floatBitsToUint(V.z + N.z))));
+                                                       pcgHash(floatBitsToUint(V.z + N.z) ^ SEED)));
     uint n = max(sampleCount, 1u);
     vec3 sum = vec3(0.0);
     for (uint i = 0u; i < n; ++i) {
