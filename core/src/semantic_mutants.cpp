@@ -239,20 +239,23 @@ std::string vec3Literal(const glm::dvec3& v) {
 // NUM_LIGHTS, the light arrays, uPrefilterMaxLod and textureSize of a contract sampler (at a
 // constant LOD), each written as the constant the host binds in grading today (the step's
 // scene, the default maps). The witness: the scene with another light count, other positions
-// and colours; the maps at other sizes and mip counts (settings --error-budget chooses).
+// and colours; the maps at other sizes and mip counts (--error-budget builds maps of other
+// sizes; IblSettings allows other mip counts, which the contract's uPrefilterMaxLod follows).
 std::vector<Mutant> hostValues(const SemanticContext& c) {
     const Code code(c.solution);
     const Scene scene = gradedScene(c);
-    // What a sampler's size depends on, and its size in grading today.
+    // What a sampler's size depends on, and sizes the host also builds it at (one smaller,
+    // one larger than grading's: a quadrature whose nodes halve a finer mip's texels reads
+    // exactly the coarser box-filtered mip, so one size alone can hide the constant).
     struct Sampler {
         const char* name;
         const char* setting;  // the IblSettings field of its size
-        int otherSize;        // a size the host also builds it at
+        int smaller, larger;
     };
-    static const Sampler samplers[] = {{"uEnvironment", "environmentSize", 512},
-                                       {"uIrradianceMap", "irradianceSize", 16},
-                                       {"uPrefilterMap", "prefilterSize", 256},
-                                       {"uBrdfLut", "lutWidth", 512}};
+    static const Sampler samplers[] = {{"uEnvironment", "environmentSize", 128, 512},
+                                       {"uIrradianceMap", "irradianceSize", 16, 64},
+                                       {"uPrefilterMap", "prefilterSize", 64, 256},
+                                       {"uBrdfLut", "lutWidth", 512, 2048}};
     const IblSettings& ibl = step_grading::kGradingIbl;
     auto sizeToday = [&](const std::string& sampler) -> glm::ivec2 {
         const bool derived = sampler != "uEnvironment";
@@ -288,7 +291,8 @@ std::vector<Mutant> hostValues(const SemanticContext& c) {
             const double lod = c.renderer.environmentInputs(scene, ibl, true).prefilterMaxLod;
             Mutant m = mutantFromEdits("host", c.solution,
                                        {{code.begin(k), code.end(k), floatLiteral(lod)}});
-            m.witness.ibl = {{"prefilterMips", ibl.prefilterMips + 1}};
+            m.witness.ibl = {{"prefilterMips", ibl.prefilterMips - 1},
+                             {"prefilterMips", ibl.prefilterMips + 1}};
             out.push_back(std::move(m));
         } else if (t == "textureSize" && code.is(k + 1, "(")) {
             const auto args = code.arguments(k + 1);
@@ -305,7 +309,7 @@ std::vector<Mutant> hostValues(const SemanticContext& c) {
                 "host", c.solution,
                 {{code.begin(k), code.end(code.closing(k + 1)),
                   "ivec2(" + std::to_string(size.x) + ", " + std::to_string(size.y) + ")"}});
-            m.witness.ibl = {{s->setting, s->otherSize}};
+            m.witness.ibl = {{s->setting, s->smaller}, {s->setting, s->larger}};
             out.push_back(std::move(m));
         }
     }

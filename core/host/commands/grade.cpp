@@ -293,7 +293,7 @@ public:
                     ++x.failed, x.byAny += !m.mistake.empty(),
                         x.byPattern += m.namedBy == "pattern";
             bad += x.notEquivalent;
-            print(r.id, r.kind, x);
+            if (x.made > 0) print(r.id, r.kind, x);  // (a family that fits nowhere in a step)
             Row& t = totals[r.kind];
             t.made += x.made, t.stillborn += x.stillborn, t.killed += x.killed;
             t.equivalent += x.equivalent, t.notEquivalent += x.notEquivalent;
