@@ -43,7 +43,9 @@ std::string IblSettings::prefilterBy() const {
 }
 
 std::string IblSettings::key() const {
-    return "src" + std::to_string(source()) + "_irr" + std::to_string(irradianceSize) + " " +
+    // The environment cube's size too: steps 17-19 read it (textureSize, LOD from the texel
+    // angle), so maps of one size must never stand in for another's.
+    return "env" + std::to_string(environmentSize) + "_src" + std::to_string(source()) + "_irr" + std::to_string(irradianceSize) + " " +
            irradianceBy() + "_pre" + std::to_string(prefilterSize) + "x" +
            std::to_string(prefilterMips) + (prefilterMirrorExact ? "m" : "") +
            std::to_string(mirrorSupersample) + " " + prefilterBy();
