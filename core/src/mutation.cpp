@@ -305,32 +305,27 @@ json witnessEquivalence(LabRenderer& renderer, const LoadedModule& m, const Data
     auto take = [&](const Difference& x) {
         if (x.worst > worst.worst) worst = x;
     };
-    auto everywhere = [&](LabRenderer& r, const Scene& s, const IblSettings& ibl,
-                          const std::string& at) {
+    auto everywhere = [&](const Scene& s, const IblSettings& ibl, const std::string& at) {
         where.push_back(at);
-        take(compareRenders(r, m, s, defaults, &probe, d.probe.width, d.probe.height, mutantDir,
-                            "probe (" + at + ")", ibl));
+        take(compareRenders(renderer, m, s, defaults, &probe, d.probe.width, d.probe.height,
+                            mutantDir, "probe (" + at + ")", ibl));
         if (!domain.empty())
-            take(compareRenders(r, m, s, defaults, &domain, 64, int(domain.size() / 64), mutantDir,
-                                "random inputs (" + at + ")", ibl));
-        take(compareRenders(r, m, s, defaults, nullptr, 64, 64, mutantDir, "scene (" + at + ")",
-                            ibl));
+            take(compareRenders(renderer, m, s, defaults, &domain, 64, int(domain.size() / 64),
+                                mutantDir, "random inputs (" + at + ")", ibl));
+        take(compareRenders(renderer, m, s, defaults, nullptr, 64, 64, mutantDir,
+                            "scene (" + at + ")", ibl));
     };
     for (double scale : w.environmentScales) {
         Scene s = scene;
         s.environment = scaledEnvironment(renderer, scene.environment, scale);
-        everywhere(renderer, s, {}, "the environment x" + number(scale));
+        everywhere(s, {}, "the environment x" + number(scale));
     }
     for (const auto& [field, value] : w.ibl) {
         IblSettings ibl;
         setIblField(ibl, field, value);
-        // A renderer of its own: LabRenderer keeps an environment's maps by IblSettings::key(),
-        // which leaves environmentSize out, so one that drew the default cube would reuse it.
-        LabRenderer own(paths);
-        everywhere(own, scene, ibl, field + " " + std::to_string(value));
+        everywhere(scene, ibl, field + " " + std::to_string(value));
     }
-    if (w.otherLights)
-        everywhere(renderer, withOtherLights(scene), {}, "another light count and lights");
+    if (w.otherLights) everywhere(withOtherLights(scene), {}, "another light count and lights");
     // Counts: the step's integer parameters at n (beyond what the view declares: the contract's
     // count is any uint). The control: the solution's own values at n and n / 2; the same
     // values there (a view that clamps the count, an estimator converged below the band of
