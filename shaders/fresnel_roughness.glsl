@@ -1,4 +1,5 @@
-// Contract helper for step `split_sum` (split_sum), available to student code: Schlick's Fresnel for
+// Contract helper introduced by step `split_sum`, callable from that step on (contract.h,
+// contractHelpers; an earlier step's program does not hold it): Schlick's Fresnel for
 // ambient light. Light from the environment arrives over a whole lobe of half vectors, so the
 // grazing-angle rise is capped for rough surfaces: the ceiling is max(1 - roughness, F0)
 // instead of 1 (Lagarde's "fresnelSchlickRoughness"). cosTheta is N.V here.

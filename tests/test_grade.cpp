@@ -1,8 +1,8 @@
 // The autograder end to end: kits with and without solutions, every problem costing its own
 // step only, hostile files (symlink loops, NUL bytes in includes, bytes that are not UTF-8, a
 // compiler-crashing macro), time limits, invariants that deduct, the contract's promise that
-// every contract function is callable from every step, and the GUI's badge agreeing with the
-// grade.
+// every contract function of an earlier step is callable from a step (and no later one), and
+// the GUI's badge agreeing with the grade.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -88,9 +88,11 @@ TEST(Grade, AnEndlessLoopIsNamedAsSuchNotAsTheStub) {
                                          "}\n";
     const GradeReport r = g.grade(kit, {"ndotl"});
     const ModuleGrade& m = Grader::find(r, "ndotl");
-    EXPECT_NE(m.status, "passed") << m.message;
-    EXPECT_TRUE(contains(m.mistake, "loop that never ends")) << m.mistake << "\n" << m.message;
-    EXPECT_FALSE(contains(m.mistake, "stub")) << m.mistake;
+    // Refused at the loop: in a program of steps 1..4 Mesa keeps the return after the loop and
+    // the values are right, so no value check can see it (it gave 0 in a program of all 21).
+    EXPECT_EQ(m.status, "compile_error") << m.message;
+    EXPECT_TRUE(contains(m.message, "ndotl.glsl:3: error: a loop that never ends")) << m.message;
+    EXPECT_FALSE(contains(m.message, "stub")) << m.message;
 }
 
 TEST(Grade, EachProblemCostsOnlyItsOwnStep) {
@@ -256,10 +258,12 @@ TEST(Grade, InvariantsAreMeasuredOnTheStudentsFunctionAndDeduct) {
     EXPECT_TRUE(contains(m.message, "(= pi)")) << m.message;  // the constant factor, named
 }
 
-// The contract: every contract function (and fresnelSchlickRoughness) is callable from every
-// step's file, in both labs. Each step's reference solution, plus a helper calling every
-// contract function, must compile in that step's program.
-TEST(Grade, EveryContractFunctionIsCallableFromEveryStep) {
+// The contract: every contract function of its own and earlier steps (and
+// fresnelSchlickRoughness from split_sum on) is callable from a step's file, in both labs; a
+// later step's is not, and the compile error says which step introduces it. Each step's
+// reference solution, plus a helper calling every function it may call, must compile in that
+// step's program; a call of the next step's function must not.
+TEST(Grade, EveryContractFunctionOfAnEarlierStepIsCallableAndNoLaterOne) {
     auto context = createHeadlessContext();
     Grader g;
     LabRenderer renderer(g.paths);
@@ -271,12 +275,8 @@ TEST(Grade, EveryContractFunctionIsCallableFromEveryStep) {
         if (type == "vec4") return "vec4(1.0, 0.0, 0.0, 1.0)";
         throw std::runtime_error("no argument for " + type);
     };
-    std::string calls = "float pbrlabTestCallsEveryContractFunction()\n{\n    float s = 0.0;\n";
-    std::vector<std::string> signatures;
-    for (const ContractStep& step : contractSteps()) signatures.push_back(step.function);
-    signatures.push_back(kFresnelSchlickRoughness);
-    for (const std::string& sig : signatures) {
-        const std::string name = sig.substr(sig.find(' ') + 1, sig.find('(') - sig.find(' ') - 1);
+    // "s += float(name(args).x);" for a signature.
+    auto callOf = [&](const std::string& sig) {
         std::string args;
         std::istringstream params(sig.substr(sig.find('(') + 1, sig.find(')') - sig.find('(') - 1));
         for (std::string param; std::getline(params, param, ',');) {
@@ -286,20 +286,44 @@ TEST(Grade, EveryContractFunctionIsCallableFromEveryStep) {
             args += (args.empty() ? "" : ", ") + argumentFor(type);
         }
         const std::string ret = sig.substr(0, sig.find(' '));
-        calls += "    s += " + std::string(ret == "float" ? "" : "float(") + name + "(" + args +
-                 ")" + (ret == "float" ? "" : ".x)") + ";\n";
-    }
-    calls += "    return s;\n}\n";
+        return "    s += " + std::string(ret == "float" ? "" : "float(") + functionName(sig) + "(" +
+               args + ")" + (ret == "float" ? "" : ".x)") + ";\n";
+    };
+    auto helperCalling = [&](const std::vector<std::string>& signatures) {
+        std::string calls = "float pbrlabTestCallsContractFunctions()\n{\n    float s = 0.0;\n";
+        for (const std::string& sig : signatures) calls += callOf(sig);
+        return calls + "    return s;\n}\n";
+    };
     for (const LoadedModule& m : g.modules.modules()) {
-        test::TempDir kit;
+        const ContractStep& own = *findContractStep(m.desc->id);
+        std::vector<std::string> callable;
+        for (const ContractStep* step : stepsVisibleFrom(own)) callable.push_back(step->function);
+        for (const ContractHelper& h : contractHelpers())
+            if (findContractStep(h.introducedBy)->step <= own.step) callable.push_back(h.function);
         std::ifstream solution(m.sourceDir / "solution.glsl");
         std::stringstream text;
         text << solution.rdbuf();
-        kit.write(m.desc->id + ".glsl", calls + text.str());
+        test::TempDir kit;
+        kit.write(m.desc->id + ".glsl", helperCalling(callable) + text.str());
         try {
             renderer.programs().get(renderer.viewRecipe(m, {kit.path}, true, 1));
         } catch (const std::exception& e) {
             ADD_FAILURE() << m.desc->id << ": " << e.what();
+        }
+        if (size_t(own.step) == contractSteps().size()) continue;
+        const ContractStep& next = contractSteps()[size_t(own.step)];
+        test::TempDir later;  // another folder: the program cache keys programs by their files
+        later.write(m.desc->id + ".glsl", helperCalling({next.function}) + text.str());
+        try {
+            renderer.programs().get(renderer.viewRecipe(m, {later.path}, true, 1));
+            ADD_FAILURE() << m.desc->id << " can call " << next.id << "'s function";
+        } catch (const ShaderError& e) {
+            const std::string said = functionName(next.function) + " is introduced in step " +
+                                     std::to_string(next.step) + " (" + next.id + "); " +
+                                     m.desc->id + " cannot call it";
+            EXPECT_TRUE(contains(e.what(), (later.path / (m.desc->id + ".glsl:")).string() + "4:"))
+                << e.what();
+            EXPECT_TRUE(contains(e.what(), said)) << e.what();
         }
     }
 }

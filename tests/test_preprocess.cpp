@@ -103,3 +103,138 @@ TEST(CompilerLog, MapsSourceNumbersToFiles) {
               "/kit/ndotl.glsl:7(12): error: syntax error");
     EXPECT_EQ(mapCompilerLog("ERROR: 1(7) : bad", names), "ERROR: /kit/ndotl.glsl:7 : bad");
 }
+
+// What a student's part may write (ShaderPreprocessor::expand): nothing it writes reaches code
+// that is not its own.
+namespace {
+
+// A program as viewRecipe lays it out: a reference solution linked as host code (with a private
+// helper), the student's file, the host's code after it (an empty generated part among it: a
+// step without parameters declares none).
+struct StudentProgram {
+    TempDir dir;
+    std::filesystem::path kit = dir.path / "kit";
+    ShaderPart solution{
+        dir.write("host/earlier.glsl",
+                  "float pbrlab_earlierHelper(float x)\n{\n    return x;\n}\n"
+                  "float earlier(float x)\n{\n    return pbrlab_earlierHelper(x);\n}\n")};
+    std::filesystem::path after = dir.write("host/after.glsl",
+                                            "float pbrlab_hostAfter() { return 1.0; }\n"
+                                            "float after() { return pbrlab_hostAfter(); }\n");
+
+    ExpandedShader expand(const std::string& studentText) {
+        dir.write("kit/step.glsl", studentText);
+        solution.solutionOf = "earlier";
+        ShaderPart student(kit / "step.glsl");
+        student.studentFolder = kit;
+        return ShaderPreprocessor({dir.path / "host"})
+            .expand({solution, student, ShaderPart("<parameters>", ""), after},
+                    {{"NUM_LIGHTS", "2"}});
+    }
+    // The refusal's text, or "" when the file is accepted.
+    std::string refusal(const std::string& studentText) {
+        try {
+            expand(studentText);
+        } catch (const ShaderError& e) {
+            return e.what();
+        }
+        return "";
+    }
+};
+
+}  // namespace
+
+TEST(Preprocessor, AStudentsFileCannotNameAPrivateHelperOfAReferenceSolution) {
+    StudentProgram p;
+    // Every way of naming it: a call, a prototype, a definition of that name, a macro, and a
+    // name hidden from a reader who does not join continuation lines the way the compiler does.
+    for (const std::string code : {
+             "float step(float x) { return pbrlab_earlierHelper(x); }\n",
+             "float pbrlab_earlierHelper(float x);\nfloat step(float x) { return x; }\n",
+             "float pbrlab_earlierHelper(float x) { return 2.0 * x; }\n",
+             "#define H pbrlab_earlierHelper\nfloat step(float x) { return H(x); }\n",
+             "/* a comment *\\\n/ float step(float x) { return pbrlab_earlierHelper(x); }\n",
+         }) {
+        SCOPED_TRACE(code);
+        const std::string why = p.refusal(code);
+        EXPECT_NE(why.find("pbrlab_earlierHelper is private to the reference solution of "
+                           "earlier"),
+                  std::string::npos)
+            << why;
+        EXPECT_NE(why.find("step.glsl:"), std::string::npos) << why;
+    }
+    // The host's pbrlab_ functions after the student's part, callable through a prototype.
+    EXPECT_NE(p.refusal("float pbrlab_hostAfter();\nfloat step(float x) { return x; }\n")
+                  .find("pbrlab_hostAfter is private to the host's code after your file"),
+              std::string::npos);
+    // Token pasting could form the name without writing it.
+    EXPECT_NE(p.refusal("#define CAT(a, b) a##b\nfloat step(float x) { return "
+                        "CAT(pbrlab_earlier, Helper)(x); }\n")
+                  .find("step.glsl:1: error: token pasting (##) is not allowed"),
+              std::string::npos);
+    // The same name in a comment, the contract function itself, and helpers of the student's
+    // own (pbrlab_ included: the kit's stubs keep their step's own helper) are fine.
+    EXPECT_EQ(p.refusal("// pbrlab_earlierHelper would do it\n/* pbrlab_earlierHelper */\n"
+                        "float pbrlab_mine(float x) { return earlier(x); }\n"
+                        "float step(float x) { return pbrlab_mine(x); }\n"),
+              "");
+}
+
+TEST(Preprocessor, AStudentsMacrosEndWithItsFile) {
+    StudentProgram p;
+    const ExpandedShader s = p.expand(
+        "#define SCALE 2.0\n#define twice(x) (SCALE * (x))\n"
+        "float step(float x) { return twice(x); } // \\\n");
+    // After the student's text: a line that ends its continuation, then every macro undone,
+    // before the host's code.
+    const size_t after = s.text.find("float after()");
+    const size_t undoScale = s.text.find("#undef SCALE\n"),
+                 undoTwice = s.text.find("#undef twice\n");
+    ASSERT_NE(undoScale, std::string::npos) << s.text;
+    ASSERT_NE(undoTwice, std::string::npos) << s.text;
+    EXPECT_LT(undoScale, after);
+    EXPECT_LT(undoTwice, after);
+    EXPECT_GT(undoScale, s.text.find("float step("));
+    EXPECT_NE(s.text.find("// \\\n\n"), std::string::npos)
+        << "the continuation ends on a blank line";
+}
+
+TEST(Preprocessor, AStudentsFileCannotRedefineOrUndefineTheHostsMacros) {
+    StudentProgram p;
+    for (const std::string directive : {"#undef NUM_LIGHTS", "#define NUM_LIGHTS"}) {
+        const std::string why = p.refusal(directive + " \nfloat step(float x) { return x; }\n");
+        EXPECT_NE(
+            why.find("step.glsl:1: error: " + directive + ": NUM_LIGHTS is a macro of the host's"),
+            std::string::npos)
+            << why;
+    }
+    // Reading it is what the contract allows.
+    EXPECT_EQ(p.refusal("float step(float x) { return x * float(NUM_LIGHTS); }\n"), "");
+}
+
+TEST(Preprocessor, AStudentsFileCannotLeaveACommentOpen) {
+    StudentProgram p;
+    const std::string why = p.refusal("float step(float x) { return x; }\n\n/* the rest\n");
+    EXPECT_NE(why.find("step.glsl:3: error: a /* comment that is not closed"), std::string::npos)
+        << why;
+}
+
+// A call of a function the program does not declare: Mesa reports it in another source string;
+// the log names the student's call, and for a later step's contract function, why.
+TEST(CompilerLog, ACallOfALaterStepsFunctionIsNamedAtTheStudentsLine) {
+    StudentProgram p;
+    p.dir.write("kit/step.glsl", "float step(float x)\n{\n    return later(x);\n}\n");
+    ShaderPart student(p.kit / "step.glsl");
+    student.studentFolder = p.kit;
+    student.unreachable = {{"later", "later is introduced in step 9 (later); step cannot call it"}};
+    const ExpandedShader s = ShaderPreprocessor({p.dir.path / "host"}).expand({student}, {});
+    const std::string log = "0:3(9): error: no function with name 'later'\n";
+    EXPECT_EQ(mapCompilerLog(log, s),
+              (p.kit / "step.glsl").string() +
+                  ":3: error: later is introduced in step 9 (later); step cannot call it\n");
+    // A name that is no contract function keeps the compiler's words, at the student's call.
+    p.dir.write("kit/step.glsl", "float step(float x)\n{\n    return typo(x);\n}\n");
+    const ExpandedShader t = ShaderPreprocessor({p.dir.path / "host"}).expand({student}, {});
+    EXPECT_EQ(mapCompilerLog("0:3(9): error: no function with name 'typo'\n", t),
+              (p.kit / "step.glsl").string() + ":3: error: no function with name 'typo'\n");
+}

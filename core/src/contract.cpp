@@ -168,16 +168,13 @@ std::vector<ContractStep> readStepFolders(const std::vector<fs::path>& roots) {
                         " is also " + steps[i - 1].id + "'s: give each step its own");
         }
     }
-    // Every contract function is declared in every program: one name, one step.
-    auto name = [](const ContractStep& s) {
-        const std::string head = s.function.substr(0, s.function.find('('));
-        return head.substr(head.find_last_of(" \t") + 1);
-    };
+    // A contract function is declared from its step on in every later program: one name, one
+    // step.
     for (size_t i = 0; i < steps.size(); ++i)
         for (size_t k = 0; k < i; ++k)
-            if (name(steps[i]) == name(steps[k]))
+            if (functionName(steps[i].function) == functionName(steps[k].function))
                 throw Error((steps[i].folder / "step.json").string() + ": function " +
-                            name(steps[i]) + " is already " + steps[k].id + "'s");
+                            functionName(steps[i].function) + " is already " + steps[k].id + "'s");
     // The programs concatenate the steps' files in order: a step may call earlier ones only.
     for (const ContractStep& s : steps)
         for (const std::string& callee : s.calls) {
@@ -226,11 +223,41 @@ const std::vector<ContractStep>& contractSteps() {
     return *c.loads.back();
 }
 
-std::string contractPrototypes() {
-    std::string text =
-        "// Every contract function, declared before any is defined: any step may call any.\n";
-    for (const auto& s : contractSteps()) text += s.function + ";\n";
-    return text + kFresnelSchlickRoughness + ";\n";
+const std::vector<ContractHelper>& contractHelpers() {
+    static const std::vector<ContractHelper> helpers = {
+        {kFresnelSchlickRoughness, "fresnel_roughness.glsl", "split_sum"}};
+    return helpers;
+}
+
+std::string functionName(const std::string& signature) {
+    std::string head = signature.substr(0, signature.find('('));
+    head.erase(head.find_last_not_of(" \t") + 1);
+    return head.substr(head.find_last_of(" \t") + 1);  // npos + 1 = 0: no return type
+}
+
+std::vector<const ContractStep*> stepsVisibleFrom(const ContractStep& step) {
+    std::vector<const ContractStep*> visible;
+    for (const ContractStep& s : contractSteps())
+        if (s.step <= step.step) visible.push_back(&s);
+    return visible;
+}
+
+std::map<std::string, std::string> unreachableFrom(const ContractStep& step) {
+    std::map<std::string, std::string> names;
+    auto add = [&](const std::string& signature, const ContractStep& introducer) {
+        const std::string name = functionName(signature);
+        names[name] = name + " is introduced in step " + std::to_string(introducer.step) + " (" +
+                      introducer.id + "); " + step.id +
+                      " cannot call it: a step's file may call the contract functions of its "
+                      "own and earlier steps only";
+    };
+    for (const ContractStep& s : contractSteps())
+        if (s.step > step.step) add(s.function, s);
+    for (const ContractHelper& h : contractHelpers()) {
+        const ContractStep* introducer = findContractStep(h.introducedBy);
+        if (introducer && introducer->step > step.step) add(h.function, *introducer);
+    }
+    return names;
 }
 
 const ContractStep* findProvider(const std::string& sampler) {

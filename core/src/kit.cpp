@@ -87,7 +87,8 @@ int writeKit(const ModuleRegistry& modules, const KitOptions& o) {
               "One file per step. Write the body of each function where the TODO is; you may "
               "add helper functions of your own above it (do not name them `pbrlab_*`, and do "
               "not define `PI`: it is provided, as are `NUM_LIGHTS`, `uLightPositions`, "
-              "`uLightColors` and every contract function of both labs). The handouts "
+              "`uLightColors` and the contract functions of the earlier steps). The "
+              "handouts "
               "in `handouts/` explain each step.\n\n" +
                   (o.due.empty() ? std::string() : "Due: " + o.due + "\n\n") +
                   "| step | file | function | status |\n|---|---|---|---|\n" + list +

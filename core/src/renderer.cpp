@@ -1,6 +1,7 @@
-// LabRenderer's requests: the view program of a step (every contract function, the student's
-// where graded), the view pass over the G-buffer (renderer_gbuffer.cpp) or uploaded points, with
-// the IBL maps the step may read (renderer_environment.cpp) bound.
+// LabRenderer's requests: the view program of a step (the contract functions of its own and
+// the earlier steps, the student's where graded), the view pass over the G-buffer
+// (renderer_gbuffer.cpp) or uploaded points, with the IBL maps the step may read
+// (renderer_environment.cpp) bound.
 #include "renderer.h"
 
 #include <algorithm>
@@ -65,18 +66,33 @@ ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentS
     r.label = "view " + d.id + (view.empty() ? "" : " (" + view + ")");
     r.vertex = {paths_.shaders() / "fullscreen.vert"};
     r.fragment.push_back(paths_.shaders() / "common.glsl");
-    // The contract's promise: every contract function is callable from every step's file.
-    // Prototypes first, so a step may call one that is defined after it.
-    r.fragment.push_back(ShaderPart("<contract prototypes>", contractPrototypes()));
-    r.fragment.push_back(paths_.shaders() / "fresnel_roughness.glsl");
-    for (const ContractStep& step : contractSteps()) {
-        ShaderPart part(step.folder / "solution.glsl");
-        if (!source.dir.empty() && (step.id == d.id || source.cumulative)) {
-            fs::path student = source.dir / (step.id + ".glsl");
+    // What the step's file may call (docs/design.md, "Assignment contract"): the contract
+    // functions of its own and every earlier step, and the helpers those steps introduce. Each
+    // is declared just before its step's part, so a student's file (also an earlier one, with
+    // --cumulative) sees no later step's function: the program holds no code that computes
+    // the graded step except the student's own. The view calls only steps in that set.
+    const ContractStep* own = findContractStep(d.id);
+    if (!own) throw Error("'" + d.id + "' is not a contract step id");
+    for (const std::string& used : d.uses) {
+        const ContractStep* u = findContractStep(used);
+        if (!u || u->step > own->step)
+            throw Error("the view of " + d.id + " uses '" + used +
+                        "', which is not an earlier step: a step's program holds no later step");
+    }
+    for (const ContractStep* step : stepsVisibleFrom(*own)) {
+        for (const ContractHelper& helper : contractHelpers())
+            if (helper.introducedBy == step->id)
+                r.fragment.push_back(paths_.shaders() / helper.file);
+        r.fragment.push_back(ShaderPart("<contract: " + step->id + ">", step->function + ";\n"));
+        ShaderPart part(step->folder / "solution.glsl");
+        part.solutionOf = functionName(step->function);
+        if (!source.dir.empty() && (step->id == d.id || source.cumulative)) {
+            fs::path student = source.dir / (step->id + ".glsl");
             std::error_code ec;
             if (fs::exists(student, ec) || fs::is_symlink(student, ec)) {
                 part = ShaderPart(student);
                 part.studentFolder = source.dir;  // screened; never the reference solutions
+                part.unreachable = unreachableFrom(*step);
             }
         }
         r.fragment.push_back(part);

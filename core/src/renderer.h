@@ -113,9 +113,9 @@ class LabRenderer {
 public:
     explicit LabRenderer(const DataPaths& paths, RendererOptions options = {});
 
-    // The program recipe for a module's view: every contract function (the student's for the
-    // graded steps, the reference solutions for the others), the surface loader, the view,
-    // one permutation per (probe, light count).
+    // The program recipe for a module's view: the contract functions of its own and every
+    // earlier step (the student's for the graded steps, the reference solutions for the
+    // others), the surface loader, the view, one permutation per (probe, light count).
     ProgramRecipe viewRecipe(const LoadedModule& module, const StudentSource& source, bool probe,
                              int lightCount, const std::string& view = "") const;
 

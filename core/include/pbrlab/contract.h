@@ -5,6 +5,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -58,19 +59,40 @@ void addStepRoot(const std::filesystem::path& root);
 // The steps of the built-in labs/ and the added roots, in order (readStepFolders).
 const std::vector<ContractStep>& contractSteps();
 
-// The contract helper every step may call besides the steps' functions (shaders/
-// fresnel_roughness.glsl).
+// A contract helper: a function the host provides besides the steps' own (shaders/<file>),
+// callable from the step that introduces it on. Today one: fresnelSchlickRoughness, which only
+// split_sum's lesson needs (and which is Schlick's Fresnel itself at roughness 0, so an earlier
+// step that could call it would not compute its own Fresnel).
+struct ContractHelper {
+    std::string function;      // the GLSL signature
+    std::string file;          // the file in shaders/ that defines it
+    std::string introducedBy;  // the id of the step whose lesson introduces it
+};
 inline constexpr const char* kFresnelSchlickRoughness =
     "vec3 fresnelSchlickRoughness(float cosTheta, vec3 F0, float roughness)";
+const std::vector<ContractHelper>& contractHelpers();
 
-// GLSL prototypes of every contract function (and the helper), for programs that link them all.
-std::string contractPrototypes();
+// The function a GLSL signature declares: "vec3 fresnelSchlick(float cosTheta, vec3 F0)" ->
+// "fresnelSchlick".
+std::string functionName(const std::string& signature);
+
+// What a step's file may call (docs/design.md, "Assignment contract"): the contract functions
+// of its own step and of every earlier step, and the helpers those steps introduce. Everything
+// else of the contract is not in its program. The steps a view program links, in step order:
+// `step` and every step before it.
+std::vector<const ContractStep*> stepsVisibleFrom(const ContractStep& step);
+// The contract functions and helpers a file of `step` cannot call (those of later steps),
+// each with what to tell a student who calls one: "fresnelSchlickRoughness is introduced in
+// step 21 (split_sum); fresnel cannot call it".
+std::map<std::string, std::string> unreachableFrom(const ContractStep& step);
+
 const ContractStep* findContractStep(const std::string& id);
 // The step whose quantity the sampler's map holds (step.json "provides"), or nullptr.
 const ContractStep* findProvider(const std::string& sampler);
 
-// The contract steps whose GLSL a program for `id` needs, in step order: every earlier step
-// of the same lab (students may call any of them), `extra` ids, and what those call in turn.
+// The contract steps whose GLSL a precompute program for `id` needs (no student's file is in
+// it), in step order: every earlier step of the same lab, `extra` ids, and what those call in
+// turn.
 std::vector<const ContractStep*> contractClosure(const std::string& id,
                                                  const std::vector<std::string>& extra);
 

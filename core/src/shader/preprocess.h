@@ -32,6 +32,14 @@ struct ShaderPart {
     // #includes are screened and read by readStudentFile (student_file.h), and its includes
     // resolve inside this folder only, never in the reference solutions.
     std::filesystem::path studentFolder;
+    // A student's part: the names it cannot call, each with what to tell a student who does
+    // (said in place of the compiler's "no function with name"): the contract functions of
+    // later steps (contract.h, unreachableFrom).
+    std::map<std::string, std::string> unreachable;
+    // A reference solution linked as host code (not the student's part): the contract function
+    // it defines. Every other function it defines is a private helper of that solution, and no
+    // student's part of the program may name it (see ShaderPreprocessor::expand).
+    std::string solutionOf;
 };
 
 struct ExpandedShader {
@@ -43,6 +51,8 @@ struct ExpandedShader {
     // Source-string number -> the text of a student's file (the part with a studentFolder,
     // and what it includes): compiler messages that point elsewhere are traced back to it.
     std::map<int, std::string> studentTexts;
+    // Source-string number of a student's file -> ShaderPart::unreachable of its part.
+    std::map<int, std::map<std::string, std::string>> unreachable;
 };
 
 class ShaderPreprocessor {
@@ -52,6 +62,22 @@ public:
     // "#version 450 core", the defines, then each part with its includes expanded (each file
     // at most once). Throws pbrlab::Error naming file and line for a missing include or one
     // that leaves the roots.
+    //
+    // A student's part (and what it includes) is screened so that nothing it writes reaches
+    // code that is not its own; each refusal is a ShaderError at the student's line:
+    // - a name of a private helper of a reference solution in the program, or of one of the
+    //   host's pbrlab_ functions after the student's part (a call, a prototype, a definition or
+    //   a macro of that name), and token pasting (##), which could form such a name: those
+    //   helpers compute parts of other steps. The student's own helpers may have any other
+    //   name, pbrlab_ included (the kit's stub of a step keeps its reference's helper), and
+    //   common.glsl's pbrlab_ utilities, declared before every step, compute no step;
+    // - #define or #undef of a macro the host defines (the define set, NUM_LIGHTS, ...): the
+    //   host's code after the part reads it;
+    // - a /* comment still open at the end of a file: it would swallow the host's code after it.
+    // Every macro the part defines is #undef'd after it, so the host's code after the part
+    // reads none of them. (Undefining rather than refusing every macro: a student's own macros
+    // are legitimate GLSL and harm nothing once they end with the file; refusing is kept for
+    // the host's names, whose #undef would change the host's code.)
     ExpandedShader expand(const std::vector<ShaderPart>& parts, const Defines& defines) const;
 
     const std::vector<std::filesystem::path>& roots() const { return roots_; }
