@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "feedback.h"
+#include "term_fits.h"
 
 using namespace pbrlab;
 
@@ -184,4 +185,91 @@ TEST(Feedback, InputsAreDescribedByWhatTheDomainVaries) {
                 contains(text, "ao 0.5"))
         << text;
     EXPECT_FALSE(contains(text, "metallic")) << text;  // the domain does not vary it
+}
+
+// Steps with named terms (term_fits.h): values made from the CPU reference by a known change.
+namespace {
+
+// Inputs of step `id` over `domain`, with the context the term fits read.
+template <class Truth, class Student>
+FeedbackInputs stepInputs(ModuleDesc& d, const std::string& id, DomainFn domain,
+                          const ReferenceContext& context, Truth truth, Student student) {
+    d.id = id;
+    d.components = 3;
+    d.domain = std::move(domain);
+    FeedbackInputs in = inputs(d, truth, student);
+    in.context = &context;
+    return in;
+}
+
+glm::dvec3 specular(const Surface& s) {
+    return grazingBand(s) * ref::cookTorranceSpecular(s.normal, s.view, s.light,
+                                                      ref::baseReflectivity(s.albedo, s.metallic),
+                                                      s.roughness);
+}
+
+Surface radianceDomain(DomainRandom& r) {
+    Surface s;
+    s.position = {r.range(-1.5, 1.5), r.range(-1.5, 1.5), r.range(-1.5, 1.5)};
+    s.lightPosition = s.position + r.direction() * r.logRange(0.05, 20);
+    s.lightColor = r.color(100);
+    return s;
+}
+
+}  // namespace
+
+TEST(Feedback, AMissingOrDoubledTermIsNamed) {
+    const ParamValues params;
+    const ReferenceContext context{params, {}, glm::dvec3(0), nullptr};
+    ModuleDesc d;
+    const std::string noG = classifyError(
+        stepInputs(d, "specular", highlightDomain, context, specular, [](const Surface& s) {
+            return specular(s) / ref::geometrySmith(s.normal, s.view, s.light, s.roughness);
+        }));
+    EXPECT_TRUE(contains(noG, "divided by G:") && contains(noG, "geometry term G missing")) << noG;
+    const std::string noNL = classifyError(stepInputs(
+        d, "specular", highlightDomain, context, specular,
+        [](const Surface& s) { return specular(s) * std::max(glm::dot(s.normal, s.light), 0.0); }));
+    EXPECT_TRUE(contains(noNL, "times N.L") && contains(noNL, "N.L in the denominator")) << noNL;
+}
+
+TEST(Feedback, AnInputAtAnotherPowerIsNamed) {
+    const ParamValues params;
+    const ReferenceContext context{params, {}, glm::dvec3(0), nullptr};
+    ModuleDesc d;
+    auto radiance = [](const Surface& s) {
+        return ref::pointLightRadiance(s.lightColor, s.lightPosition, s.position);
+    };
+    const std::string cube = classifyError(
+        stepInputs(d, "radiance", radianceDomain, context, radiance, [](const Surface& s) {
+            return s.lightColor / std::pow(glm::length(s.lightPosition - s.position), 3.0);
+        }));
+    EXPECT_TRUE(contains(cube, "1/d^3 where the reference has 1/d^2")) << cube;
+    auto hdrDomain = [](DomainRandom& r) {
+        Surface s;
+        s.extra = {r.logRange(1e-3, 1e3), r.logRange(1e-3, 1e3), r.logRange(1e-3, 1e3), 1};
+        return s;
+    };
+    auto encode = [](const Surface& s) { return ref::displayEncode(glm::dvec3(s.extra)); };
+    const std::string gamma3 =
+        classifyError(stepInputs(d, "tonemap", hdrDomain, context, encode, [](const Surface& s) {
+            const glm::dvec3 h(s.extra);
+            return glm::pow(h / (h + 1.0), glm::dvec3(1.0 / 3));
+        }));
+    EXPECT_TRUE(contains(gamma3, "gamma 3 (exponent 1/3) where the reference has gamma 2.2"))
+        << gamma3;
+}
+
+TEST(Feedback, NoTermIsNamedWhenNoneExplainsTheError) {
+    const ParamValues params;
+    const ReferenceContext context{params, {}, glm::dvec3(0), nullptr};
+    ModuleDesc d;
+    // An error that follows no term: a ripple in roughness.
+    const std::string ripple = nameTerm(stepInputs(
+        d, "specular", highlightDomain, context, specular,
+        [](const Surface& s) { return specular(s) * (1 + 0.3 * std::sin(20 * s.roughness)); }));
+    EXPECT_EQ(ripple, "");
+    // The reference itself: nothing to explain.
+    EXPECT_EQ(nameTerm(stepInputs(d, "specular", highlightDomain, context, specular, specular)),
+              "");
 }

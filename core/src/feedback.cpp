@@ -8,6 +8,8 @@
 #include <regex>
 #include <sstream>
 
+#include "term_fits.h"
+
 namespace pbrlab {
 
 namespace {
@@ -606,6 +608,9 @@ std::string classifyError(const FeedbackInputs& in, bool* exactOut) {
                 s += ": is a constant factor wrong?";
             else
                 s += ": a constant factor is off.";
+            // A term that is the same at every point of this check (the lesson's lights are
+            // all of colour 300) explains it as well: said too.
+            if (std::string t = nameTerm(in); !t.empty()) s += " " + t;
             return s;
         }
     }
@@ -616,6 +621,9 @@ std::string classifyError(const FeedbackInputs& in, bool* exactOut) {
             return "Your value is the reference " + std::string(c > 0 ? "+ " : "- ") +
                    num(std::abs(c), 4) + " everywhere: a term is added or missing.";
     }
+    // A term of the step missing, applied twice or extra, or an input at another power
+    // (term_fits.h): before the power of the reference, which gamma 3 also is.
+    if (std::string t = nameTerm(in); !t.empty()) return t;
     // A power: value = expected^p where 0 < expected < 1 (or > 1), away from 1.
     {
         std::vector<double> powers;

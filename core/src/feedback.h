@@ -24,6 +24,10 @@ struct FeedbackInputs {
     // The student's file, when there is one: a constant 0 is told apart from the kit's stub
     // (an endless loop the compiler removed, for one). Optional.
     std::string studentCode;
+    // What the reference reads besides the surface (the scene's lights, the parameters, the
+    // environment's maps): the named-term fits recompute the step with it (term_fits.h).
+    // Optional.
+    const ReferenceContext* context = nullptr;
 };
 
 // Why a function that returns 0 for every input does, read from its code: an endless loop

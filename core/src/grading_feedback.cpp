@@ -105,6 +105,7 @@ void StepGrader::explain() {
         auto context = std::make_shared<ReferenceContext>(
             referenceContext(renderer_, d_, bound, f.params, kGradingIbl));
         in.reference = [this, context](const Surface& s) { return d_.reference(s, *context); };
+        in.context = context.get();
         in.student = [this, &f](const std::vector<Surface>& surfaces) {
             const Grid g = grid(surfaces);
             RenderRequest request{&m_,         &f.params, &f.scene, source_,
