@@ -2,6 +2,9 @@
 // own step, graded exactly as a submission is (gradeSubmission: a child process, every check).
 //   tests/variants/<id>/correct_*.glsl   correct alternatives (other frames, sequences,
 //                                        quadratures, epsilons, the lesson's code)
+//   tests/variants/<id>/mistake_*.glsl   mistakes planted against one check of the grader
+//                                        (a NaN on an input callers produce, a hard-coded host
+//                                        value, a count ignored above the graded ones)
 //   labs/<id>/mistakes/*.glsl           the typical mistakes the grader also names
 //   tests/exploits/<id>/*.glsl           shortcuts found by reading the grader; a line
 //                                        "// expect: TEXT" says what the message must name
@@ -37,7 +40,10 @@ std::vector<Variant> allVariants() {
             for (const auto& f : fs::directory_iterator(dir.path()))
                 if (f.path().extension() == ".glsl")
                     v.push_back({dir.path().filename().string(),
-                                 std::string(kind) == "exploits" ? "exploit" : "correct",
+                                 std::string(kind) == "exploits" ? "exploit"
+                                 : f.path().filename().string().rfind("mistake_", 0) == 0
+                                     ? "mistake"
+                                     : "correct",
                                  f.path().filename().string(), f.path()});
     }
     for (const auto& step : contractSteps()) {

@@ -94,6 +94,7 @@ StepResult StepGrader::run() {
         else
             gradeValues(scene);
         gradeInvariants(scene);
+        gradeCallerInputs(scene);
         if (settings_.robustness) gradeRobustness(scene);
     } catch (const Stopped&) {
         // stopAtFirstFailure: the verdict is known.
@@ -145,8 +146,11 @@ std::vector<std::string> exercisedValues(const ParamDecl& p) {
     std::vector<glm::dvec3> values;
     switch (p.type) {
         case ParamType::Int: {
-            const double lo = std::max(p.min, 1.0), hi = std::min(p.max, 1024.0);
-            for (double v : {lo, 7.0, hi})
+            // Counts above the largest graded everywhere too (4096, 65536: graded at a few
+            // points, kFewPointsAbove), so a function that stops using its count anywhere
+            // above 1024 fails.
+            const double lo = std::max(p.min, 1.0), hi = std::min(p.max, double(kFewPointsAbove));
+            for (double v : {lo, 7.0, hi, 4096.0, 65536.0})
                 if (v >= p.min && v <= p.max) values.push_back(glm::dvec3(v));
             break;
         }

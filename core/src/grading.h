@@ -5,7 +5,9 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -76,6 +78,10 @@ struct StepResult {
     // shown to the student, who would otherwise read the solution off the feedback).
     std::string instructorNote;
     double seconds = 0;
+    // Every value the host gave the step's program in its values checks, by the name the
+    // program reads it by (NUM_LIGHTS, uLightPositions, uPrefilterMaxLod, uBrdfLut's size,
+    // u_<parameter>, ...): what shows that each is graded at more than one value.
+    std::map<std::string, std::set<std::string>> hostValues;
 };
 
 // Throws ShaderError when the student's file does not compile, pbrlab::Error for refused
@@ -87,8 +93,12 @@ StepResult gradeStep(LabRenderer& renderer, const LoadedModule& module, const Da
 std::vector<Surface> domainSurfaces(const ModuleDesc& module, std::uint64_t seed, int count);
 
 // The values a parameter is graded at besides its default ("samples=7"): every parameter the
-// student's function receives is exercised.
+// student's function receives is exercised; counts up to 1024 and, where the parameter allows,
+// 4096 and 65536.
 std::vector<std::string> exercisedValues(const ParamDecl& p);
+// Counts above this are graded on kFewPoints random points of the domain only (the probe, the
+// scenes and 2048 points would cost 64 times the work at 65536).
+constexpr int kFewPointsAbove = 1024, kFewPoints = 64;
 
 nlohmann::json toJson(const CheckReport& check);
 

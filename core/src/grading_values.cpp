@@ -26,15 +26,87 @@ Scene colouredLights(Scene scene) {
     return scene;
 }
 
+// Seven lights of distinct colours around the scene's centre, at distances 2 to 12 times the
+// unit: a count no other check uses (the module's scene has 1, the lesson's grid 4, the
+// coloured lights 3), so a loop over a fixed number of lights fails.
+Scene sevenLights(Scene scene) {
+    const glm::dvec3 c = scene.camera.target;
+    const double r = std::max(1.0, 0.3 * glm::length(scene.camera.position - c));
+    const glm::dvec3 toCamera = glm::normalize(scene.camera.position - c);
+    scene.lights.clear();
+    for (int k = 0; k < 7; ++k) {
+        const double phi = 2 * 3.141592653589793 * k / 7, up = k % 2 ? 0.8 : -0.3;
+        const glm::dvec3 d =
+            glm::normalize(toCamera + glm::dvec3(std::cos(phi), up, std::sin(phi)));
+        const glm::dvec3 colour(1 + 9 * (k % 3 == 0), 1 + 9 * (k % 3 == 1), 1 + 9 * (k % 3 == 2));
+        scene.lights.push_back({c + r * (2 + 1.5 * k) * d, colour * (2.0 + 4.0 * k)});
+    }
+    return scene;
+}
+
+// The precomputed maps with other settings than the defaults, as the host makes them
+// (`precompute --prefilter-mips`, `--error-budget`'s rungs: docs/ibl.md), one host value
+// varied at a time so that a failure names it.
+struct HostMaps {
+    std::string value;  // what is varied, as the student reads it
+    IblSettings settings;
+};
+std::vector<HostMaps> hostMapSettings() {
+    IblSettings mips = kGradingIbl;
+    mips.prefilterMips = 7;  // 128 down to 2: uPrefilterMaxLod = 6 (the default's 5 mips: 4)
+    IblSettings sizes = kGradingIbl;
+    sizes.environmentSize = 128;
+    sizes.irradianceSize = 16;
+    sizes.prefilterSize = 64;  // 5 mips still: uPrefilterMaxLod = 4, only the sizes change
+    sizes.bins = 8;
+    sizes.lutWidth = 256;
+    sizes.lutHeight = 16;
+    return {{"uPrefilterMaxLod", mips},
+            {"the maps' sizes: uBrdfLut, uIrradianceMap, uPrefilterMap, uEnvironment", sizes}};
+}
+
+std::string sizeOf(int width, int height, int mips = 1) {
+    return std::to_string(width) + "x" + std::to_string(height) +
+           (mips > 1 ? " (" + std::to_string(mips) + " mips)" : "");
+}
+
 }  // namespace
+
+void StepGrader::noteHostValues(const Scene& scene, const ParamValues& params,
+                                const IblSettings& ibl) {
+    auto& v = result_.hostValues;
+    v["NUM_LIGHTS"].insert(std::to_string(std::max<size_t>(scene.lights.size(), 1)));
+    std::string positions, colours;
+    for (const auto& l : scene.lights) {
+        positions +=
+            number(l.position.x) + "," + number(l.position.y) + "," + number(l.position.z) + ";";
+        colours += number(l.color.x) + "," + number(l.color.y) + "," + number(l.color.z) + ";";
+    }
+    v["uLightPositions"].insert(positions);
+    v["uLightColors"].insert(colours);
+    v["uCameraPosition"].insert(number(scene.camera.position.x) + "," +
+                                number(scene.camera.position.y) + "," +
+                                number(scene.camera.position.z));
+    v["uEnvironment"].insert(scene.environment + " " +
+                             sizeOf(ibl.environmentSize, ibl.environmentSize));
+    v["uIrradianceMap"].insert(scene.environment + " " +
+                               sizeOf(ibl.irradianceSize, ibl.irradianceSize));
+    v["uPrefilterMap"].insert(scene.environment + " " +
+                              sizeOf(ibl.prefilterSize, ibl.prefilterSize, ibl.prefilterMips));
+    v["uPrefilterMaxLod"].insert(std::to_string(ibl.prefilterMips - 1));
+    v["uBrdfLut"].insert(sizeOf(ibl.lutWidth, ibl.lutHeight));
+    for (const ParamDecl& p : d_.params) v[p.uniformName()].insert(p.format(params.vector(p.name)));
+}
 
 ValuesRun StepGrader::runValues(const std::string& name, const std::string& category,
                                 const Scene& scene, const ParamValues& params,
                                 const std::vector<Surface>* surfaces, int width, int height,
-                                const Probe* probe) {
+                                const Probe* probe, const IblSettings& ibl) {
     stage(name);
+    noteHostValues(applyParamBindings(scene, d_, params), params, ibl);
     EvalRequest request;
     request.render = {&m_, &params, &scene, source_, surfaces, width, height};
+    request.render.ibl = ibl;
     request.render.seamlessCubes = false;
     request.render.isolatePoints = surfaces != nullptr;
     request.render.cacheGBuffer = true;
@@ -157,6 +229,15 @@ void StepGrader::gradeValues(const Scene& scene) {
     for (const ParamDecl& p : d_.params)
         for (const std::string& assignment : exercisedValues(p)) {
             const ParamValues params = withSets(d_, {assignment});
+            if (p.type == ParamType::Int && params.number(p.name) > kFewPointsAbove) {
+                if (!d_.domain) continue;
+                const Grid few = grid(domainSurfaces(d_, settings_.seed, kFewPoints));
+                keep(runValues("random inputs with " + assignment + " (" +
+                                   std::to_string(kFewPoints) + " points)",
+                               "random", scene, params, &few.surfaces, few.width, few.height,
+                               nullptr));
+                continue;
+            }
             if (p.binding == ParamBinding::LightDirection) {
                 gradeCase("scene with " + assignment, GradeCase::Inputs::Scene, scene, params);
                 continue;
@@ -172,6 +253,63 @@ void StepGrader::gradeValues(const Scene& scene) {
         gradeCase("random inputs with three coloured lights", GradeCase::Inputs::Domain, lit,
                   defaults);
     }
+    gradeHostValues(scene);
+}
+
+// Each value the host provides, at a value no other check gives it, on random inputs of the
+// domain. When only such a check fails, the step is right with the host's defaults and wrong
+// with other values it meets in real use: a hard-coded host value, named so. The IBL ones are
+// not handed to the feedback (whose references read the default maps).
+// Cost (2-core llvmpipe, warm caches, measured): seven lights 31 ms (reflectance), 11 ms
+// (tonemap); the two map settings 198 and 73 ms (split_sum), each precomputed once and then
+// read from the disk cache.
+void StepGrader::gradeHostValues(const Scene& scene) {
+    if (!d_.domain) return;
+    const ParamValues defaults(d_.params);
+    const Grid g = grid(domainSurfaces(d_, settings_.seed, settings_.domainPoints));
+    // The values each host value had in the checks before (all passed: a failure below is the
+    // value itself).
+    auto before = [&](const std::string& name) {
+        for (const CheckReport& c : result_.checks)
+            if (c.kind == "values" && c.deducted && !c.passed) return std::string();
+        std::string values;
+        for (const std::string& v : result_.hostValues[name])
+            values += (values.empty() ? "" : ", ") + v;
+        return values;
+    };
+    auto named = [&](ValuesRun& run, const std::string& value, const std::string& right,
+                     const std::string& now) {
+        if (run.report.passed || right.empty()) return;
+        run.report.detail = "hard-coded host value (" + value + "): right with " + right +
+                            ", wrong with " + now + "; " + run.report.detail;
+    };
+    if (readsSceneLights(renderer_, m_, {}, 7) || readsSceneLights(renderer_, m_, source_, 7)) {
+        const std::string right = before("NUM_LIGHTS");
+        ValuesRun run =
+            runValues("random inputs with seven lights (NUM_LIGHTS = 7)", "random",
+                      sevenLights(scene), defaults, &g.surfaces, g.width, g.height, nullptr);
+        named(run, "NUM_LIGHTS", "NUM_LIGHTS = " + right, "7");
+        keep(std::move(run));
+    }
+    if (d_.needs & NeedsPrecomputedMaps)
+        for (const HostMaps& h : hostMapSettings()) {
+            const bool lod = h.value == "uPrefilterMaxLod";
+            const std::string right = before(lod ? "uPrefilterMaxLod" : "uBrdfLut");
+            const std::string now =
+                lod ? std::to_string(h.settings.prefilterMips - 1)
+                    : "uBrdfLut " + sizeOf(h.settings.lutWidth, h.settings.lutHeight) +
+                          ", uIrradianceMap " +
+                          sizeOf(h.settings.irradianceSize, h.settings.irradianceSize) +
+                          ", uPrefilterMap " +
+                          sizeOf(h.settings.prefilterSize, h.settings.prefilterSize) +
+                          ", uEnvironment " +
+                          sizeOf(h.settings.environmentSize, h.settings.environmentSize);
+            ValuesRun run =
+                runValues("random inputs with other maps (" + h.value + ")", "random", scene,
+                          defaults, &g.surfaces, g.width, g.height, nullptr, h.settings);
+            named(run, h.value, (lod ? "uPrefilterMaxLod = " : "uBrdfLut ") + right, now);
+            record(run.report);
+        }
 }
 
 }  // namespace pbrlab::step_grading

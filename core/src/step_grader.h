@@ -82,9 +82,12 @@ private:
     void stage(const std::string& what);
 
     // grading_values.cpp
+    // `ibl`: the settings of the precomputed maps the view reads (and the reference with it).
     ValuesRun runValues(const std::string& name, const std::string& category, const Scene& scene,
                         const ParamValues& params, const std::vector<Surface>* surfaces, int width,
-                        int height, const Probe* probe);
+                        int height, const Probe* probe, const IblSettings& ibl = kGradingIbl);
+    // Notes the host-provided values a render gave the step's program (StepResult::hostValues).
+    void noteHostValues(const Scene& scene, const ParamValues& params, const IblSettings& ibl);
     void keep(ValuesRun&& run);
     // Sets run.report.showsWork when it is a values check passed that the step's stub fails
     // (the stub rendered on the same inputs, against the same band): asked until one such
@@ -93,6 +96,9 @@ private:
     void gradeCase(const std::string& name, GradeCase::Inputs inputs, const Scene& scene,
                    const ParamValues& params, const std::string& sceneCategory = "scenes");
     void gradeValues(const Scene& scene);
+    // What the host provides graded at other values than its defaults: NUM_LIGHTS, the maps'
+    // mip count (uPrefilterMaxLod) and sizes.
+    void gradeHostValues(const Scene& scene);
 
     // grading_estimator.cpp
     struct PointSet;
@@ -104,6 +110,7 @@ private:
     // grading_checks.cpp
     void checkSamplers(const Program& program);
     void gradeInvariants(const Scene& scene);
+    void gradeCallerInputs(const Scene& scene);
     void gradeRobustness(const Scene& scene);
 
     // grading_feedback.cpp

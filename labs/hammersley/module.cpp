@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <vector>
 
 #include "pbrlab/ibl_reference.h"
 
@@ -25,6 +27,93 @@ glm::dvec3 discrepancyView(double a, double b, std::uint32_t n) {
     }
     const auto slot = std::min(std::uint32_t(a * n), n - 1);
     return {inside - double(n) * a * b, ref::hammersley(slot, n).x * n - slot, 0};
+}
+
+// The point (i, n) as point.glsl reads it from extra.
+Surface pointInputs(std::uint32_t i, std::uint32_t n) {
+    Surface s;
+    s.covered = true;
+    s.extra = {double(i >> 16), double(i & 0xFFFFu), double(n), 1};
+    return s;
+}
+
+// The contract's whole range of the arguments, beyond what the discrepancy view can afford (it
+// loops over all n points): hammersley(i, n) itself (point.glsl), compared with the double
+// reference.
+//   y over every bit of i: i = 2^k for k = 0..31 (y = 2^-(k+1), exact in float, so a reversal
+//     of fewer bits than 32 gives 0 there) and mixed patterns, n = 2^20. Band: 4e-6 of y, twice
+//     the worst a correct loop over the 32 bits reaches (32 float additions, each rounding by
+//     at most 2^-24 of the sum: 1.9e-6; bitfieldReverse and the swaps are exact to 6e-8).
+//   x = i / n for n = 1 to 2^20 (the estimators' counts reach 65536): i = 0, 1, n / 3, n - 1.
+//     (y of these points is the first check's: it does not depend on n.)
+//     Band: 1e-6 of x (i and n are exact floats; GLSL's division is within 2.5 ulps, 3e-7).
+// Cost: 2 renders of under 200 points, ~20 ms.
+std::vector<InvariantResult> wholeRangeInvariants(const Evaluator& evaluate) {
+    std::vector<std::uint32_t> bits;
+    for (int k = 0; k < 32; ++k) bits.push_back(1u << k);
+    for (std::uint32_t i : {0xFFFFFFFFu, 0xAAAAAAAAu, 0x55555555u, 0xFFFF0000u, 0x0000FFFFu,
+                            0x80000001u, 0xDEADBEEFu, 0x12345678u})
+        bits.push_back(i);
+    constexpr std::uint32_t kLargestCount = 1u << 20;
+    std::vector<Surface> points;
+    for (std::uint32_t i : bits) points.push_back(pointInputs(i, kLargestCount));
+    const std::vector<glm::dvec3> y = evaluate.run(points, "point", {});
+    double worstY = 0;
+    std::uint32_t worstI = 0;
+    for (size_t k = 0; k < bits.size(); ++k) {
+        const double expected = ref::hammersley(bits[k], kLargestCount).y;
+        const double e = std::abs(y[k].y - expected) / (4e-6 * expected);
+        if (!(e <= worstY)) worstY = e, worstI = bits[k];  // NaN counts as worst
+    }
+    char hintY[256];
+    int lowestWrongBit = -1;
+    for (int k = 0; k < 32 && lowestWrongBit < 0; ++k)
+        if (!(std::abs(y[size_t(k)].y - std::exp2(-(k + 1))) <= 4e-6 * std::exp2(-(k + 1))))
+            lowestWrongBit = k;
+    if (lowestWrongBit > 0)
+        std::snprintf(hintY, sizeof hintY,
+                      "ignores the bits of i above bit %d: wrong from i = 2^%d (y = 2^-%d "
+                      "expected); the radical inverse mirrors all 32 bits of i",
+                      lowestWrongBit - 1, lowestWrongBit, lowestWrongBit + 1);
+    else
+        std::snprintf(hintY, sizeof hintY,
+                      "wrong at i = %u: the radical inverse mirrors all 32 bits of i", worstI);
+
+    std::vector<std::uint32_t> counts = {1, 7, 1000, 1024, 4096, 65536, kLargestCount};
+    std::vector<Surface> pairs;
+    std::vector<std::uint32_t> pairCount;
+    for (std::uint32_t n : counts)
+        for (std::uint32_t i : {0u, 1u, n / 3, n - 1})
+            if (i < n) {
+                pairs.push_back(pointInputs(i, n));
+                pairCount.push_back(n);
+            }
+    const std::vector<glm::dvec3> x = evaluate.run(pairs, "point", {});
+    double worstX = 0;
+    std::uint32_t firstWrongCount = 0;
+    for (size_t k = 0; k < pairs.size(); ++k) {
+        const std::uint32_t i =
+            (std::uint32_t(pairs[k].extra.x) << 16) | std::uint32_t(pairs[k].extra.y);
+        // x only: y is the radical inverse of i whatever n is (graded above).
+        const double expected = ref::hammersley(i, pairCount[k]).x;
+        const double e = std::abs(x[k].x - expected) / std::max(1e-6 * expected, 1e-30);
+        if (!(e <= 1) && !firstWrongCount) firstWrongCount = pairCount[k];
+        if (!(e <= worstX)) worstX = e;
+    }
+    char hintX[256] = "";
+    if (firstWrongCount > kMaxPoints) {  // right at every count the discrepancy view draws
+        std::uint32_t rightUpTo = 1;
+        for (std::uint32_t n : counts)
+            if (n < firstWrongCount) rightUpTo = n;
+        std::snprintf(hintX, sizeof hintX,
+                      "ignores its count above %u: wrong from n = %u, right up to n = %u",
+                      rightUpTo, firstWrongCount, rightUpTo);
+    } else {
+        std::snprintf(hintX, sizeof hintX, "x = i / n for every n the callers pass (up to 2^20)");
+    }
+    return {{"y over every bit of i (i = 2^0 .. 2^31, n = 2^20), error in bands", worstY, "<= 1",
+             worstY <= 1, hintY},
+            {"x = i / n for n = 1 .. 2^20, error in bands", worstX, "<= 1", worstX <= 1, hintX}};
 }
 
 ModuleDesc describeModule() {
@@ -64,6 +153,8 @@ ModuleDesc describeModule() {
         s.extra = {x, std::round(std::exp2(10.0 * y)), 0, 1};  // w = 1: never all zero
         return s;
     };
+    d.extraViews = {"point"};
+    d.invariants = wholeRangeInvariants;
     return d;
 }
 
