@@ -4,9 +4,16 @@
 // equivalent. The full run is `pbrlab mutants` (docs/grading.md has its table).
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <map>
 #include <set>
+#include <sstream>
 
+#include "gl/context.h"
 #include "mutation.h"
+#include "pbrlab/contract.h"
+#include "semantic_mutants.h"
+#include "shader/program.h"
 #include "test_support.h"
 
 using namespace pbrlab;
@@ -68,6 +75,82 @@ TEST(Mutants, TypicalMutationsAreAmongThem) {
     EXPECT_TRUE(has("F0 + (F0) * pow"));              // 1.0 - x turned into x
 }
 
+// Each semantic family makes mutants on exactly the steps whose reference solution has what it
+// changes (a texture read, an integer parameter, a bit operation, a host-provided value), each
+// with a witness, and every one of them compiles in the step's program.
+TEST(SemanticMutants, EachFamilyAppliesWhereItFitsAndEveryMutantCompiles) {
+    auto context = createHeadlessContext();
+    DataPaths paths{PBRLAB_SOURCE_DIR};
+    ModuleRegistry modules{PBRLAB_MODULE_DIR};
+    LabRenderer renderer(paths);
+    // Read from the reference solutions: uEnvironment, uIrradianceMap, uPrefilterMap and
+    // uBrdfLut are sampled in steps 17-19 and 21; sample counts and Hammersley's (i, n) are the
+    // integer parameters; only hammersley reverses bits; NUM_LIGHTS and the light arrays are in
+    // reflectance, textureSize(uEnvironment) in irradiance, uPrefilterMaxLod in split_sum.
+    const std::map<std::string, std::set<std::string>> expected = {
+        {"radiance", {"mc_specular", "irradiance", "prefilter", "split_sum"}},
+        {"count", {"hammersley", "mc_specular", "prefilter", "brdf_lut"}},
+        {"bits", {"hammersley"}},
+        {"host", {"reflectance", "irradiance", "split_sum"}},
+    };
+    std::map<std::string, std::set<std::string>> made;
+    int compiled = 0;
+    for (const LoadedModule& m : modules.modules()) {
+        const std::string solution = [&] {
+            std::ifstream in(m.sourceDir / "solution.glsl");
+            std::stringstream s;
+            s << in.rdbuf();
+            return s.str();
+        }();
+        const std::vector<Mutant> mutants = generateSemanticMutants({renderer, m, paths, solution});
+        std::set<std::string> texts{solution};
+        for (const Mutant& x : mutants) {
+            made[x.family].insert(m.desc->id);
+            EXPECT_TRUE(texts.insert(x.text).second) << x.description;
+            EXPECT_FALSE(x.witness.empty()) << m.desc->id << ": " << x.description;
+            EXPECT_FALSE(x.change.empty()) << x.description;
+            test::TempDir dir;
+            dir.write(m.desc->id + ".glsl", x.text);
+            try {
+                renderer.programs().get(renderer.viewRecipe(m, {dir.path, false}, false, 1));
+                ++compiled;
+            } catch (const std::exception& e) {
+                ADD_FAILURE() << m.desc->id << ": " << x.description << " does not compile:\n"
+                              << e.what();
+            }
+        }
+    }
+    for (const SemanticFamily& f : semanticFamilies())
+        EXPECT_EQ(made[f.name], expected.at(f.name)) << "family " << f.name;
+    std::printf("[ measured ] %d semantic mutants compiled\n", compiled);
+}
+
+// The bits family on the other common Hammersley (LearnOpenGL's radical inverse by swaps of
+// bit groups): every mask narrowed and every constant shift changed, one at a time.
+TEST(SemanticMutants, FewerBitsNarrowsMasksAndChangesShifts) {
+    const std::string shifts = R"(float radicalInverse(uint bits)
+{
+    bits = (bits << 16u) | (bits >> 16u);
+    bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
+    return float(bits) * 2.3283064365386963e-10;
+}
+)";
+    auto context = createHeadlessContext();
+    DataPaths paths{PBRLAB_SOURCE_DIR};
+    ModuleRegistry modules{PBRLAB_MODULE_DIR};
+    LabRenderer renderer(paths);
+    const std::vector<Mutant> mutants =
+        semanticFamily("bits")->generate({renderer, modules.modules().front(), paths, shifts});
+    std::set<std::string> changes;
+    for (const Mutant& m : mutants) {
+        changes.insert(m.change);
+        EXPECT_FALSE(m.witness.byConstruction.empty()) << m.change;
+    }
+    EXPECT_EQ(changes, (std::set<std::string>{"`24u` for `16u`", "`0x5555u` for `0x55555555u`",
+                                              "`0xAAAAu` for `0xAAAAAAAAu`", "`9u` for `1u`"}));
+    EXPECT_EQ(mutants.size(), 6u);  // four shifts (16, 16, 1, 1), two masks
+}
+
 // A fixed third of the mutants of four steps of both labs (a deterministic subset), graded as
 // submissions: every survivor must be proven equivalent on the teaching domain.
 TEST(Mutants, NoMutantThatIsNotEquivalentSurvivesASubset) {
@@ -76,6 +159,7 @@ TEST(Mutants, NoMutantThatIsNotEquivalentSurvivesASubset) {
     MutationOptions o;
     o.modules = {"ndf", "fresnel", "reflectance", "hammersley", "brdf_lut"};
     o.every = 3;
+    o.semantic = false;  // mechanical: the semantic ones are measured by `pbrlab mutants`
     const std::vector<ModuleMutation> result = runMutants(modules, paths, o);
     ASSERT_EQ(result.size(), o.modules.size());
     for (const ModuleMutation& m : result) {

@@ -13,11 +13,7 @@ namespace pbrlab {
 
 namespace {
 
-struct Token {
-    enum Kind { Space, Comment, Preprocessor, Identifier, Number, Operator } kind;
-    std::string text;
-    int line;
-};
+using Token = GlslToken;
 
 bool isIdentStart(char c) {
     return std::isalpha(static_cast<unsigned char>(c)) || c == '_';
@@ -26,13 +22,15 @@ bool isIdentChar(char c) {
     return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
 }
 
-std::vector<Token> tokenize(const std::string& s) {
+}  // namespace
+
+std::vector<GlslToken> tokenizeGlsl(const std::string& s) {
     std::vector<Token> out;
     size_t i = 0;
     int line = 1;
     bool lineStart = true;
     auto push = [&](Token::Kind k, size_t begin) {
-        out.push_back({k, s.substr(begin, i - begin), line});
+        out.push_back({k, s.substr(begin, i - begin), line, begin});
         for (size_t j = begin; j < i; ++j) line += s[j] == '\n';
     };
     static const char* multi[] = {"<<=", ">>=", "++", "--", "+=", "-=", "*=",
@@ -97,6 +95,35 @@ std::vector<Token> tokenize(const std::string& s) {
     return out;
 }
 
+namespace {
+
+// The line `n` of a text, without its indentation.
+std::string lineOf(const std::string& text, int n) {
+    std::istringstream in(text);
+    std::string l;
+    for (int i = 1; std::getline(in, l); ++i)
+        if (i == n) break;
+    const size_t b = l.find_first_not_of(" \t");
+    return b == std::string::npos ? "" : l.substr(b);
+}
+
+std::string flat(const std::string& text) {  // one line, single spaces
+    std::string out;
+    for (char c : text) {
+        const bool space = std::isspace(static_cast<unsigned char>(c));
+        if (space && (out.empty() || out.back() == ' ')) continue;
+        out += space ? ' ' : c;
+    }
+    while (!out.empty() && out.back() == ' ') out.pop_back();
+    return out;
+}
+
+// "line 9: `old line` -> `new line`".
+std::string describeChange(const std::string& before, const std::string& after, int line) {
+    return "line " + std::to_string(line) + ": `" + lineOf(before, line) + "` -> `" +
+           lineOf(after, line) + "`";
+}
+
 // An edit: tokens [begin, end) of the significant list replaced by `text`.
 struct Edit {
     size_t begin, end;
@@ -105,7 +132,7 @@ struct Edit {
 
 class Mutator {
 public:
-    explicit Mutator(const std::string& source) : source_(source), tokens_(tokenize(source)) {
+    explicit Mutator(const std::string& source) : source_(source), tokens_(tokenizeGlsl(source)) {
         for (size_t i = 0; i < tokens_.size(); ++i)
             if (tokens_[i].kind == Token::Identifier || tokens_[i].kind == Token::Number ||
                 tokens_[i].kind == Token::Operator)
@@ -260,15 +287,6 @@ private:
         return out;
     }
 
-    std::string lineOf(const std::string& text, int n) const {
-        std::istringstream in(text);
-        std::string l;
-        for (int i = 1; std::getline(in, l); ++i)
-            if (i == n) break;
-        const size_t b = l.find_first_not_of(" \t");
-        return b == std::string::npos ? "" : l.substr(b);
-    }
-
     void add(const char* family, size_t at, std::vector<Edit> edits) {
         Mutant m;
         m.family = family;
@@ -281,20 +299,8 @@ private:
         for (int k = 0; k < 2 && e < sig_.size() && !boundary(e); ++k) ++e;
         m.change = "`" + flat(apply(edits, b, e)) + "` for `" + flat(span(b, e)) + "`";
         m.text = apply(std::move(edits));
-        m.description = "line " + std::to_string(m.line) + ": `" + lineOf(source_, m.line) +
-                        "` -> `" + lineOf(m.text, m.line) + "`";
+        m.description = describeChange(source_, m.text, m.line);
         mutants_.push_back(std::move(m));
-    }
-
-    static std::string flat(const std::string& text) {  // one line, single spaces
-        std::string out;
-        for (char c : text) {
-            const bool space = std::isspace(static_cast<unsigned char>(c));
-            if (space && (out.empty() || out.back() == ' ')) continue;
-            out += space ? ' ' : c;
-        }
-        while (!out.empty() && out.back() == ' ') out.pop_back();
-        return out;
     }
 
     static std::string formatFloat(double v) {
@@ -582,6 +588,36 @@ const std::vector<MutantFamily>& mutantFamilies() {
 
 std::vector<Mutant> generateMutants(const std::string& solution) {
     return Mutator(solution).run();
+}
+
+Mutant mutantFromEdits(const std::string& family, const std::string& source,
+                       std::vector<TextEdit> edits) {
+    std::sort(edits.begin(), edits.end(),
+              [](const TextEdit& a, const TextEdit& b) { return a.begin < b.begin; });
+    Mutant m;
+    m.family = family;
+    size_t at = 0;
+    for (const TextEdit& e : edits) {
+        m.text += source.substr(at, e.begin - at) + e.text;
+        at = e.end;
+    }
+    m.text += source.substr(at);
+    m.line = 1 + int(std::count(source.begin(), source.begin() + long(edits.front().begin), '\n'));
+    // The change, each distinct edit once: "`min(n, 512u)` for `n` (3 places)".
+    std::vector<std::pair<std::string, int>> changes;
+    for (const TextEdit& e : edits) {
+        const std::string one =
+            "`" + flat(e.text) + "` for `" + flat(source.substr(e.begin, e.end - e.begin)) + "`";
+        if (!changes.empty() && changes.back().first == one)
+            ++changes.back().second;
+        else
+            changes.push_back({one, 1});
+    }
+    for (const auto& [one, places] : changes)
+        m.change += (m.change.empty() ? "" : "; ") + one +
+                    (places > 1 ? " (" + std::to_string(places) + " places)" : "");
+    m.description = describeChange(source, m.text, m.line);
+    return m;
 }
 
 }  // namespace pbrlab

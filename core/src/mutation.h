@@ -19,7 +19,9 @@ namespace pbrlab {
 
 struct MutationOptions {
     std::vector<std::string> modules;  // empty: all
-    int every = 1;                     // grade every n-th mutant only (a subset, for CI)
+    // Which mutants: the mechanical ones (mutants.h), the semantic ones (semantic_mutants.h).
+    bool mechanical = true, semantic = true;
+    int every = 1;  // grade every n-th mutant of each kind only (a subset, for CI)
     int jobs = 2;
     bool feedback = false;  // grade fully and record the named mistake (slower)
     std::function<void(const std::string&)> progress;
@@ -32,13 +34,15 @@ struct MutantOutcome {
     std::string killedBy;  // the first failed check
     std::string mistake;   // the feedback's named mistake (with feedback)
     std::string namedBy;   // pattern | typical | mutant
-    // Survivors: "equivalent" (same values within rounding on the whole domain), or
-    // "differs" (a hole: what and where).
+    // Survivors: "equivalent" (same values within rounding on the whole domain, and on a
+    // semantic mutant's witness), or "differs" (a hole: what and where).
     std::string equivalence, evidence;
 };
 
+// One step's mutants of one kind.
 struct ModuleMutation {
     std::string id;
+    std::string kind;  // "mechanical" | "semantic"
     std::vector<MutantOutcome> mutants;
     double seconds = 0;
     int count(const std::string& status) const;

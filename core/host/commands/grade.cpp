@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <thread>
 
 #include "batch.h"
@@ -226,14 +227,20 @@ class MutantsCommand : public Command {
 public:
     MutantsCommand()
         : Command("mutants",
-                  "Mutation score: grade mechanical mutants of each reference solution as "
-                  "submissions; exit 1 when one that is not equivalent survives") {
+                  "Mutation score: grade mechanical and semantic mutants of each reference "
+                  "solution as submissions; exit 1 when one that is not equivalent survives") {
         options_.jobs = defaultJobs();
     }
     void declare(CLI::App& cmd) override {
         cmd.add_option("steps", options_.modules, help::steps);
         cmd.add_option("--json", jsonFile_, "Write every mutant's outcome here");
-        cmd.add_option("--every", options_.every, "Grade every n-th mutant only (default 1)");
+        cmd.add_option("--kind", kind_,
+                       "mechanical (one token changed), semantic (a change of meaning: "
+                       "nonlinear reads, capped counts, fewer bits, hard-coded host values) or "
+                       "all (default)")
+            ->check(CLI::IsMember({"all", "mechanical", "semantic"}));
+        cmd.add_option("--every", options_.every,
+                       "Grade every n-th mutant of each kind only (default 1)");
         cmd.add_option("--jobs", options_.jobs, "Mutants graded at once (default: cores)");
         cmd.add_flag("--feedback", options_.feedback,
                      "Grade fully and count the mutants whose mistake the feedback names");
@@ -241,6 +248,8 @@ public:
     int run(const GlobalOptions& global) override {
         Session session(global, false);  // no GL here: the grades fork, the comparisons too
         options_.every = std::max(options_.every, 1);
+        options_.mechanical = kind_ != "semantic";
+        options_.semantic = kind_ != "mechanical";
         options_.progress = [](const std::string& line) { std::cerr << line << "\n"; };
         const bool feedback = options_.feedback;
         const auto start = std::chrono::steady_clock::now();
@@ -249,28 +258,49 @@ public:
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::printf(
-            "| step | mutants | do not compile | killed | survived: equivalent | survived: "
-            "NOT equivalent |%s seconds |\n",
+            "| step | kind | mutants | do not compile | killed | survived: equivalent | "
+            "survived: NOT equivalent |%s seconds |\n",
             feedback ? " mistake named |" : "");
-        std::printf("|---|---|---|---|---|---|%s---|\n", feedback ? "---|" : "");
+        std::printf("|---|---|---|---|---|---|---|%s---|\n", feedback ? "---|" : "");
+        // One row per step and kind, then the totals of each kind.
+        struct Row {
+            size_t made = 0;
+            int stillborn = 0, killed = 0, equivalent = 0, notEquivalent = 0;
+            int byPattern = 0, byAny = 0, failed = 0;
+            double seconds = 0;
+        };
+        auto print = [&](const std::string& step, const std::string& kind, const Row& x) {
+            std::string named;
+            if (feedback)
+                named = " " + std::to_string(x.byPattern) + " / " + std::to_string(x.byAny) +
+                        " of " + std::to_string(x.failed) + " |";
+            std::printf("| %s | %s | %zu | %d | %d | %d | %d |%s %.0f |\n", step.c_str(),
+                        kind.c_str(), x.made, x.stillborn, x.killed, x.equivalent, x.notEquivalent,
+                        named.c_str(), x.seconds);
+        };
+        std::map<std::string, Row> totals;
         int bad = 0;
         for (const ModuleMutation& r : result) {
-            const int survived = r.count("survived"), notEquivalent = r.nonEquivalentSurvivors();
-            const int killed = r.count("killed") + r.count("timeout") + r.count("crashed");
-            bad += notEquivalent;
-            std::string named;
-            if (feedback) {
-                int byPattern = 0, byAny = 0, failed = 0;
-                for (const MutantOutcome& x : r.mutants)
-                    if (x.status == "killed")
-                        ++failed, byAny += !x.mistake.empty(), byPattern += x.namedBy == "pattern";
-                named = " " + std::to_string(byPattern) + " / " + std::to_string(byAny) + " of " +
-                        std::to_string(failed) + " |";
-            }
-            std::printf("| %s | %zu | %d | %d | %d | %d |%s %.0f |\n", r.id.c_str(),
-                        r.mutants.size(), r.count("stillborn"), killed, survived - notEquivalent,
-                        notEquivalent, named.c_str(), r.seconds);
+            Row x;
+            x.made = r.mutants.size();
+            x.stillborn = r.count("stillborn");
+            x.killed = r.count("killed") + r.count("timeout") + r.count("crashed");
+            x.notEquivalent = r.nonEquivalentSurvivors();
+            x.equivalent = r.count("survived") - x.notEquivalent;
+            x.seconds = r.seconds;
+            for (const MutantOutcome& m : r.mutants)
+                if (m.status == "killed")
+                    ++x.failed, x.byAny += !m.mistake.empty(),
+                        x.byPattern += m.namedBy == "pattern";
+            bad += x.notEquivalent;
+            if (x.made > 0) print(r.id, r.kind, x);  // (a family that fits nowhere in a step)
+            Row& t = totals[r.kind];
+            t.made += x.made, t.stillborn += x.stillborn, t.killed += x.killed;
+            t.equivalent += x.equivalent, t.notEquivalent += x.notEquivalent;
+            t.byPattern += x.byPattern, t.byAny += x.byAny, t.failed += x.failed;
+            t.seconds += x.seconds;
         }
+        for (const auto& [kind, t] : totals) print("**all**", kind, t);
         for (const ModuleMutation& r : result)
             for (const MutantOutcome& x : r.mutants)
                 if (x.status == "survived")
@@ -285,6 +315,7 @@ public:
 
 private:
     MutationOptions options_;
+    std::string kind_ = "all";
     std::string jsonFile_;
 };
 
