@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <set>
 
+#include "helper_mutants.h"
 #include "pbrlab/error.h"
 #include "renderer.h"
 #include "step_grader.h"
@@ -334,6 +335,10 @@ const std::vector<SemanticFamily>& semanticFamilies() {
          "NUM_LIGHTS, the light arrays, uPrefilterMaxLod, textureSize(...) replaced by the "
          "value the host gives them in grading today",
          "hard-coded host value", nullptr, hostValues},
+        {"helper", "every visible helper that computes the step, called",
+         "calls a helper that computes the step",
+         "it calls code that computes the step: its values are the step's by construction",
+         [](const SemanticContext& c) { return helperCallMutants(c.renderer, c.module); }},
     };
     return f;
 }
