@@ -170,7 +170,7 @@ TEST(Assignment, PartialCreditIsTheWeightsShareOfTheChecksPassedOnceOneShowsWork
     // Its invariants hold, and earn nothing: the row says why.
     EXPECT_EQ(rows["ndf: invariants"]["score"], 0);
     EXPECT_EQ(rows["ndf: invariants"]["status"], "failed");
-    EXPECT_NE(rows["ndf: invariants"]["output"].get<std::string>().find("3 of 3 checks passed"),
+    EXPECT_NE(rows["ndf: invariants"]["output"].get<std::string>().find("4 of 4 checks passed"),
               std::string::npos);
     EXPECT_NE(rows["ndf: invariants"]["output"].get<std::string>().find(
                   "until a values check of this step passes"),

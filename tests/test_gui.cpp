@@ -145,7 +145,7 @@ TEST(Gui, AnErrorBudgetChoosesTheEnvironmentsSettingsAsPrecomputeDoes) {
     // default uses 16 (mean errors 0.0055 / 0.038 / 0.0008).
     EXPECT_NE(log.find("error budget 0.05 on sky: met"), std::string::npos) << log;
     EXPECT_NE(log.find("by bins 8"), std::string::npos) << log;
-    EXPECT_NE(log.find("[environment] sky (src64_irr16 bins 8"), std::string::npos) << log;
+    EXPECT_NE(log.find("[environment] sky (env256_src64_irr16 bins 8"), std::string::npos) << log;
 }
 
 // The console, scripted: a GUI-local line changes the state as the parameter's widget does, a

@@ -46,9 +46,11 @@ public:
                  source.dir, fs::directory_options::skip_permission_denied, ec);
              !ec && it != fs::recursive_directory_iterator() && files < 512;
              it.increment(ec), ++files) {
-            const fs::path relative = fs::relative(it->path(), source.dir);
+            // Lexically and without throwing: a student's folder may hold a link loop.
+            const fs::path relative = it->path().lexically_relative(source.dir);
             if (it.depth() > 8) continue;
-            if (it->is_directory()) {
+            std::error_code kind;
+            if (it->is_directory(kind)) {
                 fs::create_directories(dir_ / relative);
                 continue;
             }
