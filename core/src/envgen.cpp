@@ -156,9 +156,12 @@ dvec3 environmentRadiance(const dvec3& d, bool soft) {
 
 }  // namespace
 
-Image generateSmoothEnvironment(int width) {
+// An equirectangular image of `width` x width/2 texels, each the radiance `at` gives for the
+// direction through its centre (y up, -z at the centre column).
+template <class Radiance>
+Image equirectangular(const std::string& what, int width, Radiance at) {
     if (width < 16 || width > 8192 || width % 2 != 0)
-        throw Error("smooth environment: width " + std::to_string(width) +
+        throw Error(what + " environment: width " + std::to_string(width) +
                     " must be even and in [16, 8192]");
     Image image;
     image.width = width;
@@ -171,32 +174,23 @@ Image generateSmoothEnvironment(int width) {
             const double theta = (y + 0.5) / image.height * kPi;
             const dvec3 d(std::sin(theta) * std::sin(phi), std::cos(theta),
                           -std::sin(theta) * std::cos(phi));
-            const dvec3 L = dvec3(0.7, 0.8, 1.0) * (1.0 + 0.4 * d.y) +
-                            dvec3(0.3, 0.2, 0.1) * (0.5 + 0.5 * d.x + 0.2 * d.z * d.y);
+            const dvec3 L = at(d);
             for (int c = 0; c < 3; ++c) image.at(x, y, c) = float(L[c]);
         }
     return image;
 }
 
+Image generateSmoothEnvironment(int width) {
+    return equirectangular("smooth", width, [](const dvec3& d) {
+        return dvec3(0.7, 0.8, 1.0) * (1.0 + 0.4 * d.y) +
+               dvec3(0.3, 0.2, 0.1) * (0.5 + 0.5 * d.x + 0.2 * d.z * d.y);
+    });
+}
+
 Image generateHdrLobe(int width) {
-    if (width < 16 || width > 8192 || width % 2 != 0)
-        throw Error("hdr-lobe environment: width " + std::to_string(width) +
-                    " must be even and in [16, 8192]");
-    Image image;
-    image.width = width;
-    image.height = width / 2;
-    image.channels = 3;
-    image.pixels.resize(size_t(image.width) * image.height * 3);
-    for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x) {
-            const double phi = ((x + 0.5) / image.width - 0.5) * 2.0 * kPi;
-            const double theta = (y + 0.5) / image.height * kPi;
-            const dvec3 d(std::sin(theta) * std::sin(phi), std::cos(theta),
-                          -std::sin(theta) * std::cos(phi));
-            const dvec3 L = kSunColour * (1e4 * std::pow(10.0, 0.5 * (1.0 + glm::dot(d, kSunDir))));
-            for (int c = 0; c < 3; ++c) image.at(x, y, c) = float(L[c]);
-        }
-    return image;
+    return equirectangular("hdr-lobe", width, [](const dvec3& d) {
+        return kSunColour * (1e4 * std::pow(10.0, 0.5 * (1.0 + glm::dot(d, kSunDir))));
+    });
 }
 
 namespace {
