@@ -61,6 +61,30 @@ glm::dvec3 noiseAt(const Estimate& t, int n) {
 // Under normal noise |z| > 7 has probability 3e-12 per region.
 constexpr double kBiasLimit = 7;
 
+// A values check against the converged integral, as feedback keeps it: the estimator's own
+// category (not the probe's or the random inputs' band of the reference) and its band's rule.
+ValuesRun estimatorRun(const std::string& name, const ModuleDesc& d, const Comparison& c,
+                       const std::vector<Surface>& surfaces, Image value, Band band,
+                       const Scene& scene, const ParamValues& params, const Probe* probe, int width,
+                       int height) {
+    const EstimatorSpec& e = *d.estimator;
+    ValuesRun run;
+    run.report = reportFor(name, d, c, surfaces, e.systematic.outlierFraction, probe, width);
+    run.report.category = "estimator";
+    run.report.detail += "; band: converged integral +- (" + number(e.systematic.relative) +
+                         " of it + " + number(e.sigmas) + " sqrt(sigma^2 / n + its own error^2))";
+    run.surfaces = surfaces;
+    run.value = std::move(value);
+    run.band = std::move(band);
+    run.scene = scene;
+    run.params = params;
+    run.width = width;
+    run.height = height;
+    run.worstIndex = c.worstIndex;
+    run.outlierFraction = e.systematic.outlierFraction;
+    return run;
+}
+
 }  // namespace
 
 // Points an estimator is judged on (the subsampled probe, the random inputs) with their
@@ -194,25 +218,8 @@ void StepGrader::gradeConvergence(const Scene& scene, const std::string& environ
             if (counts.size() > 1 && n == counts.front()) continue;
             const Comparison c = compareWithBand(r.value, set.surfaces, band, d_.components,
                                                  d_.nonNegative, e.systematic.outlierFraction);
-            ValuesRun run;
-            run.report = reportFor(name, d_, c, set.surfaces, e.systematic.outlierFraction,
-                                   set.probe, set.width);
-            // Against the converged integral: the estimator's own category, not the probe's
-            // or the random inputs' band of the reference.
-            run.report.category = "estimator";
-            run.report.detail += "; band: converged integral +- (" + number(e.systematic.relative) +
-                                 " of it + " + number(e.sigmas) +
-                                 " sqrt(sigma^2 / n + its own error^2))";
-            run.surfaces = set.surfaces;
-            run.value = std::move(r.value);
-            run.band = std::move(band);
-            run.scene = judged;
-            run.params = params;
-            run.width = set.width;
-            run.height = set.height;
-            run.worstIndex = c.worstIndex;
-            run.outlierFraction = e.systematic.outlierFraction;
-            keep(std::move(run));
+            keep(estimatorRun(name, d_, c, set.surfaces, std::move(r.value), std::move(band),
+                              judged, params, set.probe, set.width, set.height));
         }
         meanError.push_back(errorCount ? errorSum / errorCount : 0);
     }
@@ -392,25 +399,11 @@ void StepGrader::gradeHighCounts(const Scene& judged, const PointSet& random) {
         record(changes);
         const Comparison c = compareWithBand(r.value, g.surfaces, band, d_.components,
                                              d_.nonNegative, e.systematic.outlierFraction);
-        ValuesRun run;
-        run.report =
-            reportFor(std::to_string(points) + " random inputs with " + with +
-                          ((d_.needs & NeedsEnvironment) ? " (" + judged.environment + ")" : ""),
-                      d_, c, g.surfaces, e.systematic.outlierFraction, nullptr, g.width);
-        run.report.category = "estimator";
-        run.report.detail += "; band: converged integral +- (" + number(e.systematic.relative) +
-                             " of it + " + number(e.sigmas) +
-                             " sqrt(sigma^2 / n + its own error^2))";
-        run.surfaces = g.surfaces;
-        run.value = std::move(r.value);
-        run.band = std::move(band);
-        run.scene = judged;
-        run.params = params;
-        run.width = g.width;
-        run.height = g.height;
-        run.worstIndex = c.worstIndex;
-        run.outlierFraction = e.systematic.outlierFraction;
-        keep(std::move(run));
+        keep(
+            estimatorRun(std::to_string(points) + " random inputs with " + with +
+                             ((d_.needs & NeedsEnvironment) ? " (" + judged.environment + ")" : ""),
+                         d_, c, g.surfaces, std::move(r.value), std::move(band), judged, params,
+                         nullptr, g.width, g.height));
         previous = values;
         before = n;
         // The lowest count it ignores is said; the counts above say nothing more.
