@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "cache_file.h"
 #include "digest.h"
@@ -239,7 +240,10 @@ void StepGrader::gradeConvergence(const Scene& scene, const std::string& environ
         record(fall);
     }
     if (counts.back() > 0) biasTest(sets, counts.back(), onEnvironment);
-    if (first && counts.back() > 0 && sets.size() > 1) gradeHighCounts(judged, sets.back());
+    if (first && counts.back() > 0 && sets.size() > 1)
+        gradeHighCounts(judged, sets.front(), sets.back());
+    if (first && (d_.needs & NeedsEnvironment) && sets.size() > 1)
+        gradeEnvironmentSize(judged, sets.back());
 }
 
 // Estimators: against the converged integral on environments where every correct
@@ -337,26 +341,56 @@ void StepGrader::gradeEstimator(const Scene& scene) {
     }
 }
 
-// Counts above the graded ones (EstimatorSpec::highCounts), at the first few random points:
-// within the band of the converged integral, and different from the values at the count
-// before. An estimator of n samples changes with n (other samples, or more of them); one
-// that stops using its count above some N returns the same floats at every count above N.
-void StepGrader::gradeHighCounts(const Scene& judged, const PointSet& random) {
+// Counts above the graded ones (EstimatorSpec::highCounts): within the band of the converged
+// integral, at the first few random points and on the probe's edges (one of its two inputs at
+// an end of its range, the other over its range: an estimator that clamps an input short of
+// its end, N.V at 0.9 say, is off there by more than the band at 65536 samples, and within
+// the band of smaller counts everywhere). And different from the values at three quarters of the
+// count: an estimator of n samples changes with n (other samples, or more of them), one that stops
+// using its count above some N returns the same floats at every count above N, so a cap anywhere
+// below 3n/4 is caught at n (one rendered at 3/4 of the previous count would leave the caps between
+// the two counts unseen).
+void StepGrader::gradeHighCounts(const Scene& judged, const PointSet& probe,
+                                 const PointSet& random) {
     const EstimatorSpec& e = *d_.estimator;
-    const size_t points = std::min(size_t(e.highCountPoints), random.surfaces.size());
-    const Grid g =
-        grid(std::vector<Surface>(random.surfaces.begin(), random.surfaces.begin() + long(points)));
-    const std::vector<Estimate> truth(random.truth.begin(), random.truth.begin() + long(points));
-    int before = e.sampleCounts.back();
-    std::vector<glm::dvec3> previous = pointValues(random.last, points);
-    for (int n : e.highCounts) {
-        const std::string with = e.samplesParam + " = " + std::to_string(n);
-        stage(std::to_string(points) + " random inputs with " + with);
+    std::vector<Surface> surfaces;
+    std::vector<Estimate> truth;
+    const size_t randomPoints = std::min(size_t(e.highCountPoints), random.surfaces.size());
+    for (size_t i = 0; i < randomPoints; ++i)
+        surfaces.push_back(random.surfaces[i]), truth.push_back(random.truth[i]);
+    // The probe's edges at three inner points each: twelve inputs with one argument at an end
+    // of its range and the other over its inner range. Not the corners: at N.V = 0 and
+    // roughness 0.05 the weights of the LUT's estimator have no useful variance (G / N.V),
+    // and the reference's own error at 65536 samples was 0.94x the band.
+    const int w = probe.width, h = probe.height;
+    std::set<size_t> edges;
+    for (int k = 1; k <= 3; ++k) {
+        const int x = k * (w - 1) / 4, y = k * (h - 1) / 4;
+        for (const auto& [px, py] : {std::pair{x, 0}, {x, h - 1}, {0, y}, {w - 1, y}})
+            edges.insert(size_t(py) * size_t(w) + size_t(px));
+    }
+    for (size_t i : edges) {
+        if (i >= probe.surfaces.size() || !probe.surfaces[i].covered) continue;
+        surfaces.push_back(probe.surfaces[i]), truth.push_back(probe.truth[i]);
+    }
+    const size_t points = surfaces.size();
+    const std::string what = std::to_string(randomPoints) + " random inputs and " +
+                             std::to_string(points - randomPoints) + " probe edges";
+    const Grid g = grid(std::move(surfaces));
+    auto renderAt = [&](int n) {
         const ParamValues params = withSets(d_, {e.samplesParam + "=" + std::to_string(n)});
         RenderRequest request{&m_, &params, &judged, source_, &g.surfaces, g.width, g.height};
         request.seamlessCubes = false;
         request.isolatePoints = true;
-        RenderResult r = renderer_.render(request);
+        return std::pair{renderer_.render(request), params};
+    };
+    for (int n : e.highCounts) {
+        const int fewer = n - n / 4;
+        const std::string with = e.samplesParam + " = " + std::to_string(n);
+        stage(what + " with " + e.samplesParam + " = " + std::to_string(fewer) + " and " +
+              std::to_string(n));
+        const std::vector<glm::dvec3> before = pointValues(renderAt(fewer).first.value, points);
+        auto [r, params] = renderAt(n);
         Band band;
         band.resize(g.surfaces.size());
         for (size_t i = 0; i < points; ++i) {
@@ -374,41 +408,100 @@ void StepGrader::gradeHighCounts(const Scene& judged, const PointSet& random) {
         for (size_t i = 0; i < points; ++i) {
             bool equal = true;
             for (int c = 0; c < d_.components; ++c)
-                equal = equal &&
-                        std::abs(values[i][c] - previous[i][c]) <=
-                            4.8e-7 * std::max(std::abs(values[i][c]), std::abs(previous[i][c]));
+                equal =
+                    equal && std::abs(values[i][c] - before[i][c]) <=
+                                 4.8e-7 * std::max(std::abs(values[i][c]), std::abs(before[i][c]));
             same += equal;
         }
         CheckReport changes;
-        changes.name = "uses its sample count: " + std::to_string(before) + " and " +
+        changes.name = "uses its sample count: " + std::to_string(fewer) + " and " +
                        std::to_string(n) + " samples give other values";
         changes.kind = "convergence";
         changes.category = "estimator";
         changes.measured = same;
         changes.expected = "< half of " + std::to_string(points) + " points the same";
-        // Correct estimators: 0 of 16 points the same at every seed measured (docs/grading.md).
+        // Correct estimators: 0 points the same at every seed measured (docs/grading.md).
         changes.passed = 2 * same < int(points);
         changes.detail =
             std::to_string(same) + " of " + std::to_string(points) +
-            " points have the same value with " + e.samplesParam + " = " + std::to_string(before) +
+            " points have the same value with " + e.samplesParam + " = " + std::to_string(fewer) +
             " and " + std::to_string(n) +
             (changes.passed ? ""
-                            : ": ignores its sample count above " + std::to_string(before) +
+                            : ": ignores its sample count above " + std::to_string(fewer) +
                                   " (or less): an estimator of n samples changes with n; is the "
                                   "count capped?");
         record(changes);
         const Comparison c = compareWithBand(r.value, g.surfaces, band, d_.components,
                                              d_.nonNegative, e.systematic.outlierFraction);
         keep(
-            estimatorRun(std::to_string(points) + " random inputs with " + with +
+            estimatorRun(what + " with " + with +
                              ((d_.needs & NeedsEnvironment) ? " (" + judged.environment + ")" : ""),
                          d_, c, g.surfaces, std::move(r.value), std::move(band), judged, params,
                          nullptr, g.width, g.height));
-        previous = values;
-        before = n;
         // The lowest count it ignores is said; the counts above say nothing more.
         if (!changes.passed) break;
     }
+}
+
+// The environment at another size than grading's default (256): textureSize(uEnvironment)
+// is a host value the step may read (a texel-sum quadrature picks its mip by it, filtered
+// importance sampling its LOD). 32 texels per face, smaller than any map the host builds
+// (128 to 512): a size written as a constant makes a quadrature read a mip of 4 x 4 texels
+// there (0.18% off at 128, measured, within the band), while a correct estimator converges to
+// the same integral of the smaller map. At the largest count, where filtered importance
+// sampling's LOD is 0, on the first random points. Cost: one cube of 32^2 and 16 points.
+void StepGrader::gradeEnvironmentSize(const Scene& judged, const PointSet& random) {
+    const EstimatorSpec& e = *d_.estimator;
+    IblSettings ibl = kGradingIbl;
+    ibl.environmentSize = 32;
+    const size_t points = std::min(size_t(e.highCountPoints), random.surfaces.size());
+    const Grid g =
+        grid(std::vector<Surface>(random.surfaces.begin(), random.surfaces.begin() + long(points)));
+    const int n = e.sampleCounts.empty() ? 0
+                  : e.highCounts.empty() ? e.sampleCounts.back()
+                                         : e.highCounts.back();
+    const ParamValues params =
+        n > 0 ? withSets(d_, {e.samplesParam + "=" + std::to_string(n)}) : ParamValues(d_.params);
+    const ReferenceContext context = referenceContext(renderer_, d_, judged, params, ibl);
+    std::vector<Estimate> truth(points);
+    parallelFor(points, [&](size_t i) {
+        if (g.surfaces[i].covered) truth[i] = e.converged(g.surfaces[i], context, e.truthSamples);
+    });
+    const std::string name = std::to_string(points) + " random inputs" +
+                             (n > 0 ? " with " + e.samplesParam + " = " + std::to_string(n) : "") +
+                             " (" + judged.environment + ", uEnvironment 32x32)";
+    stage(name);
+    noteHostValues(judged, params, ibl);
+    RenderRequest request{&m_, &params, &judged, source_, &g.surfaces, g.width, g.height};
+    request.ibl = ibl;
+    request.seamlessCubes = false;
+    request.isolatePoints = true;
+    RenderResult r = renderer_.render(request);
+    if (e.scaleTolerance > 0) rescale(name, r.value, g.surfaces, truth);
+    Band band;
+    band.resize(g.surfaces.size());
+    for (size_t i = 0; i < points; ++i) {
+        const Estimate& t = truth[i];
+        band.expected[i] = band.lo[i] = band.hi[i] = t.mean;
+        const glm::dvec3 noise = n > 0 ? noiseAt(t, n) : glm::dvec3(0);
+        for (int c = 0; c < d_.components; ++c)
+            band.slack[i][c] =
+                std::max(e.systematic.absolute, e.systematic.relative * std::abs(t.mean[c])) +
+                e.sigmas * noise[c];
+    }
+    const Comparison c = compareWithBand(r.value, g.surfaces, band, d_.components, d_.nonNegative,
+                                         e.systematic.outlierFraction);
+    // Recorded, not handed to the feedback (whose references read the default maps), and named
+    // as gradeHostValues names the maps of split_sum.
+    CheckReport report = estimatorRun(name, d_, c, g.surfaces, std::move(r.value), std::move(band),
+                                      judged, params, nullptr, g.width, g.height)
+                             .report;
+    if (!report.passed)
+        report.detail =
+            "hard-coded host value (the size of uEnvironment, textureSize): right "
+            "with 256x256, wrong with 32x32; " +
+            report.detail;
+    record(report);
 }
 
 // EstimatorSpec::scaleTolerance: the overall factor between the value and the converged

@@ -108,7 +108,8 @@ private:
     struct PointSet;
     void gradeEstimator(const Scene& scene);
     void gradeConvergence(const Scene& scene, const std::string& environment, bool first);
-    void gradeHighCounts(const Scene& judged, const PointSet& random);
+    void gradeHighCounts(const Scene& judged, const PointSet& probe, const PointSet& random);
+    void gradeEnvironmentSize(const Scene& judged, const PointSet& random);
     void rescale(const std::string& name, Image& value, const std::vector<Surface>& surfaces,
                  const std::vector<Estimate>& truth);
     void biasTest(const std::vector<PointSet>& sets, int n, const std::string& onEnvironment);

@@ -364,8 +364,9 @@ struct EstimatorSpec {
     // with the inputs is held to `systematic` alone.
     double scaleTolerance = 0;
     // Counts above the largest of sampleCounts, at `highCountPoints` random points of the
-    // domain: a function that stops using its count somewhere above the graded ones returns
-    // the same values at all of them (docs/grading.md, "Estimators").
+    // domain and on the probe's edges: a function that stops using its count somewhere above
+    // the graded ones returns the same values at n and 3n/4 (docs/grading.md, "Counts above
+    // the graded ones"). The largest also grades an environment of another size.
     std::vector<int> highCounts = {4096, 65536};
     int highCountPoints = 16;
     int domainPoints = 384;  // random points of the domain per count
