@@ -593,7 +593,15 @@ std::string classifyError(const FeedbackInputs& in, bool* exactOut) {
     }
     if (ratios.size() >= 8) {
         const double k = median(ratios);
-        if (std::abs(k - 1) > 2e-3 && shareNear(ratios, k, 2e-3) >= 0.9) {
+        // The points left out of the ratios (the reference about 0 there) must agree too: a
+        // light taken from the wrong side is 0 where the reference is lit (a "factor" of 0)
+        // and lit where the reference is 0, which no factor explains.
+        size_t unexplained = 0;
+        for (const Entry& e : all)
+            unexplained += std::abs(e.value - k * e.expected) >
+                           4 * e.slack + 2e-3 * std::abs(k * e.expected) + 1e-3 * peak;
+        if (std::abs(k - 1) > 2e-3 && shareNear(ratios, k, 2e-3) >= 0.9 &&
+            unexplained <= all.size() / 10) {
             const std::string c = nameConstant(k);
             std::string s =
                 "Your value is " + num(k, 4) + " x the reference" +
