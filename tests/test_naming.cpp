@@ -5,6 +5,8 @@
 // message must contain ("// expect: the geometry term G missing"). Each is graded as a
 // submission is (a child process per step, every check, feedback on): it must fail, and the
 // share of them whose message names the mistake is the named rate of docs/grading.md.
+// The catalogue's own files (labs/<id>/mistakes, with the same first line) are graded too, with
+// the typical-mistake match off: how much of the naming does not lean on the catalogue.
 #include <gtest/gtest.h>
 
 #include <fstream>
