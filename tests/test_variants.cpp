@@ -5,9 +5,16 @@
 //   tests/variants/<id>/mistake_*.glsl   mistakes planted against one check of the grader
 //                                        (a NaN on an input callers produce, a hard-coded host
 //                                        value, a count ignored above the graded ones)
+//   tests/variants/<id>/mistake_band_*   estimator mistakes that fail by the value band alone:
+//                                        every other check passes, so a band that lets
+//                                        everything through is noticed
 //   labs/<id>/mistakes/*.glsl           the typical mistakes the grader also names
-//   tests/exploits/<id>/*.glsl           shortcuts found by reading the grader; a line
-//                                        "// expect: TEXT" says what the message must name
+//   tests/exploits/<id>/*.glsl           shortcuts found by reading the grader
+// Every mistake and exploit has a line "// expect: WORDS": what the failure message must
+// contain, the mistake named as the student is to read it. A file of labs/<id>/mistakes is
+// also what the grader's typical-mistake match compares with (its leading comment is the
+// name), so its words are checked here in what the student reads and, apart from that match,
+// by Naming.CatalogueMistakesAreNamedWithoutTheCatalogue (test_naming.cpp).
 // A mistake must fail by a margin, not by a hair: its worst check is at least twice outside
 // the band (or an invariant, convergence or contract check fails).
 #include <gtest/gtest.h>
@@ -118,9 +125,21 @@ TEST_P(VariantTest, CorrectPassesMistakeFailsAtItsOwnStepByAMargin) {
         EXPECT_EQ(m.message.find('`'), std::string::npos) << m.message;
         EXPECT_FALSE(m.instructorNote.empty());
     }
-    if (const std::string e = expectation(v.path); !e.empty()) {
-        EXPECT_NE(m.message.find(e), std::string::npos)
-            << "expected \"" << e << "\" in: " << m.message;
+    const std::string e = expectation(v.path);
+    ASSERT_FALSE(e.empty()) << v.path << ": no line `// expect: WORDS` (what the message names)";
+    EXPECT_NE(m.message.find(e), std::string::npos) << "expected \"" << e << "\" in: " << m.message;
+    // The estimator's band tested on its own: every check that fails is a values check (the
+    // fall, the bias test, the counts used, linearity, finite values and the overall scale
+    // all pass), and one of the bands at the graded counts fails.
+    if (v.file.rfind("mistake_band_", 0) == 0) {
+        int failedValues = 0;
+        for (const auto& c : m.checks) {
+            if (c.value("passed", true) || !c.value("deducted", true)) continue;
+            EXPECT_EQ(c.value("kind", ""), "values")
+                << "not a band: " << c.value("name", "") << ": " << c.value("detail", "");
+            failedValues += c.value("kind", "") == "values";
+        }
+        EXPECT_GT(failedValues, 0) << m.message;
     }
 }
 

@@ -313,7 +313,7 @@ std::string componentPattern(const FeedbackInputs& in, bool& exact) {
     const int n = in.module->components;
     if (n < 2) return "";
     static const char* names[] = {"first", "second", "third"};
-    int wrongComponent = -1;
+    int wrongComponent = -1, wrongPoints = 0;
     for (int c = 0; c < n; ++c) {
         int wrong = 0;
         for (size_t i = 0; i < in.values.size(); ++i)
@@ -321,6 +321,7 @@ std::string componentPattern(const FeedbackInputs& in, bool& exact) {
         if (wrong > 0.05 * double(in.values.size())) {
             if (wrongComponent >= 0) return "";  // more than one
             wrongComponent = c;
+            wrongPoints = wrong;
         }
     }
     if (wrongComponent < 0) return "";
@@ -350,8 +351,10 @@ std::string componentPattern(const FeedbackInputs& in, bool& exact) {
         }
     }
     exact = false;
-    return which + " is wrong (" + std::to_string(int(offsets.size())) +
-           " points); the others are right.";
+    // The points where it is wrong, of those compared (all of them were said before, which
+    // read as if every point were wrong).
+    return which + " is wrong at " + std::to_string(wrongPoints) + " of " +
+           std::to_string(offsets.size()) + " points; the others are right.";
 }
 
 }  // namespace
@@ -593,7 +596,15 @@ std::string classifyError(const FeedbackInputs& in, bool* exactOut) {
     }
     if (ratios.size() >= 8) {
         const double k = median(ratios);
-        if (std::abs(k - 1) > 2e-3 && shareNear(ratios, k, 2e-3) >= 0.9) {
+        // The points left out of the ratios (the reference about 0 there) must agree too: a
+        // light taken from the wrong side is 0 where the reference is lit (a "factor" of 0)
+        // and lit where the reference is 0, which no factor explains.
+        size_t unexplained = 0;
+        for (const Entry& e : all)
+            unexplained += std::abs(e.value - k * e.expected) >
+                           4 * e.slack + 2e-3 * std::abs(k * e.expected) + 1e-3 * peak;
+        if (std::abs(k - 1) > 2e-3 && shareNear(ratios, k, 2e-3) >= 0.9 &&
+            unexplained <= all.size() / 10) {
             const std::string c = nameConstant(k);
             std::string s =
                 "Your value is " + num(k, 4) + " x the reference" +

@@ -26,11 +26,14 @@ std::string vec(const glm::dvec3& v, int components) {
     return components == 1 ? number(v.x) : s + ")";
 }
 
-// The name of a typical mistake: its file's leading comment block, one sentence.
+// The name of a typical mistake: its file's leading comment block, one sentence. The line
+// `// expect: WORDS` is the test's (what the message must contain): never part of the name,
+// or the message would contain the words because the file says them.
 std::string mistakeName(const fs::path& file) {
     std::ifstream in(file);
     std::string name;
     for (std::string line; std::getline(in, line) && line.rfind("//", 0) == 0;) {
+        if (line.rfind("// expect:", 0) == 0) continue;
         line = line.substr(2);
         if (name.empty() && line.rfind(" mistake:", 0) == 0) line = line.substr(9);
         const size_t b = line.find_first_not_of(' ');

@@ -1,3 +1,4 @@
+// expect: the branches swapped
 // mistake: boolean mix with the branches swapped (linear toe used above the knee)
 vec3 srgbToLinear(vec3 c)
 {

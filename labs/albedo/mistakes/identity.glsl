@@ -1,3 +1,4 @@
+// expect: no linearisation
 // mistake: no linearisation, the sRGB-encoded value is used as linear reflectance
 vec3 srgbToLinear(vec3 c)
 {

@@ -1,3 +1,4 @@
+// expect: gamma applied the wrong way round
 // mistake: gamma applied the wrong way round (encodes with 1/2.2 instead of decoding)
 vec3 srgbToLinear(vec3 c)
 {

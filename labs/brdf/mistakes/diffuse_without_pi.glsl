@@ -1,3 +1,4 @@
+// expect: fits the reference without PI
 // mistake: Lambert diffuse without the 1/PI normalisation
 vec3 cookTorranceBRDF(vec3 N, vec3 V, vec3 L, vec3 albedo, float metallic, float roughness)
 {

@@ -1,3 +1,4 @@
+// expect: F evaluated at N.V, where the specular lobe has H.V
 // mistake: Fresnel fed N.V instead of H.V (inline specular and kD both use it)
 vec3 cookTorranceBRDF(vec3 N, vec3 V, vec3 L, vec3 albedo, float metallic, float roughness)
 {

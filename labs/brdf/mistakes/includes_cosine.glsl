@@ -1,3 +1,4 @@
+// expect: the reference times N.L
 // mistake: the cosine N.L multiplied into the BRDF (it belongs to the reflectance equation)
 vec3 cookTorranceBRDF(vec3 N, vec3 V, vec3 L, vec3 albedo, float metallic, float roughness)
 {

@@ -1,3 +1,4 @@
+// expect: fits the reference without (1 - metallic)
 // mistake: kD = 1 - F without the (1 - metallic) factor (metals keep a diffuse term)
 vec3 cookTorranceBRDF(vec3 N, vec3 V, vec3 L, vec3 albedo, float metallic, float roughness)
 {

@@ -1,3 +1,4 @@
+// expect: the two inputs used the wrong way round
 // mistake: the two inputs used the wrong way round (N.V taken as roughness and vice versa)
 vec2 integrateBRDF(float NdotV, float roughness, uint sampleCount)
 {

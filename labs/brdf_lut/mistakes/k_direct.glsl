@@ -1,3 +1,4 @@
+// expect: k = (roughness + 1)^2 / 8 (direct light), where IBL has k = roughness^2 / 2
 // mistake: k = (roughness + 1)^2 / 8 (the direct-light remapping) in the LUT
 vec2 integrateBRDF(float NdotV, float roughness, uint sampleCount)
 {

@@ -1,3 +1,4 @@
+// expect: fits the reference without V.H
 // mistake: G_vis = G / (N.H N.V): the V.H of the pdf's Jacobian is missing
 vec2 integrateBRDF(float NdotV, float roughness, uint sampleCount)
 {

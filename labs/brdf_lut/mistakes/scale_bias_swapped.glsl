@@ -1,3 +1,4 @@
+// expect: Your components are swapped
 // mistake: returns (B, A): the Fresnel-weighted part in the red channel
 vec2 integrateBRDF(float NdotV, float roughness, uint sampleCount)
 {

@@ -1,3 +1,4 @@
+// expect: mix arguments reversed
 // mistake: mix arguments reversed (dielectrics get the albedo, metals get 0.04)
 vec3 baseReflectivity(vec3 albedo, float metallic)
 {

@@ -1,3 +1,4 @@
+// expect: cos^5 instead of (1 - cos)^5
 // mistake: cos^5 instead of (1 - cos)^5 (reflectance highest at normal incidence)
 vec3 fresnelSchlick(float cosTheta, vec3 F0)
 {

@@ -1,3 +1,4 @@
+// expect: fits the reference without (1 - F0)
 // mistake: the (1 - F0) factor is missing, reflectance can exceed 1
 vec3 fresnelSchlick(float cosTheta, vec3 F0)
 {

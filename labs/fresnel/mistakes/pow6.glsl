@@ -1,3 +1,4 @@
+// expect: fits the Schlick factor (1 - cos)^6 where the reference has the Schlick factor (1 - cos)^5
 // mistake: exponent typo, (1 - cos)^6 instead of ^5
 vec3 fresnelSchlick(float cosTheta, vec3 F0)
 {

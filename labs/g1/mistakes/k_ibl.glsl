@@ -1,3 +1,4 @@
+// expect: k = roughness^2 / 2, where the direct-light remapping is k = (roughness + 1)^2 / 8
 // mistake: k = roughness^2 / 2, the remapping for IBL, used for direct light
 float geometrySchlickGGX(float NdotX, float roughness)
 {

@@ -1,3 +1,4 @@
+// expect: k = (roughness + 1) / 8, where the direct-light remapping is k = (roughness + 1)^2 / 8
 // mistake: k = (roughness + 1) / 8, the square is missing
 float geometrySchlickGGX(float NdotX, float roughness)
 {

@@ -1,3 +1,4 @@
+// expect: k and (1 - k) swapped
 // mistake: k and (1 - k) swapped in the denominator
 float geometrySchlickGGX(float NdotX, float roughness)
 {

@@ -1,3 +1,4 @@
+// expect: misses its first step (the 16-bit halves)
 // mistake: the swap network misses its first step (the 16-bit halves), so the low bits of i
 // end up reversed in the low half: y = reverse16(i) / 2^32, all below 2^-16
 vec2 hammersley(uint i, uint n)

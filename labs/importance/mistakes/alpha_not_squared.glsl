@@ -1,3 +1,4 @@
+// expect: alpha where alpha^2 belongs
 // mistake: alpha where alpha^2 belongs in the inverse CDF (a lobe of the wrong width)
 vec3 importanceSampleGGX(vec2 Xi, vec3 N, float roughness)
 {

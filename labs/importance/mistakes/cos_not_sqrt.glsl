@@ -1,3 +1,4 @@
+// expect: the square root is missing
 // mistake: the square root is missing: cos(theta) set to what is cos^2(theta)
 vec3 importanceSampleGGX(vec2 Xi, vec3 N, float roughness)
 {

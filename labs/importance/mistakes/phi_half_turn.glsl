@@ -1,3 +1,4 @@
+// expect: only half of the azimuths
 // mistake: phi = PI * Xi.x, so half vectors cover only half of the azimuths around N
 vec3 importanceSampleGGX(vec2 Xi, vec3 N, float roughness)
 {

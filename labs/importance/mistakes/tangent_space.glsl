@@ -1,3 +1,4 @@
+// expect: H returned in tangent space
 // mistake: H returned in tangent space (around +z), never rotated to N
 vec3 importanceSampleGGX(vec2 Xi, vec3 N, float roughness)
 {

@@ -1,3 +1,4 @@
+// expect: fits no cosine N.L where the reference has the cosine N.L
 // mistake: the cosine (N.L) is missing: the average radiance over the hemisphere, times 2
 vec3 irradianceAt(vec3 N)
 {

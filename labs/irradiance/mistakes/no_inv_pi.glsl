@@ -1,3 +1,4 @@
+// expect: off by pi
 // mistake: returns E instead of E / PI (diffuse = albedo * irradianceAt would be PI too bright)
 vec3 irradianceAt(vec3 N)
 {

@@ -1,3 +1,4 @@
+// expect: sin(theta) is missing
 // mistake: the solid angle's sin(theta) is missing (directions near N count as much as whole
 // rings near the horizon)
 vec3 irradianceAt(vec3 N)

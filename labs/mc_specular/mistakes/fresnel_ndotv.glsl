@@ -1,3 +1,4 @@
+// expect: F evaluated at N.V, where each sample has V.H
 // mistake: Fresnel evaluated at N.V instead of V.H (the microfacet's angle)
 vec3 specularIBLReference(vec3 N, vec3 V, vec3 F0, float roughness, uint sampleCount)
 {

@@ -1,3 +1,4 @@
+// expect: k = (roughness + 1)^2 / 8 (direct light), where IBL has k = roughness^2 / 2
 // mistake: k = (roughness + 1)^2 / 8, the direct-light remapping, in an IBL integral
 vec3 specularIBLReference(vec3 N, vec3 V, vec3 F0, float roughness, uint sampleCount)
 {

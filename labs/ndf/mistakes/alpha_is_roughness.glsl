@@ -1,3 +1,4 @@
+// expect: fits alpha = roughness^1 where the reference has alpha = roughness^2
 // mistake: alpha = roughness (perceptual roughness not squared)
 float distributionGGX(vec3 N, vec3 H, float roughness)
 {

@@ -1,3 +1,4 @@
+// expect: fits the denominator to the power 1 where the reference has the denominator to the power 2
 // mistake: the bracket in the denominator is not squared
 float distributionGGX(vec3 N, vec3 H, float roughness)
 {

@@ -1,3 +1,4 @@
+// expect: is a division by PI missing?
 // mistake: PI missing from the denominator (D no longer normalised)
 float distributionGGX(vec3 N, vec3 H, float roughness)
 {

@@ -1,3 +1,4 @@
+// expect: fits (alpha^2)^0.5 in the numerator
 // mistake: numerator alpha instead of alpha^2
 float distributionGGX(vec3 N, vec3 H, float roughness)
 {

@@ -1,3 +1,4 @@
+// expect: pointing from the light to the surface (-L)
 // mistake: light vector taken pointing from the light to the surface (-L)
 float lambertCosine(vec3 N, vec3 L)
 {

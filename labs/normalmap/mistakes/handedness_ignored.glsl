@@ -1,3 +1,4 @@
+// expect: wrong only where tangent.w < 0
 // mistake: tangent.w ignored, mirrored UVs get an inverted bitangent
 vec3 normalFromMap(vec3 N, vec4 tangent, vec3 mapTexel)
 {

@@ -1,3 +1,4 @@
+// expect: without the [0,1] -> [-1,1] remap
 // mistake: texel used as the normal without the [0,1] -> [-1,1] remap
 vec3 normalFromMap(vec3 N, vec4 tangent, vec3 mapTexel)
 {

@@ -1,3 +1,4 @@
+// expect: divided by the sample count instead of the sum of weights
 // mistake: the N.L-weighted sum divided by the sample count instead of the sum of weights
 // (the result is darkened by the mean N.L)
 vec3 prefilterEnvironment(vec3 R, float roughness, uint sampleCount)

@@ -1,3 +1,4 @@
+// expect: without the N.L weights
 // mistake: a plain average of the samples above the horizon, without the N.L weights
 vec3 prefilterEnvironment(vec3 R, float roughness, uint sampleCount)
 {

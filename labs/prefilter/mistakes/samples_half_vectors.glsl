@@ -1,3 +1,4 @@
+// expect: read along H instead of the reflected L
 // mistake: the environment read along H instead of the reflected L = reflect(-R, H) (a lobe
 // about half as wide)
 vec3 prefilterEnvironment(vec3 R, float roughness, uint sampleCount)

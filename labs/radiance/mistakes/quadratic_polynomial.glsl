@@ -1,3 +1,4 @@
+// expect: constant-linear-quadratic attenuation
 // mistake: the non-physical constant-linear-quadratic attenuation of the Phong lessons
 vec3 pointLightRadiance(vec3 lightColor, vec3 lightPos, vec3 worldPos)
 {

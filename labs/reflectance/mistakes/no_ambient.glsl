@@ -1,3 +1,4 @@
+// expect: the reference without the ambient term
 // mistake: the ambient term 0.03 * albedo * ao is left out
 vec3 reflectedRadiance(vec3 P, vec3 N, vec3 V, vec3 albedo, float metallic, float roughness, float ao)
 {

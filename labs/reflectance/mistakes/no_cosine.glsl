@@ -1,3 +1,4 @@
+// expect: fits the reference without N.L
 // mistake: the cosine factor N.L of the reflectance equation is missing
 vec3 reflectedRadiance(vec3 P, vec3 N, vec3 V, vec3 albedo, float metallic, float roughness, float ao)
 {

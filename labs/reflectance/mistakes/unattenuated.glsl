@@ -1,3 +1,4 @@
+// expect: fits no falloff with distance where the reference has 1/d^2
 // mistake: the light colour used as incoming radiance, without the inverse-square falloff
 vec3 reflectedRadiance(vec3 P, vec3 N, vec3 V, vec3 albedo, float metallic, float roughness, float ao)
 {

@@ -1,3 +1,4 @@
+// expect: the two G1 terms averaged
 // mistake: the two G1 terms averaged instead of multiplied
 float geometrySmith(vec3 N, vec3 V, vec3 L, float roughness)
 {

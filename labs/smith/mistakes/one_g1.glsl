@@ -1,3 +1,4 @@
+// expect: the reference divided by G1(N.L)
 // mistake: Smith with only one G1 (masking towards V, shadowing towards L forgotten)
 float geometrySmith(vec3 N, vec3 V, vec3 L, float roughness)
 {

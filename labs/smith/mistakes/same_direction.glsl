@@ -1,3 +1,4 @@
+// expect: fits the reference with G1(N.V) for the light too
 // mistake: copy-paste slip, G1 of N.V used twice (N.L never enters)
 float geometrySmith(vec3 N, vec3 V, vec3 L, float roughness)
 {

@@ -1,3 +1,4 @@
+// expect: F evaluated at N.V, where the specular lobe has H.V
 // mistake: Fresnel fed N.V instead of H.V
 vec3 cookTorranceSpecular(vec3 N, vec3 V, vec3 L, vec3 F0, float roughness)
 {

@@ -1,3 +1,4 @@
+// expect: half vector L + V used without normalising it
 // mistake: half vector L + V used without normalising it
 vec3 cookTorranceSpecular(vec3 N, vec3 V, vec3 L, vec3 F0, float roughness)
 {

@@ -1,3 +1,4 @@
+// expect: 4 x the reference (= 4) everywhere
 // mistake: the factor 4 is missing from the denominator
 vec3 cookTorranceSpecular(vec3 N, vec3 V, vec3 L, vec3 F0, float roughness)
 {

@@ -1,3 +1,4 @@
+// expect: the reference divided by G1(N.L)
 // mistake: only one Schlick-GGX term (masking) instead of Smith's product
 vec3 cookTorranceSpecular(vec3 N, vec3 V, vec3 L, vec3 F0, float roughness)
 {

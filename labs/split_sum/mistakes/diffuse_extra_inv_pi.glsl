@@ -1,3 +1,4 @@
+// expect: fits the reference with an extra division by PI
 // mistake: diffuse = albedo * irradiance / PI, but the irradiance map already stores E / PI
 vec3 ambientIBL(vec3 N, vec3 V, vec3 albedo, float metallic, float roughness, float ao)
 {

@@ -1,3 +1,4 @@
+// expect: fits the reference with F where the bracket has F0
 // mistake: prefiltered * (F * A + B): Fresnel applied twice (the LUT already holds it)
 vec3 ambientIBL(vec3 N, vec3 V, vec3 albedo, float metallic, float roughness, float ao)
 {

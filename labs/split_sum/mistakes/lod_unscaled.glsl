@@ -1,3 +1,4 @@
+// expect: without uPrefilterMaxLod
 // mistake: the prefiltered mip chosen by roughness alone (LOD in [0, 1]), without
 // uPrefilterMaxLod: rough surfaces reflect an almost sharp environment
 vec3 ambientIBL(vec3 N, vec3 V, vec3 albedo, float metallic, float roughness, float ao)

@@ -1,3 +1,4 @@
+// expect: the LUT read at (roughness, N.V)
 // mistake: the LUT read at (roughness, N.V) instead of (N.V, roughness)
 vec3 ambientIBL(vec3 N, vec3 V, vec3 albedo, float metallic, float roughness, float ao)
 {

@@ -1,3 +1,4 @@
+// expect: clipped to [0, 1] instead of tone mapped
 // mistake: HDR clipped to [0, 1] instead of tone mapped
 vec3 displayEncode(vec3 hdr)
 {

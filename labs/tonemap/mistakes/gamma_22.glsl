@@ -1,3 +1,4 @@
+// expect: fits the exponent 2.2
 // mistake: gamma 2.2 instead of 1/2.2 (decodes instead of encoding for the display)
 vec3 displayEncode(vec3 hdr)
 {

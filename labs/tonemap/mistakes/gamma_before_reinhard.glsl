@@ -1,3 +1,4 @@
+// expect: fits the reference with the gamma applied before Reinhard
 // mistake: gamma applied before tone mapping (order of the two steps swapped)
 vec3 displayEncode(vec3 hdr)
 {

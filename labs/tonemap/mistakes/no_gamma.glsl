@@ -1,3 +1,4 @@
+// expect: fits no gamma (exponent 1) where the reference has gamma 2.2
 // mistake: Reinhard only, the display encoding (gamma 1/2.2) is missing
 vec3 displayEncode(vec3 hdr)
 {
