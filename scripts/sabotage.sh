@@ -7,9 +7,9 @@
 # table sabotage -> tests that caught it; exit 1 when a sabotage went unnoticed.
 #
 # Usage: scripts/sabotage.sh [--list] [NAME ...]     (no NAME: every sabotage)
-#   SABOTAGE_DIR        the scratch copy and its build (default build/sabotage beside this
-#                       tree's build): kept between runs, and at a fixed path, so that the
-#                       second run rebuilds only what changed and ccache (base_dir) hits
+#   SABOTAGE_DIR        where the scratch copy (tree/) and its build (tree/build) go (default
+#                       build/sabotage): kept between runs, at a fixed path, so that a second
+#                       run rebuilds only what changed
 #   SABOTAGE_JOBS       build jobs (default 1)
 #   SABOTAGE_BUILD_TYPE CMAKE_BUILD_TYPE of the scratch build (default RelWithDebInfo)
 # Run by `ctest -C sabotage -L sabotage` (tests/CMakeLists.txt; not in the default run).
@@ -19,7 +19,9 @@ work=${SABOTAGE_DIR:-$here/build/sabotage}
 jobs=${SABOTAGE_JOBS:-1}
 build_type=${SABOTAGE_BUILD_TYPE:-RelWithDebInfo}
 tree=$work/tree
-obj=$work/build
+# The build inside the copy, as build/ is inside this tree: the compiler sees the same relative
+# paths (../../core/src/...), so ccache (base_dir) finds what this tree's build compiled.
+obj=$tree/build
 
 # ---- the sabotages ------------------------------------------------------------------------
 # sabotage NAME WHAT FILE TEXT REPLACEMENT TESTS: in FILE, TEXT (found exactly once) becomes
@@ -35,13 +37,13 @@ sabotage band-always-passes \
     core/src/compare.cpp \
     'const double excess = band.excess(i, v, components);' \
     'const double excess = 0 * band.excess(i, v, components);' \
-    'Labs/VariantTest.*/fresnel_mistake_*:Grade.InvariantsAreMeasuredOnTheStudentsFunctionAndDeduct'
+    'Labs/VariantTest.*/fresnel_mistake_pow6:Grade.InvariantsAreMeasuredOnTheStudentsFunctionAndDeduct'
 sabotage band-enormous \
     "the pass band made enormous (bandAt's slack x 1e6)" \
     core/src/compare.cpp \
     '    band.slack[i] = slack;' \
     '    band.slack[i] = slack * 1e6;' \
-    'Labs/VariantTest.*/fresnel_mistake_*'
+    'Labs/VariantTest.*/fresnel_mistake_pow*'
 sabotage estimator-band-always-passes \
     "an estimator's values checks against the converged integral always pass" \
     core/src/grading_estimator.cpp \
@@ -100,6 +102,12 @@ sabotage partial-credit-inverted \
     '            s.earning += passed && workShown;' \
     '            s.earning += passed && !workShown;' \
     'Assignment.PartialCreditIsTheWeightsShareOfTheChecksPassedOnceOneShowsWork'
+sabotage work-gate-off \
+    "passed checks earn points before any values check shows work (the stub's checks score)" \
+    core/src/assignment.cpp \
+    '        workShown = workShown || (check.value("shows_work", false) && check.value("passed", false));' \
+    '        workShown = workShown || !check.is_null();' \
+    'Assignment.PartialCreditIsTheWeightsShareOfTheChecksPassedOnceOneShowsWork'
 sabotage contract-failure-scores \
     "a failed contract check no longer zeroes the step's partial credit" \
     core/src/assignment.cpp \
@@ -117,7 +125,7 @@ sabotage robustness-deducted \
     core/src/grading_checks.cpp \
     '    c.deducted = false;' \
     '    c.deducted = true;' \
-    'Labs/VariantTest.*/ndf_correct_lesson'
+    'Labs/VariantTest.*/ndf_correct_correct_lesson'
 
 # ---- helpers ------------------------------------------------------------------------------
 list() {
@@ -165,22 +173,37 @@ build() {
     local launcher=()
     if command -v ccache > /dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
     if [ ! -f "$obj/CMakeCache.txt" ]; then
-        cmake -S "$tree" -B "$obj" -DCMAKE_BUILD_TYPE="$build_type" "${launcher[@]}" > /dev/null
+        cmake -S "$tree" -B "$obj" -DCMAKE_BUILD_TYPE="$build_type" -DPBRLAB_BUILD_BENCHMARKS=OFF \
+            "${launcher[@]}" > /dev/null
     fi
     cmake --build "$obj" -j"$jobs" "$@" > "$work/build.log" 2>&1 ||
         { tail -30 "$work/build.log"; echo "sabotage: the build failed" >&2; exit 2; }
 }
-run_tests() {  # FILTER LOG: the tests' exit status
-    (cd "$obj/tests" && timeout 1800 ./pbrlab_tests --gtest_filter="$1" > "$2" 2>&1)
+tests_of() {  # FILTER: the tests it selects, one full name per line
+    "$obj/tests/pbrlab_tests" --gtest_list_tests --gtest_filter="$1" |
+        awk '/^[^ ]/ { suite = $1 } /^  / { print suite $1 }'
 }
-failed_tests() {  # LOG: the tests that failed, one per line (a crash names the test it was in)
-    local failed
-    failed=$(sed -n 's/^\[  FAILED  \] \([^ ,]*\) (.*$/\1/p' "$1" | sort -u)
-    if [ -z "$failed" ]; then
-        failed=$(sed -n 's/^\[ RUN      \] //p' "$1" | tail -1)
-        [ -n "$failed" ] && failed="$failed (crashed)"
-    fi
-    echo "$failed"
+run_tests() {  # FILTER LOG: 0 when every test passed; the failed ones in LOG.failed
+    # Each test in a process of its own, as ctest runs them: a test that holds a GL context
+    # would otherwise be inherited by the grader's forks of the tests after it, and hang them.
+    local name code
+    : > "$2"
+    : > "$2.failed"
+    while IFS= read -r name; do
+        code=0
+        (cd "$obj/tests" && timeout 900 ./pbrlab_tests --gtest_filter="$name" < /dev/null >> "$2" 2>&1) ||
+            code=$?
+        case $code in
+            0) ;;
+            1) echo "$name" >> "$2.failed" ;;
+            124) echo "$name (timed out)" >> "$2.failed" ;;
+            *) echo "$name (exit $code)" >> "$2.failed" ;;
+        esac
+    done < <(tests_of "$1")
+    [ ! -s "$2.failed" ]
+}
+failed_tests() {  # LOG: the tests that failed, one per line, without the suite's prefix
+    sed 's#^Labs/VariantTest\.[^/]*/#VariantTest/#' "$1.failed"
 }
 
 # ---- baseline: the copy as it is, every catching test passes ------------------------------
@@ -197,7 +220,7 @@ for n in "${chosen[@]}"; do
     # or, worse, leave it unrun).
     IFS=: read -r -a patterns <<< "${filters[$k]}"
     for p in "${patterns[@]}"; do
-        if ! "$obj/tests/pbrlab_tests" --gtest_list_tests --gtest_filter="$p" | grep -q '^  '; then
+        if [ -z "$(tests_of "$p")" ]; then
             echo "sabotage $n: no test matches $p" >&2
             exit 2
         fi
