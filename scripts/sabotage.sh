@@ -20,7 +20,8 @@ jobs=${SABOTAGE_JOBS:-1}
 build_type=${SABOTAGE_BUILD_TYPE:-RelWithDebInfo}
 tree=$work/tree
 # The build inside the copy, as build/ is inside this tree: the compiler sees the same relative
-# paths (../../core/src/...), so ccache (base_dir) finds what this tree's build compiled.
+# paths (../../core/src/...), which ccache's base_dir rewriting needs to hit at all. The first
+# run still compiles most files (their -DPBRLAB_SOURCE_DIR names the copy); later runs hit.
 obj=$tree/build
 
 # ---- the sabotages ------------------------------------------------------------------------
@@ -156,10 +157,12 @@ sync_tree() {
         fi
     done < <(git -C "$here" ls-files -z -co --exclude-standard)
     # ../shared (reference data some tests read), where this tree has one.
-    if [ -d "$here/../shared" ] && [ ! -e "$work/shared" ]; then ln -s "$here/../shared" "$work/shared"; fi
+    if [ -d "$here/../shared" ] && [ ! -e "$work/shared" ]; then
+        ln -s "$here/../shared" "$work/shared"
+    fi
 }
 apply() {  # FILE TEXT REPLACEMENT
-    python3 - "$tree/$1" "$2" "$3" <<'PY'
+    python3 - "$tree/$1" "$2" "$3" <<'PY' || exit 2
 import sys
 path, text, replacement = sys.argv[1:]
 source = open(path).read()
@@ -191,7 +194,8 @@ run_tests() {  # FILTER LOG: 0 when every test passed; the failed ones in LOG.fa
     : > "$2.failed"
     while IFS= read -r name; do
         code=0
-        (cd "$obj/tests" && timeout 900 ./pbrlab_tests --gtest_filter="$name" < /dev/null >> "$2" 2>&1) ||
+        (cd "$obj/tests" &&
+            timeout 900 ./pbrlab_tests --gtest_filter="$name" < /dev/null >> "$2" 2>&1) ||
             code=$?
         case $code in
             0) ;;
