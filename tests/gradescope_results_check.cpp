@@ -1,8 +1,11 @@
 // Validates a results.json against Gradescope's documented format (autograder specifications,
 // "Output format"): only the documented fields, each of its documented type and values, and
 // the total equal to the sum of the tests' scores. Used by gradescope_bundle.sh.
-// Usage: pbrlab_gradescope_check results.json [expected-score]
-// Prints the score; exit 1 with every problem listed when the file does not validate.
+// Usage: pbrlab_gradescope_check results.json [expected-score] [--visibility]
+// Prints the score (with --visibility, then "<name>: <visibility>" for the result as a whole,
+// named "(result)", and for each test in order, for a test to compare row by row); exit 1 with
+// every problem listed when the file does not validate.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -45,16 +48,20 @@ void checkField(const std::string& where, const json& v, const std::string& type
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2) {
-        std::fprintf(stderr, "usage: %s results.json [expected-score]\n", argv[0]);
+    std::vector<std::string> args(argv + 1, argv + argc);
+    const auto flag = std::find(args.begin(), args.end(), "--visibility");
+    const bool listVisibility = flag != args.end();
+    if (listVisibility) args.erase(flag);
+    if (args.empty() || args.size() > 2) {
+        std::fprintf(stderr, "usage: %s results.json [expected-score] [--visibility]\n", argv[0]);
         return 2;
     }
-    std::ifstream in(argv[1]);
+    std::ifstream in(args[0]);
     json r;
     try {
         r = json::parse(in);
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "%s: not JSON: %s\n", argv[1], e.what());
+        std::fprintf(stderr, "%s: not JSON: %s\n", args[0].c_str(), e.what());
         return 1;
     }
     const std::vector<std::pair<std::string, std::string>> top = {
@@ -110,9 +117,24 @@ int main(int argc, char** argv) {
     if (std::abs(total - sum) > 1e-9 * std::max(1.0, std::abs(sum)))
         problem("results.score", std::to_string(total) + " is not the sum of the tests' scores " +
                                      std::to_string(sum));
-    if (argc > 2 && std::abs(total - std::stod(argv[2])) > 1e-9 * std::max(1.0, std::abs(total)))
-        problem("results.score", std::to_string(total) + ", expected " + argv[2]);
-    for (const std::string& p : problems) std::fprintf(stderr, "%s: %s\n", argv[1], p.c_str());
+    if (args.size() > 1 &&
+        std::abs(total - std::stod(args[1])) > 1e-9 * std::max(1.0, std::abs(total)))
+        problem("results.score", std::to_string(total) + ", expected " + args[1]);
+    for (const std::string& p : problems)
+        std::fprintf(stderr, "%s: %s\n", args[0].c_str(), p.c_str());
     std::printf("%.9g\n", total);
+    if (listVisibility) {
+        // Absent reads "(absent)": Gradescope's default would hide a missing field's meaning.
+        auto visibility = [](const json& o) {
+            return o.contains("visibility") && o["visibility"].is_string()
+                       ? o["visibility"].get<std::string>()
+                       : std::string("(absent)");
+        };
+        std::printf("(result): %s\n", visibility(r).c_str());
+        if (r.contains("tests") && r["tests"].is_array())
+            for (const json& t : r["tests"])
+                std::printf("%s: %s\n", t.value("name", std::string("(no name)")).c_str(),
+                            visibility(t).c_str());
+    }
     return problems.empty() ? 0 : 1;
 }

@@ -753,8 +753,9 @@ TEST(IblSplitSum, ApproximatesBruteForce) {
     //   below (13%, at roughness 0.6); tolerance 20%.
     // - the shipped sky: the sun (49 degrees from R, in the lobe's tail at roughness 0.6)
     //   is where the lobe's real shape (stretched, off-specular) and the symmetric prefilter
-    //   lobe differ most. Measured below for the handout (tens of percent at roughness 0.6);
-    //   only a factor-2 sanity bound is checked.
+    //   lobe differ most. Measured below: 42.8% (at roughness 0.6; CPU doubles on fixed
+    //   Hammersley points, the same on every run); tolerance 55%, 1.3 x that (the former
+    //   bound, 100%, let a split sum of twice the brute force through).
     const LinearEnvironment smooth(dvec3(1.0), dvec3(0.3, 0.6, -0.2));
     const EquirectEnvironment sky(shippedSky());
     const dvec3 F0(0.9);
@@ -775,7 +776,7 @@ TEST(IblSplitSum, ApproximatesBruteForce) {
     note("split sum vs brute force, smooth environment: max relative difference", worstSmooth);
     note("split sum vs brute force, shipped sky: max relative difference", worstSky);
     EXPECT_LT(worstSmooth, 0.2);
-    EXPECT_LT(worstSky, 1.0);
+    EXPECT_LT(worstSky, 0.55);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -196,10 +196,11 @@ TEST(PointLightRadiance, FollowsTheInverseSquareLaw) {
 }
 
 TEST(PointLightRadiance, IsCappedWhenTheLightSitsOnThePoint) {
-    // Documented guard: 1/d^2 is capped at d = 1 cm (d^2 = 1e-4).
+    // Documented guard (the radiance handout): 1/d^2 is capped at d = 1 cm, d^2 = 1e-4,
+    // written here rather than read from reference.h, which the test checks.
     const dvec3 r = pointLightRadiance(dvec3(1e6), dvec3(0.5), dvec3(0.5));
     EXPECT_TRUE(finite(r));
-    EXPECT_DOUBLE_EQ(r.x, 1e6 / kMinDistance2);
+    EXPECT_DOUBLE_EQ(r.x, 1e6 / 1e-4);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -472,7 +473,8 @@ TEST(CookTorrance, DiffuseOfARoughMetalIsGoneAndLambertIntegratesToAlbedo) {
 
 TEST(ReflectedRadiance, IsAmbientOnlyWithoutLightsOrWithLightsBehind) {
     const dvec3 P(0, 0, 1), N(0, 0, 1), V(0, 0, 1), albedo(0.5, 0.25, 1.0);
-    const dvec3 ambient = kAmbient * albedo * 0.5;
+    // The contract's ambient term (shared/DESIGN.md, step 12): 0.03 * albedo * ao, ao = 0.5.
+    const dvec3 ambient = 0.03 * albedo * 0.5;
     EXPECT_EQ(reflectedRadiance(P, N, V, albedo, 0.3, 0.4, 0.5, nullptr, 0), ambient);
     const PointLight behind{{0, 0, -3}, {100, 100, 100}};
     EXPECT_EQ(reflectedRadiance(P, N, V, albedo, 0.3, 0.4, 0.5, &behind, 1), ambient);
@@ -484,7 +486,7 @@ TEST(ReflectedRadiance, AddsLightsLinearlyAndFallsOffWithTheSquareOfDistance) {
     auto lit = [&](const std::vector<PointLight>& lights) {
         return reflectedRadiance(P, N, V, albedo, 0.2, 0.5, 1.0, lights.data(),
                                  int(lights.size())) -
-               kAmbient * albedo;
+               0.03 * albedo;  // the contract's ambient term, ao = 1
     };
     const dvec3 dir = glm::normalize(dvec3(1, 2, 3));
     const PointLight one{P + 2.0 * dir, {50, 60, 70}};
@@ -668,7 +670,13 @@ TEST(Stability, AllReferencesAreFiniteAndNonNegativeAtTheEndsOfTheDomain) {
             }
         }
     }
-    EXPECT_GT(checked, 0);
+    // Every case above reached its check: the cases each loop lists, counted from the lists
+    // (sRGB 6, display 6, radiance 3 x 5, Fresnel 5 x 2, base reflectivity, the direction
+    // pairs with V = -L through specular (2) and the BRDF (2 x 2) per roughness, reflectance,
+    // normal map 3 x 5 x 3 x 5). A list edited to empty, or a loop that stops early, fails.
+    const size_t d = dirs.size(), r = roughness.size(), u = unitRange.size();
+    EXPECT_EQ(size_t(checked), 6 + 6 + 3 * 5 + 5 * 2 + u * u + d * d * 2 * r * (2 + 4) +
+                                   d * r * 2 * 2 + 3 * 5 * 3 * 5);
 }
 
 TEST(SafeNormalize, NormalisesOrFallsBack) {

@@ -97,7 +97,9 @@ class VariantTest : public testing::TestWithParam<Variant> {};
 
 }  // namespace
 
-TEST_P(VariantTest, CorrectPassesMistakeFailsAtItsOwnStepByAMargin) {
+// Each variant is graded at its own step only (that a mistake costs no other step is
+// Grade.EachProblemCostsOnlyItsOwnStep's: grading all 21 steps per variant would cost 149 x).
+TEST_P(VariantTest, CorrectPassesMistakeFailsByAMargin) {
     const Variant& v = GetParam();
     Grader g;
     test::TempDir kit;
