@@ -259,6 +259,7 @@ void Lab::render(const GuiState& state) {
     }
     // No version of the student's file has compiled yet: nothing of theirs to show.
     if (!rendered) shown_.studentValue = Image();
+    ++evaluationsDone_;
     shown_.renderMs = millisecondsSince(start);
     logLine("gui", "evaluated " + d.id + " against the CPU reference in " +
                        std::to_string(int(shown_.renderMs)) + " ms");

@@ -137,10 +137,15 @@ public:
         GLFWwindow* window = context_->window();
         int frame = 0;
         std::vector<double> frameTimes, renderTimes;
+        // Per frame, the evaluation against the CPU reference it overlapped or ran (the number
+        // finished before it), or -1.
+        std::vector<int> whileEvaluating;
         int w = 0, h = 0;
         while (!glfwWindowShouldClose(window)) {
             glfwPollEvents();
             auto start = std::chrono::steady_clock::now();
+            const bool evaluatingBefore = lab_.evaluating();
+            const int evaluationsBefore = lab_.evaluationsDone();
             if (options_.orbit) {  // a step of a mouse drag
                 state_.camera.yaw += 0.02;
                 requests_.moved = true;
@@ -174,13 +179,38 @@ public:
             lab_.shown().frameMs = millisecondsSince(start);
             frameTimes.push_back(lab_.shown().frameMs);
             renderTimes.push_back(lab_.shown().renderMs);
+            const bool evaluated = evaluatingBefore || lab_.evaluating() ||
+                                   lab_.evaluationsDone() != evaluationsBefore;
+            whileEvaluating.push_back(evaluated ? evaluationsBefore : -1);
             if (last) break;
         }
         if (options_.orbit) printOrbitReport(frameTimes, renderTimes, w, h);
+        if (options_.frameTimes) printEvaluationFrames(frameTimes, whileEvaluating);
         return 0;
     }
 
 private:
+    // --frame-times: every frame's times, then, for each evaluation against the CPU reference,
+    // the frames drawn while it ran (or the frame that ran it, when it runs in the frame).
+    void printEvaluationFrames(std::vector<double> frameTimes,
+                               const std::vector<int>& whileEvaluating) const {
+        for (int k = 0; k < lab_.evaluationsDone(); ++k) {
+            std::vector<double> during;
+            for (size_t i = 0; i < frameTimes.size(); ++i)
+                if (whileEvaluating[i] == k) during.push_back(frameTimes[i]);
+            std::sort(during.begin(), during.end());
+            if (!during.empty())
+                std::printf(
+                    "evaluation %d against the CPU reference: %zu frames while it ran, "
+                    "median %.1f ms, longest %.1f ms\n",
+                    k + 1, during.size(), during[during.size() / 2], during.back());
+        }
+        std::sort(frameTimes.begin(), frameTimes.end());
+        if (!frameTimes.empty())
+            std::printf("frames: %zu, median %.1f ms, longest %.1f ms\n", frameTimes.size(),
+                        frameTimes[frameTimes.size() / 2], frameTimes.back());
+    }
+
     void printOrbitReport(const std::vector<double>& frameTimes,
                           const std::vector<double>& renderTimes, int w, int h) {
         printFrameTimes("frame", frameTimes, w, h);

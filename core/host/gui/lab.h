@@ -106,6 +106,10 @@ public:
     // The picture is evaluated for the state, and the step's badge graded for the file on
     // disk: nothing is left to update (the console's `wait`).
     bool settled(const GuiState& state) const;
+    // Evaluations against the CPU reference finished so far, and whether one is running now:
+    // --frame-times tells the frames drawn while one ran.
+    int evaluationsDone() const { return evaluationsDone_; }
+    bool evaluating() const { return false; }
     LiveSize& liveSize() { return live_; }  // the live picture's side (tests set it)
     // The term views of the loaded steps (term_views.h), in the view chooser's order.
     const std::vector<TermView>& termViews() const { return termViews_; }
@@ -156,6 +160,7 @@ private:
     std::chrono::steady_clock::time_point lastMove_{};
     LiveSize live_{kRenderSize};  // the live picture's side
     std::vector<int> liveSizes_;  // of every live frame, for --orbit's report
+    int evaluationsDone_ = 0;
 };
 
 }  // namespace pbrlab
