@@ -6,12 +6,16 @@
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <dirent.h>
 #include <imgui.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <set>
+#include <thread>
 
 #include "gl/context.h"
 #include "lab.h"
@@ -64,6 +68,49 @@ void loadFont(std::string& messages) {
     messages += std::string("font ") + file + " not found: Greek letters show as '?'\n";
 }
 
+// The evaluation thread's context (evaluation_worker.h): a hidden window's, made here on the
+// main thread (GLFW creates windows on it only; creating one leaves the current context as it
+// was), current on the worker. Not shared with the window's: the worker returns images in
+// memory, and no GL object crosses threads.
+class GlfwWorkerContext final : public WorkerContext {
+public:
+    GlfwWorkerContext() {
+        const std::set<std::string> before = threadIds();
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+        glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+        glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+        glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+        window_ = glfwCreateWindow(16, 16, "pbrlab evaluation", nullptr, nullptr);
+        glfwDefaultWindowHints();
+        // The context's own threads (llvmpipe's rasterizers) started here, on the main thread,
+        // at its nice value: they yield to the window's as the evaluation thread does.
+        for (const std::string& tid : threadIds())
+            if (!before.count(tid))
+                setpriority(PRIO_PROCESS, static_cast<id_t>(std::stoi(tid)), kBackgroundNice);
+    }
+    ~GlfwWorkerContext() override {
+        if (window_) glfwDestroyWindow(window_);
+    }
+    void makeCurrent() override {
+        if (!window_) throw Error("cannot create a second OpenGL 4.5 core context");
+        glfwMakeContextCurrent(window_);
+    }
+    void release() override { glfwMakeContextCurrent(nullptr); }
+
+private:
+    static std::set<std::string> threadIds() {  // this process's, from /proc/self/task
+        std::set<std::string> ids;
+        if (DIR* dir = opendir("/proc/self/task")) {
+            while (const dirent* e = readdir(dir))
+                if (e->d_name[0] != '.') ids.insert(e->d_name);
+            closedir(dir);
+        }
+        return ids;
+    }
+    GLFWwindow* window_ = nullptr;
+};
+
 // The windows' background.
 const ImVec4 kBackground(0.11f, 0.115f, 0.13f, 1);
 
@@ -113,7 +160,7 @@ public:
     explicit GuiApp(const GuiOptions& options)
         : options_(options),
           context_(createWindowContext(options.width, options.height, "pbrlab")),
-          lab_(options, state_),
+          lab_(options, state_, std::make_unique<GlfwWorkerContext>()),
           console_(options.globalArguments, options.frames > 0) {
         for (const std::string& line : options.commands) console_.submit(line);
         if (!options.commands.empty() && options.tab.empty()) state_.openTab = "console";
@@ -164,8 +211,10 @@ public:
             gl::Clear(GL_COLOR_BUFFER_BIT);
             ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
             ++frame;
-            // Scripted: the frames asked for, and the console's lines have finished.
-            bool last = options_.frames > 0 && frame >= options_.frames && console_.idle();
+            // Scripted: the frames asked for, the console's lines and the evaluation have
+            // finished.
+            bool last = options_.frames > 0 && frame >= options_.frames && console_.idle() &&
+                        !lab_.evaluating();
             if (requests_.screenshot) {  // the button, or the console's `screenshot`
                 saveScreenshot(requests_.screenshotFile.empty() ? fs::path("pbrlab-screenshot.png")
                                                                 : requests_.screenshotFile,
@@ -182,6 +231,10 @@ public:
             const bool evaluated = evaluatingBefore || lab_.evaluating() ||
                                    lab_.evaluationsDone() != evaluationsBefore;
             whileEvaluating.push_back(evaluated ? evaluationsBefore : -1);
+            // While the evaluation thread works, 60 frames a second are enough: the rest of
+            // the time is its (without vsync, as under Xvfb, the loop would draw hundreds).
+            if (lab_.evaluating())
+                std::this_thread::sleep_until(start + std::chrono::microseconds(16667));
             if (last) break;
         }
         if (options_.orbit) printOrbitReport(frameTimes, renderTimes, w, h);

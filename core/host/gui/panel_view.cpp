@@ -188,8 +188,14 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
                  ImVec2(side, side));
     handleCamera(lab, state, requests, origin, side);
     // The live picture is the student's (or the solution's), drawn at a reduced size while the
-    // input moves: say so, and what follows when it stops.
-    if (shown.liveTexture && state.view != View::Student && state.view != View::Solution)
+    // input moves: say so, and what follows when it stops (or, stopped, when the evaluation
+    // under it arrives).
+    if (shown.liveTexture && lab.evaluating())
+        ImGui::TextDisabled("%s picture at %dx%d; the %s view, %dx%d, when evaluated",
+                            shown.liveWho, shown.liveSide, shown.liveSide,
+                            viewName(state.view, state.term, lab.termViews()).c_str(), kRenderSize,
+                            kRenderSize);
+    else if (shown.liveTexture && state.view != View::Student && state.view != View::Solution)
         ImGui::TextDisabled("moving: %s picture at %dx%d; the %s view, %dx%d, when you stop",
                             shown.liveWho, shown.liveSide, shown.liveSide,
                             viewName(state.view, state.term, lab.termViews()).c_str(), kRenderSize,
