@@ -258,6 +258,15 @@ private:
                     "median %.1f ms, longest %.1f ms\n",
                     k + 1, during.size(), during[during.size() / 2], during.back());
         }
+        // The baseline in the same run: the frames while none ran, the first 3 left out
+        // (compiles), as long as the machine's load alone makes them.
+        std::vector<double> idle;
+        for (size_t i = 3; i < frameTimes.size(); ++i)
+            if (whileEvaluating[i] < 0) idle.push_back(frameTimes[i]);
+        std::sort(idle.begin(), idle.end());
+        if (!idle.empty())
+            std::printf("while no evaluation ran: %zu frames, median %.1f ms, longest %.1f ms\n",
+                        idle.size(), idle[idle.size() / 2], idle.back());
         std::sort(frameTimes.begin(), frameTimes.end());
         if (!frameTimes.empty())
             std::printf("frames: %zu, median %.1f ms, longest %.1f ms\n", frameTimes.size(),

@@ -187,9 +187,16 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
     ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(shownTexture)),
                  ImVec2(side, side));
     handleCamera(lab, state, requests, origin, side);
+    // Beside the picture (before the line under it, which would push it down).
+    if (legend > 0) {
+        ImGui::SameLine();
+        drawLegend(difference ? 0.0 : d.display.lo,
+                   difference ? state.differenceRange : d.display.hi,
+                   !difference && d.display.logScale, side);
+    }
     // The live picture is the student's (or the solution's), drawn at a reduced size while the
     // input moves: say so, and what follows when it stops (or, stopped, when the evaluation
-    // under it arrives).
+    // under it arrives: its progress is the line below).
     if (shown.liveTexture && lab.evaluating())
         ImGui::TextDisabled("%s picture at %dx%d; the %s view, %dx%d, when evaluated",
                             shown.liveWho, shown.liveSide, shown.liveSide,
@@ -206,12 +213,6 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
     else if (shown.liveTexture)
         ImGui::TextDisabled("moving: %s picture at %dx%d, full size", shown.liveWho, shown.liveSide,
                             shown.liveSide);
-    if (legend > 0) {
-        ImGui::SameLine();
-        drawLegend(difference ? 0.0 : d.display.lo,
-                   difference ? state.differenceRange : d.display.hi,
-                   !difference && d.display.logScale, side);
-    }
     drawStats(status);
 }
 
