@@ -128,6 +128,7 @@ void Lab::loadScene(GuiState& state) {
     state.camera.yaw = std::atan2(offset.x, offset.z);
     state.camera.pitch = std::asin(std::clamp(offset.y / state.camera.distance, -1.0, 1.0));
     dirty_ = true;
+    if (worker_) worker_->cancel();  // another step or scene: the evaluation running is not it
 }
 
 // What the model loader read but does not render goes to the host log (the Log tab), once
