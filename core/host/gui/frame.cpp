@@ -106,9 +106,6 @@ void Lab::update(GuiState& state, Requests& requests) {
         dirty_ = true;
     const ModuleDesc& m = module(state);
     const Scene scene = currentScene(state);
-    auto mapsMissing = [&] {
-        return (m.needs & NeedsEnvironment) && !renderer_->hasEnvironmentMaps(scene, iblFor(scene));
-    };
     // While the input moves, only the picture is drawn (on the GPU, mapped for display there,
     // nothing read back): 30 frames a second at least. The evaluation against the CPU
     // reference, the probes and the statistics follow once it has been still for a moment
@@ -117,7 +114,8 @@ void Lab::update(GuiState& state, Requests& requests) {
     // The first live picture of an environment precomputes for seconds: show a frame that
     // says so, once per step and environment (a step that reads no derived map never has them
     // all: a notice every other frame would halve its frame rate).
-    if (dirty_ && moving && mapsMissing() &&
+    if (dirty_ && moving && (m.needs & NeedsEnvironment) &&
+        !renderer_->hasEnvironmentMaps(scene, iblFor(scene)) &&
         precomputeNoticed_.insert(m.id + "|" + scene.environment + "|" + iblFor(scene).key())
             .second)
         return;
@@ -125,10 +123,10 @@ void Lab::update(GuiState& state, Requests& requests) {
     if (dirty_ && moving) {
         if (!drawLive(state)) startEvaluation(state);
     } else if (dirty_) {
-        // Still: the picture follows the edit at once (a live one, until the evaluation
-        // arrives), unless it needs environment maps not computed yet: the evaluation thread
-        // computes its own, and the window would stop for them.
-        if (!mapsMissing()) drawLive(state);
+        // Still (a step, scene or saved file; the input stopped): the picture on screen stays
+        // until the evaluation arrives, with its progress under it. No live picture here: for
+        // a new step or a saved file the window's renderer would compile (or precompute maps)
+        // first, for tenths of a second to seconds, which the evaluation thread does anyway.
         startEvaluation(state);
     }
     if (std::optional<EvaluationResult> result = worker_->take())
