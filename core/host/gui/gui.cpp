@@ -212,9 +212,10 @@ public:
             ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
             ++frame;
             // Scripted: the frames asked for, the console's lines and the evaluation have
-            // finished.
+            // finished, the evaluation before this frame (ImGui hides a window, such as the
+            // pixel inspector's tooltip, on the first frame it appears in).
             bool last = options_.frames > 0 && frame >= options_.frames && console_.idle() &&
-                        !lab_.evaluating();
+                        !evaluatingBefore && !lab_.evaluating();
             if (requests_.screenshot) {  // the button, or the console's `screenshot`
                 saveScreenshot(requests_.screenshotFile.empty() ? fs::path("pbrlab-screenshot.png")
                                                                 : requests_.screenshotFile,
