@@ -113,9 +113,21 @@ TEST(LiveView, CoarseSpheresMoveThePictureByUnderAPixel) {
     EXPECT_LT(changedCoverage, coveredPixels / 20);
 }
 
+// The window's frames while the evaluation thread works, until its result has arrived (each
+// frame returns at once: the evaluation is not waited for).
+void framesUntilEvaluated(Lab& lab, GuiState& state, Requests& requests) {
+    const auto start = std::chrono::steady_clock::now();
+    while (lab.evaluating() && std::chrono::steady_clock::now() - start < std::chrono::minutes(2)) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        lab.update(state, requests);
+    }
+    ASSERT_FALSE(lab.evaluating()) << "no evaluation in 2 minutes";
+}
+
 // Dragging, then still, as the window's frames do it (Lab::update): every moving frame is a
-// live picture at the controller's side, nothing evaluated; the frame once the input is still
-// is full size and exactly what the headless renderer (`pbrlab render`) draws for that camera.
+// live picture at the controller's side, nothing evaluated; once the input is still the
+// evaluation runs on its thread while frames go on, and its picture is full size and exactly
+// what the headless renderer (`pbrlab render`) draws for that camera.
 TEST(LiveView, MovingFramesAreReducedAndTheStillFrameIsTheHeadlessRender) {
     auto context = createHeadlessContext();
     test::TempDir dir;
@@ -139,7 +151,12 @@ TEST(LiveView, MovingFramesAreReducedAndTheStillFrameIsTheHeadlessRender) {
     GuiState state;
     Lab lab(options, state);
     Requests requests;
-    lab.update(state, requests);  // still from the start: the evaluation
+    lab.update(state, requests);  // still from the start: the evaluation starts
+    // The frame did not wait for it: a 512x512 evaluation of the grid takes a second or more
+    // on llvmpipe (docs/speed.md), this frame returned with it still running.
+    EXPECT_TRUE(lab.evaluating());
+    EXPECT_TRUE(lab.shown().solutionValue.pixels.empty());
+    framesUntilEvaluated(lab, state, requests);
     ASSERT_EQ(lab.shown().liveTexture, 0u);
     const Image first = lab.shown().solutionValue;
     ASSERT_EQ(first.width, kRenderSize);
@@ -166,6 +183,8 @@ TEST(LiveView, MovingFramesAreReducedAndTheStillFrameIsTheHeadlessRender) {
 
     std::this_thread::sleep_for(std::chrono::milliseconds(300));  // past the settle delay
     lab.update(state, requests);
+    EXPECT_TRUE(lab.evaluating());
+    framesUntilEvaluated(lab, state, requests);
     const Shown& shown = lab.shown();
     EXPECT_EQ(shown.liveTexture, 0u);
     ASSERT_EQ(shown.solutionValue.width, kRenderSize);
@@ -175,4 +194,45 @@ TEST(LiveView, MovingFramesAreReducedAndTheStillFrameIsTheHeadlessRender) {
     const RenderResult r = headless.renderScene(lab.loaded(state), state.params.at("ndf"), scene,
                                                 {}, kRenderSize, kRenderSize, false);
     EXPECT_EQ(r.value.pixels, shown.solutionValue.pixels);
+}
+
+// A newer edit supersedes the evaluation running: it is never shown (the evaluation thread
+// drops it at its next stage), and the one shown is the newer state's.
+TEST(LiveView, ANewerEditSupersedesTheEvaluationRunning) {
+    auto context = createHeadlessContext();
+    test::TempDir dir;
+    const char* config = std::getenv("XDG_CONFIG_HOME");
+    const std::string oldConfig = config ? config : "";
+    setenv("XDG_CONFIG_HOME", dir.path.c_str(), 1);
+    struct Restore {
+        std::string value;
+        ~Restore() {
+            if (value.empty())
+                unsetenv("XDG_CONFIG_HOME");
+            else
+                setenv("XDG_CONFIG_HOME", value.c_str(), 1);
+        }
+    } restore{oldConfig};
+    GuiOptions options;
+    options.modulesDirs = {PBRLAB_MODULE_DIR};
+    options.module = "ndotl";
+    GuiState state;
+    Lab lab(options, state);
+    Requests requests;
+    lab.update(state, requests);  // still: the evaluation starts
+    ASSERT_TRUE(lab.evaluating());
+    state.camera.yaw += 0.5;  // the student drags before it arrives
+    requests.moved = true;
+    lab.update(state, requests);
+    EXPECT_FALSE(lab.evaluating());  // cancelled
+    EXPECT_NE(lab.shown().liveTexture, 0u);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // past the settle delay
+    lab.update(state, requests);
+    framesUntilEvaluated(lab, state, requests);
+    EXPECT_EQ(lab.evaluationsDone(), 1);  // the first one never arrived
+    LabRenderer headless{lab.paths(), RendererOptions{{}, {}}};
+    const RenderResult r =
+        headless.renderScene(lab.loaded(state), state.params.at("ndotl"), lab.currentScene(state),
+                             {}, kRenderSize, kRenderSize, false);
+    EXPECT_EQ(r.value.pixels, lab.shown().solutionValue.pixels);
 }

@@ -4,7 +4,9 @@
 
 #include <cstdint>
 #include <fstream>
+#include <functional>
 #include <iterator>
+#include <thread>
 
 #include "digest.h"
 
@@ -25,7 +27,9 @@ std::uint64_t digestOf(const std::string& text, size_t begin, size_t end) {
 bool CacheWriter::commit(const fs::path& file) const {
     std::error_code ec;
     fs::create_directories(file.parent_path(), ec);
-    const fs::path tmp = file.string() + ".tmp" + std::to_string(::getpid());
+    // Per process and thread: the GUI's window and evaluation thread may write the same file.
+    const fs::path tmp = file.string() + ".tmp" + std::to_string(::getpid()) + "-" +
+                         std::to_string(std::hash<std::thread::id>()(std::this_thread::get_id()));
     {
         std::ofstream out(tmp, std::ios::binary);
         const std::uint64_t digest = digestOf(payload_, 8, payload_.size());

@@ -3,12 +3,14 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "evaluation_worker.h"
 #include "plugins.h"
 
 namespace fs = std::filesystem;
@@ -109,6 +111,9 @@ void Badges::start(const std::string& id) {
     if (posix_spawn(&pid, exe.c_str(), &quiet, nullptr, argv.data(), environ) != 0) pid = -1;
     posix_spawn_file_actions_destroy(&quiet);
     job_.pid = pid;
+    // The grade yields the cores to the window, as the evaluation thread does (a thread the
+    // child starts inherits it; one started before this call would run at nice 0).
+    if (pid > 0) setpriority(PRIO_PROCESS, static_cast<id_t>(pid), kBackgroundNice);
     if (pid < 0) {
         badges_[id].status = Status::Fails;
         badges_[id].gradeMessage = "could not start the grade (pbrlab check)";

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <ctime>
 
-#include "evaluate.h"
 #include "lab.h"
 #include "pbrlab/display.h"
 #include "pbrlab/log.h"
@@ -29,6 +28,50 @@ int setupWorkDone() {
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
         .count();
+}
+
+// The view the state asks for, from these values, in display form, and what of the student's
+// cannot be shown honestly (NaN, Inf): compose's CPU work, done on the evaluation thread for
+// a fresh evaluation (a second under load on the window's thread).
+ComposedView composeView(const ModuleDesc& d, const ViewChoice& choice, const Image& solution,
+                         const Image& studentOrEmpty, const Image& reference,
+                         const std::vector<Surface>& surfaces) {
+    const Image& student = studentOrEmpty.pixels.empty() ? solution : studentOrEmpty;
+    ComposedView composed;
+    Image& shown = composed.image;
+    switch (choice.view) {
+        case View::Student:
+            shown = displayImage(student, d.display, d.components);
+            break;
+        case View::Solution:
+            shown = displayImage(solution, d.display, d.components);
+            break;
+        case View::Reference:
+            shown = displayImage(reference, d.display, d.components);
+            break;
+        case View::Difference:
+            shown = differenceImage(student, reference, d.components, choice.differenceRange);
+            break;
+        case View::Split: {
+            shown = displayImage(student, d.display, d.components);
+            Image ref = displayImage(reference, d.display, d.components);
+            int split = int(choice.split * shown.width);
+            for (int y = 0; y < shown.height; ++y)
+                for (int x = split; x < shown.width; ++x)
+                    for (int c = 0; c < 4; ++c)
+                        shown.at(x, y, c) = x == split ? 1.0f : ref.at(x, y, c);
+            break;
+        }
+        case View::Term:
+            shown = termImage(*choice.term, solution, surfaces);
+            break;
+    }
+    for (size_t i = 0; i + 3 < student.pixels.size(); i += 4)
+        for (int c = 0; c < d.components; ++c) {
+            composed.nanCount += std::isnan(student.pixels[i + size_t(c)]);
+            composed.infCount += std::isinf(student.pixels[i + size_t(c)]);
+        }
+    return composed;
 }
 
 }  // namespace
@@ -62,25 +105,32 @@ void Lab::update(GuiState& state, Requests& requests) {
     if (!studentFile(state).empty() && studentWatch_.changed(studentFile(state), submission_))
         dirty_ = true;
     const ModuleDesc& m = module(state);
-    // The first render of an environment precomputes for seconds: show a frame that says so,
-    // once per step and environment (a step that reads no derived map never has them all:
-    // a notice every other frame would halve its frame rate).
     const Scene scene = currentScene(state);
-    if (dirty_ && (m.needs & NeedsEnvironment) &&
+    // While the input moves, only the picture is drawn (on the GPU, mapped for display there,
+    // nothing read back): 30 frames a second at least. The evaluation against the CPU
+    // reference, the probes and the statistics follow once it has been still for a moment
+    // (dirty_ stays set until then), on the evaluation thread: the frames go on meanwhile.
+    const bool moving = std::chrono::steady_clock::now() - lastMove_ < kSettleDelay;
+    // The first live picture of an environment precomputes for seconds: show a frame that
+    // says so, once per step and environment (a step that reads no derived map never has them
+    // all: a notice every other frame would halve its frame rate).
+    if (dirty_ && moving && (m.needs & NeedsEnvironment) &&
         !renderer_->hasEnvironmentMaps(scene, iblFor(scene)) &&
         precomputeNoticed_.insert(m.id + "|" + scene.environment + "|" + iblFor(scene).key())
             .second)
         return;
     if (m.needs & NeedsEnvironment) useBudgetSettings(scene);
-    // While the input moves, only the picture is drawn (on the GPU, mapped for display there,
-    // nothing read back): 30 frames a second at least. The evaluation against the CPU
-    // reference, the probes and the statistics follow once it has been still for a moment
-    // (dirty_ stays set until then).
-    const bool moving = std::chrono::steady_clock::now() - lastMove_ < kSettleDelay;
-    if (dirty_ && moving)
-        drawLive(state);
-    else if (dirty_)
-        render(state);
+    if (dirty_ && moving) {
+        if (!drawLive(state)) startEvaluation(state);
+    } else if (dirty_) {
+        // Still (a step, scene or saved file; the input stopped): the picture on screen stays
+        // until the evaluation arrives, with its progress under it. No live picture here: for
+        // a new step or a saved file the window's renderer would compile (or precompute maps)
+        // first, for tenths of a second to seconds, which the evaluation thread does anyway.
+        startEvaluation(state);
+    }
+    if (std::optional<EvaluationResult> result = worker_->take())
+        showEvaluation(std::move(*result), state);
     const std::string graded = badges_->update(*registry_);
     dirty_ = dirty_ || graded == m.id;
 }
@@ -90,6 +140,7 @@ void Lab::update(GuiState& state, Requests& requests) {
 void Lab::moved() {
     dirty_ = true;
     lastMove_ = std::chrono::steady_clock::now();
+    worker_->cancel();  // out of date: it stops at its next stage, and leaves the cores free
 }
 
 // The student's file did not compile (ShaderError): its log stays on screen until a version
@@ -132,17 +183,20 @@ void Lab::showCompile(const std::string& id) {
 
 bool Lab::settled(const GuiState& state) const {
     const fs::path file = studentFile(state);
-    return !dirty_ && !shown_.liveTexture && (file.empty() || !studentWatch_.stale(file)) &&
-           badges_->upToDate(module(state).id);
+    return !dirty_ && !shown_.liveTexture && !worker_->busy() &&
+           (file.empty() || !studentWatch_.stale(file)) && badges_->upToDate(module(state).id);
 }
 
 // The picture the student is looking at (theirs when their file has compiled, else the
 // solution's), rendered at the live size (LiveSize) and mapped for display on the GPU.
-void Lab::drawLive(const GuiState& state) {
+// False when the student's file failed: the error is shown, and the evaluation shows the
+// last version that compiled.
+bool Lab::drawLive(const GuiState& state) {
     const auto start = std::chrono::steady_clock::now();
     const int setupWork = setupWorkDone();
     const Scene scene = currentScene(state);
-    const bool student = state.view != View::Solution && !shown_.studentValue.pixels.empty();
+    const bool student = state.view != View::Solution && !shown_.studentValue.pixels.empty() &&
+                         studentWatch_.current() != liveStudentFailed_;
     const ModuleDesc& m = module(state);
     try {
         RenderRequest request{
@@ -160,11 +214,16 @@ void Lab::drawLive(const GuiState& state) {
         shown_.liveWho = student ? "your" : "the solution's";
     } catch (const Error& e) {
         // The student's file, saved while the input moves, does not compile (or may not be
-        // read): the error stays (the renderer keeps its last good program and will not throw
-        // this again), and the full path shows the last version that compiled.
-        if (student) studentFailed(m.id, e.what());
-        render(state);
-        return;
+        // read): the error stays, and the evaluation shows the last version that compiled.
+        // The live pictures are the solution's until the files change (this renderer may
+        // have no last good program: it would compile the file again every frame).
+        if (student) {
+            studentFailed(m.id, e.what());
+            liveStudentFailed_ = studentWatch_.current();
+        } else {
+            shown_.renderError = e.what();
+        }
+        return false;
     }
     // Magnified smoothly, as dynamic resolution does (the line under it gives its size).
     gl::BindTexture(GL_TEXTURE_2D, shown_.liveTexture);
@@ -173,46 +232,29 @@ void Lab::drawLive(const GuiState& state) {
     shown_.liveSide = live_.side();
     liveSizes_.push_back(live_.side());
     if (setupWorkDone() == setupWork) live_.frameTook(shown_.renderMs);  // the next side
+    return true;
 }
 
 void Lab::render(const GuiState& state) {
+    startEvaluation(state);
+    showEvaluation(worker_->wait(), state);
+}
+
+// What the evaluation needs from the state, copied, to the evaluation thread (superseding the
+// one it runs); what the panels show of the student's file is decided here, before anything
+// reads it.
+void Lab::startEvaluation(const GuiState& state) {
     dirty_ = false;
-    shown_.liveTexture = 0;
     const LoadedModule& m = loaded(state);
     const ModuleDesc& d = *m.desc;
-    const ParamValues& params = state.params.at(d.id);
-    const StudentSource studentSource{submission_, false};
-    Scene scene = currentScene(state);
-    auto start = std::chrono::steady_clock::now();
-    // Views read cube maps as the CPU reference does (RenderRequest::seamlessCubes off), so
-    // the statistics under the image are the ones `pbrlab check` grades with.
-    try {
-        EvalRequest request;
-        request.render = {&m, &params, &scene, {}, nullptr, kRenderSize, kRenderSize};
-        request.render.readSurfaces = true;
-        request.render.seamlessCubes = false;
-        request.render.ibl = iblFor(scene);
-        Evaluation solution = evaluate(*renderer_, request);
-        shown_.solutionValue = solution.render.value;
-        live_.fullSizeTook(solution.render.milliseconds);
-        shown_.surfaces = solution.render.surfaces;
-        band_ = solution.band;
-        shown_.solutionStats = solution.comparison;
-        shown_.referenceValue = solution.render.value;
-        for (size_t i = 0; i < band_.expected.size(); ++i)
-            for (int c = 0; c < 3; ++c)
-                shown_.referenceValue.pixels[i * 4 + size_t(c)] = float(band_.expected[i][c]);
-        request.render.surfaces = nullptr;
-        const std::vector<Surface> probe = probeSurfaces(d.probe);
-        RenderRequest probeRequest{&m, &params, &scene, {}, &probe, d.probe.width, d.probe.height};
-        probeRequest.seamlessCubes = false;
-        probeRequest.ibl = iblFor(scene);
-        shown_.probeSolution = renderer_->render(probeRequest).value;
-        shown_.renderError.clear();
-    } catch (const Error& e) {
-        shown_.renderError = e.what();
-    }
-    updatePermutation(state, applyParamBindings(scene, d, params));
+    EvaluationJob job;
+    job.module = &m;
+    job.params = state.params.at(d.id);
+    job.scene = currentScene(state);
+    job.ibl = iblFor(job.scene);
+    job.submission = submission_;
+    job.side = kRenderSize;
+    updatePermutation(state, applyParamBindings(job.scene, d, job.params));
     const fs::path file = studentFile(state);
     std::error_code ec;
     shown_.hasStudent = !file.empty() && fs::exists(fs::symlink_status(file, ec));
@@ -226,43 +268,52 @@ void Lab::render(const GuiState& state) {
         logLine("gui", file.string() + ": " + refusal);
     c.refusal = refusal.empty() ? "" : file.string() + ": " + refusal;
     showCompile(d.id);
-    bool rendered = false;
-    if (shown_.hasStudent && !shown_.refused) {
-        // A new file that does not compile fails twice (the view's program, then the probe's),
-        // and renders the third time with the last good programs (the cache kept them).
-        for (int attempt = 0; attempt < 3; ++attempt) {
-            try {
-                RenderRequest request{&m,      &params,     &scene,     studentSource,
-                                      nullptr, kRenderSize, kRenderSize};
-                request.seamlessCubes = false;
-                request.ibl = iblFor(scene);
-                shown_.studentValue = renderer_->render(request).value;
-                shown_.studentStats =
-                    compareWithBand(shown_.studentValue, shown_.surfaces, band_, d.components,
-                                    d.nonNegative, d.tolerance.outlierFraction);
-                const std::vector<Surface> probe = probeSurfaces(d.probe);
-                RenderRequest probeRequest{&m,     &params,       &scene,        studentSource,
-                                           &probe, d.probe.width, d.probe.height};
-                probeRequest.seamlessCubes = false;
-                probeRequest.ibl = iblFor(scene);
-                shown_.probeStudent = renderer_->render(probeRequest).value;
-                studentRendered(d.id);
-                rendered = true;
-                break;
-            } catch (const Error& e) {
-                // The new file does not compile (ShaderError), or a file it includes may not
-                // be read: show why, and render once more with the last good program (the
-                // cache kept it; it throws this once per edit).
-                studentFailed(d.id, e.what());
-            }
-        }
+    job.student = shown_.hasStudent && !shown_.refused;
+    // The view as the state asks for it now, composed on the worker (a view change meanwhile
+    // composes again here, as it always did).
+    postedChoice_ = viewChoice(state);
+    job.compose = [&d, choice = postedChoice_](const EvaluationResult& r) {
+        return composeView(d, choice, r.solutionValue, r.studentValue, r.referenceValue,
+                           r.surfaces);
+    };
+    worker_->post(std::move(job));
+}
+
+// The evaluation thread's result, for the state it was started from (a newer edit would have
+// superseded it): what the panels show.
+void Lab::showEvaluation(EvaluationResult r, const GuiState& state) {
+    shown_.liveTexture = 0;
+    const ModuleDesc& d = module(state);
+    if (r.renderError.empty()) {
+        shown_.solutionValue = std::move(r.solutionValue);
+        live_.fullSizeTook(r.solutionMs);
+        shown_.surfaces = std::move(r.surfaces);
+        shown_.solutionStats = r.solutionStats;
+        shown_.referenceValue = std::move(r.referenceValue);
+        shown_.probeSolution = std::move(r.probeSolution);
+        shown_.renderError.clear();
+    } else {
+        shown_.renderError = r.renderError;
     }
-    // No version of the student's file has compiled yet: nothing of theirs to show.
-    if (!rendered) shown_.studentValue = Image();
-    shown_.renderMs = millisecondsSince(start);
+    for (const std::string& error : r.studentErrors) studentFailed(d.id, error);
+    if (r.studentRendered) {
+        shown_.studentValue = std::move(r.studentValue);
+        shown_.studentStats = r.studentStats;
+        shown_.probeStudent = std::move(r.probeStudent);
+        studentRendered(d.id);
+    } else {
+        // No version of the student's file has compiled yet: nothing of theirs to show.
+        shown_.studentValue = Image();
+    }
+    evaluationPrograms_ = std::move(r.compiled);
+    ++evaluationsDone_;
+    shown_.renderMs = r.milliseconds;
     logLine("gui", "evaluated " + d.id + " against the CPU reference in " +
                        std::to_string(int(shown_.renderMs)) + " ms");
-    compose(state);
+    if (r.composed && viewChoice(state) == postedChoice_)
+        show(*r.composed);
+    else
+        compose(state);
 }
 
 // The programs this step needs for the scene on screen, as `pbrlab permutations` lists them:
@@ -280,49 +331,22 @@ void Lab::updatePermutation(const GuiState& state, const Scene& scene) {
     shown_.permutation.insert({view.label, definesText(view.defines)});
 }
 
+ViewChoice Lab::viewChoice(const GuiState& state) const {
+    return {state.view, state.view == View::Term ? &termViews_.at(size_t(state.term)) : nullptr,
+            state.differenceRange, state.split};
+}
+
 // The view the state asks for, from the values of the last evaluation, into imageTexture.
 void Lab::compose(const GuiState& state) {
     if (shown_.solutionValue.pixels.empty()) return;
-    const ModuleDesc& d = module(state);
-    const Image& student =
-        shown_.studentValue.pixels.empty() ? shown_.solutionValue : shown_.studentValue;
-    Image shown;
-    switch (state.view) {
-        case View::Student:
-            shown = displayImage(student, d.display, d.components);
-            break;
-        case View::Solution:
-            shown = displayImage(shown_.solutionValue, d.display, d.components);
-            break;
-        case View::Reference:
-            shown = displayImage(shown_.referenceValue, d.display, d.components);
-            break;
-        case View::Difference:
-            shown = differenceImage(student, shown_.referenceValue, d.components,
-                                    state.differenceRange);
-            break;
-        case View::Split: {
-            shown = displayImage(student, d.display, d.components);
-            Image ref = displayImage(shown_.referenceValue, d.display, d.components);
-            int split = int(state.split * shown.width);
-            for (int y = 0; y < shown.height; ++y)
-                for (int x = split; x < shown.width; ++x)
-                    for (int c = 0; c < 4; ++c)
-                        shown.at(x, y, c) = x == split ? 1.0f : ref.at(x, y, c);
-            break;
-        }
-        case View::Term:
-            shown =
-                termImage(termViews_.at(size_t(state.term)), shown_.solutionValue, shown_.surfaces);
-            break;
-    }
-    // Count what cannot be shown honestly, for the warning line.
-    shown_.nanCount = shown_.infCount = 0;
-    for (size_t i = 0; i + 3 < student.pixels.size(); i += 4)
-        for (int c = 0; c < d.components; ++c) {
-            shown_.nanCount += std::isnan(student.pixels[i + size_t(c)]);
-            shown_.infCount += std::isinf(student.pixels[i + size_t(c)]);
-        }
+    show(composeView(module(state), viewChoice(state), shown_.solutionValue, shown_.studentValue,
+                     shown_.referenceValue, shown_.surfaces));
+}
+
+void Lab::show(const ComposedView& composed) {
+    const Image& shown = composed.image;
+    shown_.nanCount = composed.nanCount;
+    shown_.infCount = composed.infCount;
     gl::BindTexture(GL_TEXTURE_2D, shown_.imageTexture.id());
     gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
     // Row 0 of the image is its top; ImGui draws uv (0,0) at the top-left: no flip.

@@ -6,12 +6,16 @@
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <dirent.h>
 #include <imgui.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <set>
+#include <thread>
 
 #include "gl/context.h"
 #include "lab.h"
@@ -64,6 +68,49 @@ void loadFont(std::string& messages) {
     messages += std::string("font ") + file + " not found: Greek letters show as '?'\n";
 }
 
+// The evaluation thread's context (evaluation_worker.h): a hidden window's, made here on the
+// main thread (GLFW creates windows on it only; creating one leaves the current context as it
+// was), current on the worker. Not shared with the window's: the worker returns images in
+// memory, and no GL object crosses threads.
+class GlfwWorkerContext final : public WorkerContext {
+public:
+    GlfwWorkerContext() {
+        const std::set<std::string> before = threadIds();
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+        glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+        glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+        glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+        window_ = glfwCreateWindow(16, 16, "pbrlab evaluation", nullptr, nullptr);
+        glfwDefaultWindowHints();
+        // The context's own threads (llvmpipe's rasterizers) started here, on the main thread,
+        // at its nice value: they yield to the window's as the evaluation thread does.
+        for (const std::string& tid : threadIds())
+            if (!before.count(tid))
+                setpriority(PRIO_PROCESS, static_cast<id_t>(std::stoi(tid)), kBackgroundNice);
+    }
+    ~GlfwWorkerContext() override {
+        if (window_) glfwDestroyWindow(window_);
+    }
+    void makeCurrent() override {
+        if (!window_) throw Error("cannot create a second OpenGL 4.5 core context");
+        glfwMakeContextCurrent(window_);
+    }
+    void release() override { glfwMakeContextCurrent(nullptr); }
+
+private:
+    static std::set<std::string> threadIds() {  // this process's, from /proc/self/task
+        std::set<std::string> ids;
+        if (DIR* dir = opendir("/proc/self/task")) {
+            while (const dirent* e = readdir(dir))
+                if (e->d_name[0] != '.') ids.insert(e->d_name);
+            closedir(dir);
+        }
+        return ids;
+    }
+    GLFWwindow* window_ = nullptr;
+};
+
 // The windows' background.
 const ImVec4 kBackground(0.11f, 0.115f, 0.13f, 1);
 
@@ -113,7 +160,7 @@ public:
     explicit GuiApp(const GuiOptions& options)
         : options_(options),
           context_(createWindowContext(options.width, options.height, "pbrlab")),
-          lab_(options, state_),
+          lab_(options, state_, std::make_unique<GlfwWorkerContext>()),
           console_(options.globalArguments, options.frames > 0) {
         for (const std::string& line : options.commands) console_.submit(line);
         if (!options.commands.empty() && options.tab.empty()) state_.openTab = "console";
@@ -137,10 +184,15 @@ public:
         GLFWwindow* window = context_->window();
         int frame = 0;
         std::vector<double> frameTimes, renderTimes;
+        // Per frame, the evaluation against the CPU reference it overlapped or ran (the number
+        // finished before it), or -1.
+        std::vector<int> whileEvaluating;
         int w = 0, h = 0;
         while (!glfwWindowShouldClose(window)) {
             glfwPollEvents();
             auto start = std::chrono::steady_clock::now();
+            const bool evaluatingBefore = lab_.evaluating();
+            const int evaluationsBefore = lab_.evaluationsDone();
             if (options_.orbit) {  // a step of a mouse drag
                 state_.camera.yaw += 0.02;
                 requests_.moved = true;
@@ -159,8 +211,11 @@ public:
             gl::Clear(GL_COLOR_BUFFER_BIT);
             ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
             ++frame;
-            // Scripted: the frames asked for, and the console's lines have finished.
-            bool last = options_.frames > 0 && frame >= options_.frames && console_.idle();
+            // Scripted: the frames asked for, the console's lines and the evaluation have
+            // finished, the evaluation before this frame (ImGui hides a window, such as the
+            // pixel inspector's tooltip, on the first frame it appears in).
+            bool last = options_.frames > 0 && frame >= options_.frames && console_.idle() &&
+                        !evaluatingBefore && !lab_.evaluating();
             if (requests_.screenshot) {  // the button, or the console's `screenshot`
                 saveScreenshot(requests_.screenshotFile.empty() ? fs::path("pbrlab-screenshot.png")
                                                                 : requests_.screenshotFile,
@@ -174,13 +229,51 @@ public:
             lab_.shown().frameMs = millisecondsSince(start);
             frameTimes.push_back(lab_.shown().frameMs);
             renderTimes.push_back(lab_.shown().renderMs);
+            const bool evaluated = evaluatingBefore || lab_.evaluating() ||
+                                   lab_.evaluationsDone() != evaluationsBefore;
+            whileEvaluating.push_back(evaluated ? evaluationsBefore : -1);
+            // While the evaluation thread works, 60 frames a second are enough: the rest of
+            // the time is its (without vsync, as under Xvfb, the loop would draw hundreds).
+            if (lab_.evaluating())
+                std::this_thread::sleep_until(start + std::chrono::microseconds(16667));
             if (last) break;
         }
         if (options_.orbit) printOrbitReport(frameTimes, renderTimes, w, h);
+        if (options_.frameTimes) printEvaluationFrames(frameTimes, whileEvaluating);
         return 0;
     }
 
 private:
+    // --frame-times: every frame's times, then, for each evaluation against the CPU reference,
+    // the frames drawn while it ran (or the frame that ran it, when it runs in the frame).
+    void printEvaluationFrames(std::vector<double> frameTimes,
+                               const std::vector<int>& whileEvaluating) const {
+        for (int k = 0; k < lab_.evaluationsDone(); ++k) {
+            std::vector<double> during;
+            for (size_t i = 0; i < frameTimes.size(); ++i)
+                if (whileEvaluating[i] == k) during.push_back(frameTimes[i]);
+            std::sort(during.begin(), during.end());
+            if (!during.empty())
+                std::printf(
+                    "evaluation %d against the CPU reference: %zu frames while it ran, "
+                    "median %.1f ms, longest %.1f ms\n",
+                    k + 1, during.size(), during[during.size() / 2], during.back());
+        }
+        // The baseline in the same run: the frames while none ran, the first 3 left out
+        // (compiles), as long as the machine's load alone makes them.
+        std::vector<double> idle;
+        for (size_t i = 3; i < frameTimes.size(); ++i)
+            if (whileEvaluating[i] < 0) idle.push_back(frameTimes[i]);
+        std::sort(idle.begin(), idle.end());
+        if (!idle.empty())
+            std::printf("while no evaluation ran: %zu frames, median %.1f ms, longest %.1f ms\n",
+                        idle.size(), idle[idle.size() / 2], idle.back());
+        std::sort(frameTimes.begin(), frameTimes.end());
+        if (!frameTimes.empty())
+            std::printf("frames: %zu, median %.1f ms, longest %.1f ms\n", frameTimes.size(),
+                        frameTimes[frameTimes.size() / 2], frameTimes.back());
+    }
+
     void printOrbitReport(const std::vector<double>& frameTimes,
                           const std::vector<double>& renderTimes, int w, int h) {
         printFrameTimes("frame", frameTimes, w, h);

@@ -23,6 +23,10 @@ struct GuiOptions {
     // With frames: turn the camera a step every frame, as a mouse drag does, and print the
     // frame times (median, 95th percentile): how interactive the lab is, scripted.
     bool orbit = false;
+    // With frames: print the frame times, and the longest frame while an evaluation against
+    // the CPU reference (the settled picture and its statistics) runs: whether the window
+    // keeps drawing meanwhile.
+    bool frameTimes = false;
     // > 0: each environment's maps are computed with the cheapest settings whose measured mean
     // errors stay within this (chooseIblSettings, as `pbrlab precompute --error-budget`).
     double errorBudget = 0;

@@ -36,7 +36,8 @@ const std::vector<std::string> kTabs = {"handout", "plot", "log", "programs", "c
 
 }  // namespace
 
-Lab::Lab(const GuiOptions& options, GuiState& state) : options_(options) {
+Lab::Lab(const GuiOptions& options, GuiState& state, std::unique_ptr<WorkerContext> workerContext)
+    : options_(options) {
     paths_ = DataPaths::locate();
     registry_ = std::make_unique<ModuleRegistry>(options.modulesDirs);
     termViews_ = pbrlab::termViews(*registry_);
@@ -81,6 +82,7 @@ Lab::Lab(const GuiOptions& options, GuiState& state) : options_(options) {
                                                                                    : View::Solution;
     shown_.imageTexture = gl::makeTexture();
     displayPass_ = std::make_unique<DisplayPass>(renderer_->programs(), paths_.shaders());
+    worker_ = std::make_unique<EvaluationWorker>(paths_, std::move(workerContext));
 }
 
 fs::path Lab::studentFile(const GuiState& state) const {
@@ -126,6 +128,7 @@ void Lab::loadScene(GuiState& state) {
     state.camera.yaw = std::atan2(offset.x, offset.z);
     state.camera.pitch = std::asin(std::clamp(offset.y / state.camera.distance, -1.0, 1.0));
     dirty_ = true;
+    if (worker_) worker_->cancel();  // another step or scene: the evaluation running is not it
 }
 
 // What the model loader read but does not render goes to the host log (the Log tab), once

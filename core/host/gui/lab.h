@@ -17,6 +17,7 @@
 #include "badges.h"
 #include "compare.h"
 #include "display_pass.h"
+#include "evaluation_worker.h"
 #include "gui.h"
 #include "live_size.h"
 #include "paths.h"
@@ -42,6 +43,14 @@ struct Requests {
     std::filesystem::path screenshotFile;
     std::optional<PointLightDesc> firstLight;  // the scene's first light, edited
     std::optional<std::string> environment;    // load this environment: "sky" or a file
+};
+
+// How the values are shown: the view chosen and its settings (GuiState's).
+struct ViewChoice {
+    View view = View::Student;
+    const TermView* term = nullptr;  // View::Term's
+    float differenceRange = 0, split = 0;
+    bool operator==(const ViewChoice&) const = default;
 };
 
 // What the last evaluation produced, as the panels show it (caches: rebuilt from the state).
@@ -76,14 +85,17 @@ struct Shown {
 class Lab {
 public:
     // Loads the step libraries and starts the renderer, then fills `state` from the options
-    // and gui.json. Needs a current GL context. Throws pbrlab::Error on bad options.
-    Lab(const GuiOptions& options, GuiState& state);
+    // and gui.json. Needs a current GL context; `workerContext` is the evaluation thread's
+    // (evaluation_worker.h), of the same backend. Throws pbrlab::Error on bad options.
+    Lab(const GuiOptions& options, GuiState& state,
+        std::unique_ptr<WorkerContext> workerContext = headlessWorkerContext());
 
     // The frame function: carries out the requests, notices edited student files, and
-    // renders what the state asks for: a live picture while the input moves, the full
-    // evaluation against the CPU reference once it is still.
+    // renders what the state asks for: a live picture while the input moves; once it is
+    // still, the full evaluation against the CPU reference, on the evaluation thread, shown
+    // by the frame in which it arrives (the window keeps drawing meanwhile).
     void update(GuiState& state, Requests& requests);
-    // The full evaluation now (also --orbit's baseline).
+    // The full evaluation now, waiting for it (--orbit's baseline).
     void render(const GuiState& state);
 
     const LoadedModule& loaded(const GuiState& state) const {
@@ -106,6 +118,14 @@ public:
     // The picture is evaluated for the state, and the step's badge graded for the file on
     // disk: nothing is left to update (the console's `wait`).
     bool settled(const GuiState& state) const;
+    // Evaluations against the CPU reference finished so far, and whether one is running now:
+    // --frame-times tells the frames drawn while one ran.
+    int evaluationsDone() const { return evaluationsDone_; }
+    bool evaluating() const { return worker_->busy(); }
+    EvaluationProgress evaluationProgress() const { return worker_->progress(); }
+    // The programs the evaluation thread's renderer compiled, in order, as of its last
+    // evaluation (the window's own: renderer().programs().compiled()).
+    const std::vector<CompiledProgram>& evaluationPrograms() const { return evaluationPrograms_; }
     LiveSize& liveSize() { return live_; }  // the live picture's side (tests set it)
     // The term views of the loaded steps (term_views.h), in the view chooser's order.
     const std::vector<TermView>& termViews() const { return termViews_; }
@@ -116,8 +136,12 @@ private:
     void noteModelWarnings(const Scene& scene);
     void useBudgetSettings(const Scene& scene);
     IblSettings iblFor(const Scene& scene) const;
-    void drawLive(const GuiState& state);
+    bool drawLive(const GuiState& state);
+    void startEvaluation(const GuiState& state);
+    void showEvaluation(EvaluationResult result, const GuiState& state);
     void compose(const GuiState& state);
+    ViewChoice viewChoice(const GuiState& state) const;
+    void show(const ComposedView& composed);  // into imageTexture
     void updatePermutation(const GuiState& state, const Scene& scene);
     void moved();
     void studentFailed(const std::string& id, const std::string& log);
@@ -133,7 +157,6 @@ private:
     std::filesystem::path submission_;
     std::unique_ptr<Badges> badges_;
     Shown shown_;
-    Band band_;                 // the reference's band on the current picture
     SourceWatch studentWatch_;  // hot reload of the step on screen
     // Per step, the student's file's compile error (Shown::compileLog for the step on screen)
     // and the files as they were when it failed, and when a version last compiled: a render
@@ -156,6 +179,15 @@ private:
     std::chrono::steady_clock::time_point lastMove_{};
     LiveSize live_{kRenderSize};  // the live picture's side
     std::vector<int> liveSizes_;  // of every live frame, for --orbit's report
+    int evaluationsDone_ = 0;
+    std::vector<CompiledProgram> evaluationPrograms_;
+    ViewChoice postedChoice_;  // the view the evaluation running composes
+    // The student's files as they were when the window's renderer could not compile them for
+    // a live picture (it has no last good program when the evaluation thread compiled them
+    // all): live pictures are the solution's until the files change.
+    SourceWatch::Stamps liveStudentFailed_;
+    // Last: stopped first, before the registry whose steps its job points to.
+    std::unique_ptr<EvaluationWorker> worker_;
 };
 
 }  // namespace pbrlab

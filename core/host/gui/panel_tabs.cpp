@@ -88,9 +88,15 @@ void drawProgramsTab(const Lab& lab) {
         ImGui::TextWrapped("%s", defines.empty() ? "(no defines)" : defines.c_str());
     }
     ImGui::Spacing();
-    const auto& compiled = lab.renderer().programs().compiled();
-    ImGui::TextDisabled("%zu programs compiled, in order (a hot reload compiles again):",
-                        compiled.size());
+    // The window's renderer (live pictures) and the evaluation thread's each compile what they
+    // draw: the window's first, in order, then the evaluation's.
+    std::vector<CompiledProgram> compiled = lab.renderer().programs().compiled();
+    compiled.insert(compiled.end(), lab.evaluationPrograms().begin(),
+                    lab.evaluationPrograms().end());
+    ImGui::TextDisabled(
+        "%zu programs compiled, in order, the window's then the evaluation's (a hot reload "
+        "compiles again):",
+        compiled.size());
     const ImGuiTableFlags flags =
         ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH | ImGuiTableFlags_SizingFixedFit;
     if (ImGui::BeginTable("compiled", 2, flags)) {

@@ -187,9 +187,22 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
     ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(shownTexture)),
                  ImVec2(side, side));
     handleCamera(lab, state, requests, origin, side);
+    // Beside the picture (before the line under it, which would push it down).
+    if (legend > 0) {
+        ImGui::SameLine();
+        drawLegend(difference ? 0.0 : d.display.lo,
+                   difference ? state.differenceRange : d.display.hi,
+                   !difference && d.display.logScale, side);
+    }
     // The live picture is the student's (or the solution's), drawn at a reduced size while the
-    // input moves: say so, and what follows when it stops.
-    if (shown.liveTexture && state.view != View::Student && state.view != View::Solution)
+    // input moves: say so, and what follows when it stops (or, stopped, when the evaluation
+    // under it arrives: its progress is the line below).
+    if (shown.liveTexture && lab.evaluating())
+        ImGui::TextDisabled("%s picture at %dx%d; the %s view, %dx%d, when evaluated",
+                            shown.liveWho, shown.liveSide, shown.liveSide,
+                            viewName(state.view, state.term, lab.termViews()).c_str(), kRenderSize,
+                            kRenderSize);
+    else if (shown.liveTexture && state.view != View::Student && state.view != View::Solution)
         ImGui::TextDisabled("moving: %s picture at %dx%d; the %s view, %dx%d, when you stop",
                             shown.liveWho, shown.liveSide, shown.liveSide,
                             viewName(state.view, state.term, lab.termViews()).c_str(), kRenderSize,
@@ -200,12 +213,6 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
     else if (shown.liveTexture)
         ImGui::TextDisabled("moving: %s picture at %dx%d, full size", shown.liveWho, shown.liveSide,
                             shown.liveSide);
-    if (legend > 0) {
-        ImGui::SameLine();
-        drawLegend(difference ? 0.0 : d.display.lo,
-                   difference ? state.differenceRange : d.display.hi,
-                   !difference && d.display.logScale, side);
-    }
     drawStats(status);
 }
 

@@ -45,6 +45,18 @@ ViewStatus viewStatus(const Lab& lab, const GuiState& state) {
         s.notice = shown.hasStudent ? "your file has not compiled yet: showing the solution"
                                     : "no student file for this step: showing the solution";
     }
+    if (lab.evaluating()) {  // on the evaluation thread: the window draws on meanwhile
+        const EvaluationProgress p = lab.evaluationProgress();
+        char text[256];
+        if (p.running)
+            std::snprintf(text, sizeof text,
+                          "vs the CPU reference: evaluating %s (%d of %d), %.1f s", p.what.c_str(),
+                          p.stage, p.stages, p.seconds);
+        else
+            std::snprintf(text, sizeof text, "vs the CPU reference: evaluating");
+        s.statsHeading = text;
+        return s;
+    }
     if (shown.liveTexture) {
         s.statsHeading = "vs the CPU reference: follows when the input stops";
         return s;

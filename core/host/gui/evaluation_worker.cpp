@@ -1,0 +1,231 @@
+#include "evaluation_worker.h"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include "evaluate.h"
+#include "gl/context.h"
+#include "pbrlab/error.h"
+#include "pbrlab/log.h"
+
+namespace pbrlab {
+
+namespace {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+class HeadlessWorkerContext final : public WorkerContext {
+public:
+    void makeCurrent() override { context_ = createHeadlessContext(); }
+    void release() override { context_.reset(); }  // on the worker, whose context it is
+
+private:
+    std::unique_ptr<GlContext> context_;
+};
+
+}  // namespace
+
+std::unique_ptr<WorkerContext> headlessWorkerContext() {
+    return std::make_unique<HeadlessWorkerContext>();
+}
+
+EvaluationWorker::EvaluationWorker(DataPaths paths, std::unique_ptr<WorkerContext> context)
+    : paths_(std::move(paths)), context_(std::move(context)), thread_([this] { loop(); }) {}
+
+EvaluationWorker::~EvaluationWorker() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stop_ = true;
+        ++latest_;  // the job running stops at its next stage
+    }
+    changed_.notify_all();
+    thread_.join();
+}
+
+unsigned EvaluationWorker::post(EvaluationJob job) {
+    unsigned generation = 0;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        generation = ++latest_;
+        pending_ = std::move(job);
+        result_.reset();
+        wanted_ = true;
+    }
+    changed_.notify_all();
+    return generation;
+}
+
+void EvaluationWorker::cancel() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++latest_;
+    pending_.reset();
+    result_.reset();
+    wanted_ = false;
+}
+
+std::optional<EvaluationResult> EvaluationWorker::take() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!result_ || result_->generation != latest_.load()) return std::nullopt;
+    std::optional<EvaluationResult> r = std::move(result_);
+    result_.reset();
+    wanted_ = false;
+    return r;
+}
+
+EvaluationResult EvaluationWorker::wait() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    changed_.wait(lock, [&] { return result_ && result_->generation == latest_.load(); });
+    EvaluationResult r = std::move(*result_);
+    result_.reset();
+    wanted_ = false;
+    return r;
+}
+
+bool EvaluationWorker::busy() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return wanted_;
+}
+
+EvaluationProgress EvaluationWorker::progress() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    EvaluationProgress p = progress_;
+    if (p.running) p.seconds = millisecondsSince(started_) / 1000;
+    return p;
+}
+
+void EvaluationWorker::enter(int stage, int stages, const char* what) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    progress_.stage = stage;
+    progress_.stages = stages;
+    progress_.what = what;
+}
+
+void EvaluationWorker::loop() {
+    setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kBackgroundNice);
+    // The renderer lives and dies on this thread, with the context current.
+    std::unique_ptr<LabRenderer> renderer;
+    std::string startError;
+    try {
+        context_->makeCurrent();
+        renderer = std::make_unique<LabRenderer>(paths_);
+    } catch (const std::exception& e) {
+        startError = std::string("the evaluation thread has no OpenGL: ") + e.what();
+    }
+    for (;;) {
+        EvaluationJob job;
+        unsigned generation = 0;
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            changed_.wait(lock, [&] { return stop_ || pending_; });
+            if (stop_) break;
+            job = std::move(*pending_);
+            pending_.reset();
+            generation = latest_.load();
+            progress_ = {true, 0, 0, "", 0};
+            started_ = std::chrono::steady_clock::now();
+        }
+        std::optional<EvaluationResult> result;
+        try {
+            if (!renderer) throw Error(startError);
+            result = run(*renderer, job, generation);
+        } catch (const std::exception& e) {  // not the student's: the host's (says what)
+            result.emplace();
+            result->generation = generation;
+            result->renderError = e.what();
+        }
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            progress_.running = false;
+            if (result && !superseded(generation)) result_ = std::move(result);
+        }
+        changed_.notify_all();
+    }
+    renderer.reset();
+    context_->release();
+}
+
+// The stages Lab::render ran in the frame before: the solution's picture, evaluated against
+// the CPU reference; its probe; then the student's picture, compared with the same band, and
+// its probe. Views read cube maps as the CPU reference does (seamlessCubes off), so the
+// statistics are the ones `pbrlab check` grades with.
+std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
+                                                      const EvaluationJob& job,
+                                                      unsigned generation) {
+    const auto start = std::chrono::steady_clock::now();
+    const LoadedModule& m = *job.module;
+    const ModuleDesc& d = *m.desc;
+    const int stages = job.student ? 4 : 2;
+    EvaluationResult r;
+    r.generation = generation;
+    Band band;  // the reference's band on the picture, for the student's statistics
+    try {
+        enter(1, stages, "the solution's picture and the reference");
+        EvalRequest request;
+        request.render = {&m, &job.params, &job.scene, {}, nullptr, job.side, job.side};
+        request.render.readSurfaces = true;
+        request.render.seamlessCubes = false;
+        request.render.ibl = job.ibl;
+        Evaluation solution = evaluate(renderer, request);
+        r.solutionMs = solution.render.milliseconds;
+        r.solutionValue = std::move(solution.render.value);
+        r.surfaces = std::move(solution.render.surfaces);
+        band = std::move(solution.band);
+        r.solutionStats = solution.comparison;
+        r.referenceValue = r.solutionValue;
+        for (size_t i = 0; i < band.expected.size(); ++i)
+            for (int c = 0; c < 3; ++c)
+                r.referenceValue.pixels[i * 4 + size_t(c)] = float(band.expected[i][c]);
+        if (superseded(generation)) return std::nullopt;
+        enter(2, stages, "the solution's probe");
+        const std::vector<Surface> probe = probeSurfaces(d.probe);
+        RenderRequest probeRequest{&m,     &job.params,   &job.scene,    {},
+                                   &probe, d.probe.width, d.probe.height};
+        probeRequest.seamlessCubes = false;
+        probeRequest.ibl = job.ibl;
+        r.probeSolution = renderer.render(probeRequest).value;
+    } catch (const Error& e) {
+        r.renderError = e.what();
+    }
+    if (superseded(generation)) return std::nullopt;
+    const StudentSource studentSource{job.submission, false};
+    // A new file that does not compile fails twice (the view's program, then the probe's),
+    // and renders the third time with the last good programs (this renderer's cache kept them).
+    for (int attempt = 0; job.student && attempt < 3 && !r.studentRendered; ++attempt) {
+        try {
+            enter(3, stages, "your picture");
+            RenderRequest request{&m,      &job.params, &job.scene, studentSource,
+                                  nullptr, job.side,    job.side};
+            request.seamlessCubes = false;
+            request.ibl = job.ibl;
+            r.studentValue = renderer.render(request).value;
+            // Without the solution's band (its render failed) there is nothing to compare with.
+            if (r.renderError.empty())
+                r.studentStats = compareWithBand(r.studentValue, r.surfaces, band, d.components,
+                                                 d.nonNegative, d.tolerance.outlierFraction);
+            if (superseded(generation)) return std::nullopt;
+            enter(4, stages, "your probe");
+            const std::vector<Surface> probe = probeSurfaces(d.probe);
+            RenderRequest probeRequest{&m,     &job.params,   &job.scene,    studentSource,
+                                       &probe, d.probe.width, d.probe.height};
+            probeRequest.seamlessCubes = false;
+            probeRequest.ibl = job.ibl;
+            r.probeStudent = renderer.render(probeRequest).value;
+            r.studentRendered = true;
+        } catch (const Error& e) {
+            // The new file does not compile (ShaderError), or a file it includes may not be
+            // read: the UI thread shows why; once more with the last good program.
+            r.studentErrors.push_back(e.what());
+        }
+        if (superseded(generation)) return std::nullopt;
+    }
+    if (!r.studentRendered) r.studentValue = Image();
+    if (job.compose && r.renderError.empty()) r.composed = job.compose(r);
+    r.compiled = renderer.programs().compiled();
+    r.milliseconds = millisecondsSince(start);
+    return r;
+}
+
+}  // namespace pbrlab

@@ -1,0 +1,143 @@
+// The settled evaluation (the picture at full size read back and compared with the CPU
+// reference, the probes, the student's picture and its statistics: 1-6 s on llvmpipe) on a
+// thread of its own, with its own GL context and renderer, so that the window keeps drawing
+// while it runs. One job at a time; a newer job supersedes an older one, which stops at its
+// next stage and is never delivered (a generation counter: each post or cancel is newer).
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "compare.h"
+#include "paths.h"
+#include "pbrlab/params.h"
+#include "pbrlab/scene.h"
+#include "plugins.h"
+#include "renderer.h"
+#include "shader/program.h"
+
+namespace pbrlab {
+
+// The evaluation thread and every thread it starts (llvmpipe's, parallelFor's: a new thread
+// inherits its creator's nice value on Linux), and the badges' grading processes, yield the
+// cores to the window's thread: nice 10 weighs 110 against nice 0's 1024 in the scheduler, so
+// with both cores busy the frames still get most of one.
+constexpr int kBackgroundNice = 10;
+
+// A GL context for the evaluation thread: made where its backend allows (a GLFW window only on
+// the main thread), current on the worker only.
+//
+// Not shared with the window's context: the worker hands back images in memory (what the
+// panels show and the statistics are read back anyway), so no GL object crosses threads and
+// neither thread waits on the other's GL work; the cost is that the worker compiles its own
+// programs (once per step, off the UI thread). Same backend as the window's, because the GL
+// entry points (gl/gl.h) are loaded once per process from the window's backend.
+class WorkerContext {
+public:
+    virtual ~WorkerContext() = default;
+    virtual void makeCurrent() = 0;  // on the worker, before its first GL call
+    virtual void release() = 0;      // on the worker, after its last
+};
+
+// An OSMesa context made on the worker: for a Lab whose own context is OSMesa (the tests).
+std::unique_ptr<WorkerContext> headlessWorkerContext();
+
+// The picture to show, composed from a result on the worker (Lab composes its view), and what
+// of the student's cannot be shown honestly.
+struct ComposedView {
+    Image image;
+    int nanCount = 0, infCount = 0;
+};
+struct EvaluationResult;
+
+// Everything one evaluation depends on, copied: the UI thread goes on editing its own.
+struct EvaluationJob {
+    const LoadedModule* module = nullptr;  // the registry outlives the worker
+    ParamValues params;
+    Scene scene;  // with the state's camera
+    IblSettings ibl;
+    std::filesystem::path submission;
+    bool student = false;  // the student's file exists and may be read: render it too
+    int side = 0;          // the picture's width and height
+    // Run on the worker after the evaluation, when the solution's rendered (empty: not run).
+    std::function<ComposedView(const EvaluationResult&)> compose;
+};
+
+struct EvaluationResult {
+    unsigned generation = 0;
+    std::string renderError;  // the solution's evaluation failed (its fields are empty)
+    Image solutionValue, referenceValue, probeSolution;
+    std::vector<Surface> surfaces;  // the G-buffer's inputs, one per pixel
+    Comparison solutionStats;
+    double solutionMs = 0;  // the solution's view pass at full size (LiveSize::fullSizeTook)
+    // The student's file: each failed attempt's message in order (a new file that does not
+    // compile fails twice, then renders with the last good programs), then whether it rendered.
+    std::vector<std::string> studentErrors;
+    bool studentRendered = false;
+    Image studentValue, probeStudent;
+    Comparison studentStats;
+    double milliseconds = 0;                // the whole evaluation, on the worker
+    std::vector<CompiledProgram> compiled;  // the worker's programs so far, in order
+    std::optional<ComposedView> composed;   // EvaluationJob::compose's
+};
+
+// Where the job running is, for the progress line under the picture.
+struct EvaluationProgress {
+    bool running = false;
+    int stage = 0, stages = 0;  // 1-based
+    std::string what;           // the stage's picture, in words
+    double seconds = 0;         // since the job started
+};
+
+class EvaluationWorker {
+public:
+    EvaluationWorker(DataPaths paths, std::unique_ptr<WorkerContext> context);
+    EvaluationWorker(const EvaluationWorker&) = delete;
+    EvaluationWorker& operator=(const EvaluationWorker&) = delete;
+    ~EvaluationWorker();  // the job running stops at its next stage; the thread ends
+
+    // Starts this job when the worker is free, replacing one not started; the one running is
+    // superseded. Returns its generation.
+    unsigned post(EvaluationJob job);
+    // The input changed: the job running stops at its next stage, and none is delivered.
+    void cancel();
+    // The latest job's result, once, when it has finished.
+    std::optional<EvaluationResult> take();
+    // Blocks until the latest job has finished, and returns its result (--orbit's baseline).
+    EvaluationResult wait();
+    // A job is posted whose result has not been taken (and which was not cancelled).
+    bool busy() const;
+    EvaluationProgress progress() const;
+
+private:
+    void loop();
+    // The job's stages; empty when a newer generation superseded it between two.
+    std::optional<EvaluationResult> run(LabRenderer& renderer, const EvaluationJob& job,
+                                        unsigned generation);
+    bool superseded(unsigned generation) const { return generation != latest_.load(); }
+    void enter(int stage, int stages, const char* what);
+
+    DataPaths paths_;
+    std::unique_ptr<WorkerContext> context_;
+    std::atomic<unsigned> latest_{0};  // the newest post or cancel
+    mutable std::mutex mutex_;         // everything below
+    std::condition_variable changed_;
+    std::optional<EvaluationJob> pending_;  // posted, not started (generation: latest_)
+    std::optional<EvaluationResult> result_;
+    bool wanted_ = false;  // the latest generation is a job whose result is not taken yet
+    bool stop_ = false;
+    EvaluationProgress progress_;
+    std::chrono::steady_clock::time_point started_;
+    std::thread thread_;  // last: started once the members above exist
+};
+
+}  // namespace pbrlab
