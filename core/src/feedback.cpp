@@ -136,8 +136,16 @@ std::string region(const FeedbackInputs& in) {
                     // (where clamps and guards sit).
                     const double a = xs[k].first, b = xs[k + 1].first;
                     const double shown = a <= 0 && b >= 0 ? 0.0 : 0.5 * (a + b);
+                    // As many digits as it takes to lie between them: the roughness 0.995
+                    // between 0.99 and 1 is not "> 1".
+                    std::string threshold = num(shown, 2);
+                    for (int digits = 3; digits <= 6 && shown != 0.0; ++digits) {
+                        const double written = std::stod(threshold);
+                        if (written > a && written < b) break;
+                        threshold = num(shown, digits);
+                    }
                     best = std::string("wrong only where ") + f.name + (side == 0 ? " < " : " > ") +
-                           num(shown, 2) + " (" + std::to_string(inBad) + " of " +
+                           threshold + " (" + std::to_string(inBad) + " of " +
                            std::to_string(sideSize) + " points there), right elsewhere";
                     if (shown == 0 && side == 0)
                         best += ": is a max(..., 0.0) or a guard for negative " +

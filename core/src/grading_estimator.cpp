@@ -67,12 +67,13 @@ constexpr double kBiasLimit = 7;
 ValuesRun estimatorRun(const std::string& name, const ModuleDesc& d, const Comparison& c,
                        const std::vector<Surface>& surfaces, Image value, Band band,
                        const Scene& scene, const ParamValues& params, const Probe* probe, int width,
-                       int height) {
+                       int height, const Tolerance* systematicHere = nullptr) {
     const EstimatorSpec& e = *d.estimator;
+    const Tolerance& systematic = systematicHere ? *systematicHere : e.systematic;
     ValuesRun run;
-    run.report = reportFor(name, d, c, surfaces, e.systematic.outlierFraction, probe, width);
+    run.report = reportFor(name, d, c, surfaces, systematic.outlierFraction, probe, width);
     run.report.category = "estimator";
-    run.report.detail += "; band: converged integral +- (" + number(e.systematic.relative) +
+    run.report.detail += "; band: converged integral +- (" + number(systematic.relative) +
                          " of it + " + number(e.sigmas) + " sqrt(sigma^2 / n + its own error^2))";
     run.surfaces = surfaces;
     run.value = std::move(value);
@@ -82,7 +83,7 @@ ValuesRun estimatorRun(const std::string& name, const ModuleDesc& d, const Compa
     run.width = width;
     run.height = height;
     run.worstIndex = c.worstIndex;
-    run.outlierFraction = e.systematic.outlierFraction;
+    run.outlierFraction = systematic.outlierFraction;
     return run;
 }
 
@@ -419,6 +420,9 @@ void StepGrader::gradeHighCounts(const Scene& judged, const PointSet& probe,
               std::to_string(n));
         const std::vector<glm::dvec3> before = pointValues(renderAt(fewer).first.value, points);
         auto [r, params] = renderAt(n);
+        const Tolerance& systematic = n == e.highCounts.back() && e.systematicAtLargestCount
+                                          ? *e.systematicAtLargestCount
+                                          : e.systematic;
         Band band;
         band.resize(g.surfaces.size());
         for (size_t i = 0; i < points; ++i) {
@@ -427,7 +431,7 @@ void StepGrader::gradeHighCounts(const Scene& judged, const PointSet& probe,
             const glm::dvec3 noise = noiseAt(t, n);
             for (int c = 0; c < d_.components; ++c)
                 band.slack[i][c] =
-                    std::max(e.systematic.absolute, e.systematic.relative * std::abs(t.mean[c])) +
+                    std::max(systematic.absolute, systematic.relative * std::abs(t.mean[c])) +
                     e.sigmas * noise[c];
         }
         // The same floats: within 4 units in the last place (the same sum in another order).
@@ -460,12 +464,12 @@ void StepGrader::gradeHighCounts(const Scene& judged, const PointSet& probe,
                                   "count capped?");
         record(changes);
         const Comparison c = compareWithBand(r.value, g.surfaces, band, d_.components,
-                                             d_.nonNegative, e.systematic.outlierFraction);
+                                             d_.nonNegative, systematic.outlierFraction);
         keep(
             estimatorRun(what + " with " + with +
                              ((d_.needs & NeedsEnvironment) ? " (" + judged.environment + ")" : ""),
                          d_, c, g.surfaces, std::move(r.value), std::move(band), judged, params,
-                         nullptr, g.width, g.height));
+                         nullptr, g.width, g.height, &systematic));
         // The lowest count it ignores is said; the counts above say nothing more.
         if (!changes.passed) break;
     }

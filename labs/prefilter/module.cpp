@@ -76,6 +76,11 @@ ModuleDesc describeModule() {
     // whose errors are independent (grading_estimator.cpp): there correct estimators reached
     // 2.1% (mc_specular, one set of random numbers for the whole picture, docs/grading.md).
     e.systematic = {1e-3, 1e-2, 0, 0.04};
+    // At 65536 samples filtered importance sampling reads LOD 0: its blur, what the 1% is
+    // for, is gone, and a lobe of the wrong width hid inside it (L = 2.2 (V.H) H - V, about
+    // 8% narrower: 1.12x the 1% band at 65536). With 0.3% there (mc_specular's): that lobe
+    // 1.65x, 4 of the 28 points outside; every correct variant at most 0.33x (docs/grading.md).
+    e.systematicAtLargestCount = Tolerance{1e-3, 3e-3, 0, 0.04};
     d.estimator = e;
     // N anywhere, V in its hemisphere, roughness 0 to 1.
     d.domain = [](DomainRandom& r) {

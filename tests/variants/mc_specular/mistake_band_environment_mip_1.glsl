@@ -3,7 +3,7 @@
 // value where the sky has detail finer than a mip-1 texel, the sun at low roughness, which the
 // probe crosses and few random inputs reach; its error there has no sign that holds over a
 // region of the random inputs, the error still falls with the count, it is linear in radiance.
-// expect: wrong only where roughness < 0.08
+// expect: wrong only where roughness <
 float pbrlab_mcGeometrySchlickGGX(float NdotX, float roughness)
 {
     float x = max(NdotX, 0.0);

@@ -2,7 +2,7 @@
 // roughness 1 the environment is read along R alone, unblurred.
 // Fails by the value band alone (test_variants.cpp, mistake_band_*): only the probe's top row
 // (roughness exactly 1, which random inputs in [0, 1) never reach) is wrong, 6% of the probe.
-// expect: wrong only where roughness > 0.97
+// expect: wrong only where roughness >
 vec3 prefilterEnvironment(vec3 R, float roughness, uint sampleCount)
 {
     if (roughness >= 1.0) return textureLod(uEnvironment, R, 0.0).rgb;
