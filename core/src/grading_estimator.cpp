@@ -477,21 +477,15 @@ void StepGrader::gradeHighCounts(const Scene& judged, const PointSet& probe,
 
 // The environment at another size than grading's default (256): textureSize(uEnvironment)
 // is a host value the step may read (a texel-sum quadrature picks its mip by it, filtered
-// importance sampling its LOD). 16 texels per face, smaller than any map the host builds
-// (128 to 512): a quadrature that writes the size as 256 reads a mip of 2 x 2 texels there,
-// 5.4x the band (7 of 16 points outside at 32 x 32, worst 2.1x; within the band at 48 and
-// 64), while a correct estimator converges to the same integral of the smaller map (the
-// rotated cosine estimator's worst over 200 seeds: 0.43x at 16, 1.002x, one failure, at 32).
-// At the largest count, where filtered importance sampling's LOD is 0, on the first random
-// points. Cost: one cube of 16^2 and 16 points.
-constexpr int kOtherEnvironmentSize = 16;
-
+// importance sampling its LOD); EstimatorSpec::otherEnvironmentSize says why 16. At the
+// largest count, where filtered importance sampling's LOD is 0, on the first random points.
+// Cost: one cube of 16^2 and 16 points.
 void StepGrader::gradeEnvironmentSize(const Scene& judged, const PointSet& random) {
     const EstimatorSpec& e = *d_.estimator;
     const std::string side =
-        std::to_string(kOtherEnvironmentSize) + "x" + std::to_string(kOtherEnvironmentSize);
+        std::to_string(e.otherEnvironmentSize) + "x" + std::to_string(e.otherEnvironmentSize);
     IblSettings ibl = kGradingIbl;
-    ibl.environmentSize = kOtherEnvironmentSize;
+    ibl.environmentSize = e.otherEnvironmentSize;
     const size_t points = std::min(size_t(e.highCountPoints), random.surfaces.size());
     const Grid g =
         grid(std::vector<Surface>(random.surfaces.begin(), random.surfaces.begin() + long(points)));

@@ -373,6 +373,12 @@ struct EstimatorSpec {
     // `systematic` allows for a blur that has vanished there (filtered importance sampling
     // reads LOD 0 at 65536 samples); unset: `systematic`.
     std::optional<Tolerance> systematicAtLargestCount;
+    // The environment's other size (grading's is 256), for a step that reads it: 16 texels per
+    // face, smaller than any map the host builds (128 to 512). Measured both ways: irradiance
+    // with textureSize written as 256 reads a mip of 2 x 2 texels there, 5.4x the band (within
+    // it at 48 and 64, 2.1x at 32); the rotated cosine estimator's worst over 200 seeds 0.43x
+    // at 16, 1.002x (one failure) at 32 (docs/grading.md, "The environment at another size").
+    int otherEnvironmentSize = 16;
     int domainPoints = 384;  // random points of the domain per count
     int probeStride = 2;     // every probeStride-th row and column of the probe (ends kept)
 };
