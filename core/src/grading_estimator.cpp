@@ -465,11 +465,13 @@ void StepGrader::gradeHighCounts(const Scene& judged, const PointSet& probe,
         record(changes);
         const Comparison c = compareWithBand(r.value, g.surfaces, band, d_.components,
                                              d_.nonNegative, systematic.outlierFraction);
-        keep(
+        ValuesRun run =
             estimatorRun(what + " with " + with +
                              ((d_.needs & NeedsEnvironment) ? " (" + judged.environment + ")" : ""),
                          d_, c, g.surfaces, std::move(r.value), std::move(band), judged, params,
-                         nullptr, g.width, g.height, &systematic));
+                         nullptr, g.width, g.height, &systematic);
+        run.aboveGradedCounts = true;
+        keep(std::move(run));
         // The lowest count it ignores is said; the counts above say nothing more.
         if (!changes.passed) break;
     }

@@ -186,8 +186,11 @@ void StepGrader::noteWork(ValuesRun& run) {
 void StepGrader::keep(ValuesRun&& run) {
     noteWork(run);
     const CheckReport report = run.report;
-    if (!run.report.passed && run.report.deducted &&
-        (!failed_ || run.report.worstExcess > failed_->report.worstExcess))
+    // The worst failure, a failure at the graded counts before one above them.
+    const bool better = !failed_ || (failed_->aboveGradedCounts != run.aboveGradedCounts
+                                         ? failed_->aboveGradedCounts
+                                         : run.report.worstExcess > failed_->report.worstExcess);
+    if (!run.report.passed && run.report.deducted && better)
         failed_ = std::make_unique<ValuesRun>(std::move(run));
     record(report);
 }
