@@ -56,6 +56,25 @@ glm::dvec3 noiseAt(const Estimate& t, int n) {
     return glm::sqrt(t.sigma * t.sigma / double(std::max(n, 1)) + t.error * t.error);
 }
 
+// The band around the converged integrals at n samples (0: no noise term), for the covered
+// points: |v - mean| <= systematic + sigmas * sqrt(sigma^2 / n + error^2).
+Band convergedBand(const ModuleDesc& d, const std::vector<Surface>& surfaces,
+                   const std::vector<Estimate>& truth, int n, const Tolerance& systematic) {
+    Band band;
+    band.resize(surfaces.size());
+    for (size_t i = 0; i < truth.size() && i < surfaces.size(); ++i) {
+        if (!surfaces[i].covered) continue;
+        const Estimate& t = truth[i];
+        band.expected[i] = band.lo[i] = band.hi[i] = t.mean;
+        const glm::dvec3 noise = n > 0 ? noiseAt(t, n) : glm::dvec3(0);
+        for (int c = 0; c < d.components; ++c)
+            band.slack[i][c] =
+                std::max(systematic.absolute, systematic.relative * std::abs(t.mean[c])) +
+                d.estimator->sigmas * noise[c];
+    }
+    return band;
+}
+
 // The bias test's limit on |z|. Over the seed sweep (docs/grading.md, "Estimators: dynamic
 // range, linearity, false failures") correct estimators of five kinds reached |z| = 5.38 (a
 // stratified one, on sky-hdr); 7 is 1.3 x that, and the typical mistakes sit at 36 or more.
@@ -221,17 +240,10 @@ void StepGrader::gradeConvergence(const Scene& scene, const std::string& environ
             request.isolatePoints = true;
             RenderResult r = renderer_.render(request);
             if (e.scaleTolerance > 0) rescale(set.name, r.value, set.surfaces, set.truth);
-            Band band;
-            band.resize(set.surfaces.size());
+            Band band = convergedBand(d_, set.surfaces, set.truth, n, e.systematic);
             for (size_t i = 0; i < set.surfaces.size(); ++i) {
                 if (!set.surfaces[i].covered) continue;
                 const Estimate& t = set.truth[i];
-                band.expected[i] = band.lo[i] = band.hi[i] = t.mean;
-                const glm::dvec3 noise = n > 0 ? noiseAt(t, n) : glm::dvec3(0);
-                for (int c = 0; c < d_.components; ++c)
-                    band.slack[i][c] = std::max(e.systematic.absolute,
-                                                e.systematic.relative * std::abs(t.mean[c])) +
-                                       e.sigmas * noise[c];
                 for (int c = 0; c < d_.components; ++c) {
                     const double v = r.value.pixels[i * 4 + size_t(c)];
                     if (!std::isfinite(v)) continue;
@@ -423,17 +435,7 @@ void StepGrader::gradeHighCounts(const Scene& judged, const PointSet& probe,
         const Tolerance& systematic = n == e.highCounts.back() && e.systematicAtLargestCount
                                           ? *e.systematicAtLargestCount
                                           : e.systematic;
-        Band band;
-        band.resize(g.surfaces.size());
-        for (size_t i = 0; i < points; ++i) {
-            const Estimate& t = truth[i];
-            band.expected[i] = band.lo[i] = band.hi[i] = t.mean;
-            const glm::dvec3 noise = noiseAt(t, n);
-            for (int c = 0; c < d_.components; ++c)
-                band.slack[i][c] =
-                    std::max(systematic.absolute, systematic.relative * std::abs(t.mean[c])) +
-                    e.sigmas * noise[c];
-        }
+        Band band = convergedBand(d_, g.surfaces, truth, n, systematic);
         // The same floats: within 4 units in the last place (the same sum in another order).
         const std::vector<glm::dvec3> values = pointValues(r.value, points);
         int same = 0;
@@ -512,17 +514,7 @@ void StepGrader::gradeEnvironmentSize(const Scene& judged, const PointSet& rando
     request.isolatePoints = true;
     RenderResult r = renderer_.render(request);
     if (e.scaleTolerance > 0) rescale(name, r.value, g.surfaces, truth);
-    Band band;
-    band.resize(g.surfaces.size());
-    for (size_t i = 0; i < points; ++i) {
-        const Estimate& t = truth[i];
-        band.expected[i] = band.lo[i] = band.hi[i] = t.mean;
-        const glm::dvec3 noise = n > 0 ? noiseAt(t, n) : glm::dvec3(0);
-        for (int c = 0; c < d_.components; ++c)
-            band.slack[i][c] =
-                std::max(e.systematic.absolute, e.systematic.relative * std::abs(t.mean[c])) +
-                e.sigmas * noise[c];
-    }
+    Band band = convergedBand(d_, g.surfaces, truth, n, e.systematic);
     const Comparison c = compareWithBand(r.value, g.surfaces, band, d_.components, d_.nonNegative,
                                          e.systematic.outlierFraction);
     // Recorded, not handed to the feedback (whose references read the default maps), and named
