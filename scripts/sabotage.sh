@@ -20,7 +20,7 @@ jobs=${SABOTAGE_JOBS:-1}
 build_type=${SABOTAGE_BUILD_TYPE:-RelWithDebInfo}
 tree=$work/tree
 # The build inside the copy, as build/ is inside this tree: the compiler sees the same relative
-# paths (../../core/src/...), which ccache's base_dir rewriting needs to hit at all. The first
+# paths (../../core/...), which ccache's base_dir rewriting needs to hit at all. The first
 # run still compiles most files (their -DPBRLAB_SOURCE_DIR names the copy); later runs hit.
 obj=$tree/build
 
@@ -35,95 +35,95 @@ sabotage() {
 
 sabotage band-always-passes \
     "every value check passes: compareWithBand's excess forced to 0" \
-    core/src/compare.cpp \
+    core/render/compare.cpp \
     'const double excess = band.excess(i, v, components);' \
     'const double excess = 0 * band.excess(i, v, components);' \
     'Labs/VariantTest.*/fresnel_mistake_pow6:Grade.InvariantsAreMeasuredOnTheStudentsFunctionAndDeduct'
 sabotage band-enormous \
     "the pass band made enormous (bandAt's slack x 1e6)" \
-    core/src/compare.cpp \
+    core/render/compare.cpp \
     '    band.slack[i] = slack;' \
     '    band.slack[i] = slack * 1e6;' \
     'Labs/VariantTest.*/fresnel_mistake_pow*'
 sabotage estimator-band-always-passes \
     "an estimator's values checks against the converged integral always pass" \
-    core/src/grading_estimator.cpp \
+    core/grading/estimator_band.cpp \
     '    run.report.category = "estimator";' \
     '    run.report.category = "estimator";
     run.report.passed = true;' \
     'EstimatorBand.*'
 sabotage naming-off \
     "typical mistakes never named (typicalMistake returns \"\")" \
-    core/src/grading_feedback.cpp \
+    core/grading/failure_message.cpp \
     'std::string StepGrader::typicalMistake(const ValuesRun& f, const Sample& sample) {' \
     'std::string StepGrader::typicalMistake(const ValuesRun& f, const Sample& sample) {
     return "";' \
     'Grade.EachProblemCostsOnlyItsOwnStep'
 sabotage pattern-naming-off \
     "the mistake never named from the shape of the error (classifyError returns \"\")" \
-    core/src/feedback.cpp \
+    core/grading/error_patterns.cpp \
     '    exact = true;  // every pattern below explains every point, but the last ones' \
     '    exact = false;
     return "";' \
     'Feedback.*:Grade.InvariantsAreMeasuredOnTheStudentsFunctionAndDeduct'
 sabotage invariants-never-deduct \
     "a failed invariant is reported and not deducted" \
-    core/src/grading_checks.cpp \
+    core/grading/checks.cpp \
     '        c.passed = inv.holds;' \
     '        c.passed = inv.holds;
         c.deducted = false;' \
     'Grade.InvariantsAreMeasuredOnTheStudentsFunctionAndDeduct'
 sabotage screening-off \
     "the screening of a student's file refuses nothing (private helpers, host macros, ##, loops, comments)" \
-    core/src/shader/preprocess.cpp \
+    core/shader/preprocess.cpp \
     '            throw ShaderError(name + ":" + std::to_string(line) + ": error: " + why);' \
     '            (void)line, (void)why;' \
     'Preprocessor.AStudents*'
 sabotage student-macros-leak \
     "a student's macros are not #undef'd after its file" \
-    core/src/shader/preprocess.cpp \
+    core/shader/preprocess.cpp \
     '        for (const std::string& macro : studentMacros) out.text += "#undef " + macro + "\n";' \
     '        for (const std::string& macro : studentMacros) (void)macro;' \
     'Preprocessor.AStudentsMacrosEndWithItsFile'
 sabotage gradescope-total-wrong \
     "Gradescope's total is the sum of the rows' maxima, not of their scores" \
-    core/src/gradescope.cpp \
+    core/course/gradescope.cpp \
     'for (const json& t : tests) score = addPoints(score, t["score"].get<double>());' \
     'for (const json& t : tests) score = addPoints(score, t["max_score"].get<double>());' \
     'Assignment.PartialCreditIsTheWeightsShareOfTheChecksPassedOnceOneShowsWork'
 sabotage visibility-ignored \
     "every Gradescope row visible, whatever the assignment says" \
-    core/src/gradescope.cpp \
+    core/course/gradescope.cpp \
     '{"visibility", a.visibilityOf(g.id, c.category)},' \
     '{"visibility", "visible"},' \
     'Assignment.PartialCreditIsTheWeightsShareOfTheChecksPassedOnceOneShowsWork'
 sabotage partial-credit-inverted \
     "partial credit inverted: passed checks earn before a values check shows work, not after" \
-    core/src/assignment.cpp \
+    core/course/assignment.cpp \
     '            s.earning += passed && workShown;' \
     '            s.earning += passed && !workShown;' \
     'Assignment.PartialCreditIsTheWeightsShareOfTheChecksPassedOnceOneShowsWork'
 sabotage work-gate-off \
     "passed checks earn points before any values check shows work (the stub's checks score)" \
-    core/src/assignment.cpp \
+    core/course/assignment.cpp \
     '        workShown = workShown || (check.value("shows_work", false) && check.value("passed", false));' \
     '        workShown = workShown || !check.is_null();' \
     'Assignment.PartialCreditIsTheWeightsShareOfTheChecksPassedOnceOneShowsWork'
 sabotage contract-failure-scores \
     "a failed contract check no longer zeroes the step's partial credit" \
-    core/src/assignment.cpp \
+    core/course/assignment.cpp \
     '            if (c == "contract" && !check.value("passed", false)) return {};' \
     '            if (c == "contract" && !check.value("passed", false)) continue;' \
     'Assignment.AFailedContractCheckScoresTheStepZero'
 sabotage release-ignored \
     "the kit hands out every step whatever the release dates" \
-    core/src/assignment.cpp \
+    core/course/assignment.cpp \
     '        o.steps.erase(std::find(o.steps.begin(), o.steps.end(), through) + 1, o.steps.end());' \
     '        (void)through;' \
     'Assignment.TheReleaseScheduleDecidesWhatTheKitHandsOut'
 sabotage robustness-deducted \
     "the extreme-input sweep deducts (it is reported, not deducted, unless weighted)" \
-    core/src/grading_checks.cpp \
+    core/grading/checks.cpp \
     '    c.deducted = false;' \
     '    c.deducted = true;' \
     'Labs/VariantTest.*/ndf_correct_correct_lesson'
@@ -262,7 +262,7 @@ for n in "${chosen[@]}"; do
         missed+=("$n")
         caught="**none** (${filters[$k]})"
     fi
-    table+="| $n | ${files[$k]#core/src/} | $caught | $seconds |\n"
+    table+="| $n | ${files[$k]#core/} | $caught | $seconds |\n"
 done
 sync_tree  # the copy as this tree is again (its build catches up on the next run)
 

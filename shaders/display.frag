@@ -1,4 +1,4 @@
-// The display mapping of core/src/display.cpp (displayColor) on the GPU, for the GUI's live
+// The display mapping of core/render/display.cpp (displayColor) on the GPU, for the GUI's live
 // view: a value texture in, what a person sees out, no read-back. Output row 0 = the top of
 // the picture (the value texture's last GL row), as images read back on the CPU are.
 uniform sampler2D uValue;

@@ -1,6 +1,6 @@
 // The per-pixel inputs of a module's view, read from the G-buffer (scene) or from textures
 // the host filled (probe, PBRLAB_PROBE defined). The CPU reference reads the same values:
-// keep this in step with pbrlab::Surface and core/src/surface_io.cpp.
+// keep this in step with pbrlab::Surface and core/render/surface_io.cpp.
 
 struct Surface {
     bool covered;        // false: background

@@ -16,8 +16,8 @@
 #include <algorithm>
 #include <cstdlib>
 
-#include "grade.h"
-#include "kit.h"
+#include "course/autograder.h"
+#include "course/kit.h"
 
 using namespace pbrlab;
 namespace fs = std::filesystem;

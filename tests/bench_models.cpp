@@ -10,10 +10,10 @@
 
 #include <chrono>
 
+#include "assets/gltf.h"
 #include "gl/context.h"
-#include "pbrlab/gltf.h"
-#include "pbrlab/log.h"
-#include "renderer.h"
+#include "render/renderer.h"
+#include "util/log.h"
 
 using namespace pbrlab;
 namespace fs = std::filesystem;

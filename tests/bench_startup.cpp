@@ -23,8 +23,8 @@
 #include <string>
 #include <vector>
 
-#include "image_codecs.h"
-#include "pbrlab/image.h"
+#include "assets/image_codecs.h"
+#include "assets/image_io.h"
 
 extern char** environ;
 

@@ -7,10 +7,10 @@
 #include <regex>
 #include <sstream>
 
-#include "assignment.h"
-#include "grade.h"
-#include "gradescope.h"
-#include "kit.h"
+#include "course/assignment.h"
+#include "course/autograder.h"
+#include "course/gradescope.h"
+#include "course/kit.h"
 #include "test_support.h"
 
 using namespace pbrlab;

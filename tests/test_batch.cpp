@@ -7,12 +7,12 @@
 #include <set>
 #include <tuple>
 
-#include "batch.h"
-#include "class_report.h"
-#include "feedback.h"
-#include "kit.h"
-#include "pbrlab/error.h"
+#include "course/batch.h"
+#include "course/class_report.h"
+#include "course/kit.h"
+#include "grading/error_patterns.h"
 #include "test_support.h"
+#include "util/error.h"
 
 using namespace pbrlab;
 namespace fs = std::filesystem;

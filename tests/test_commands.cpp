@@ -8,7 +8,7 @@
 #include "commands/command.h"
 #include "commands/session.h"
 #include "gui/console.h"
-#include "pbrlab/error.h"
+#include "util/error.h"
 
 using namespace pbrlab;
 

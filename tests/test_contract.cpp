@@ -5,9 +5,9 @@
 #include <fstream>
 #include <set>
 
-#include "pbrlab/contract.h"
-#include "pbrlab/error.h"
+#include "steps/contract.h"
 #include "test_support.h"
+#include "util/error.h"
 
 using namespace pbrlab;
 namespace test = pbrlab::test;

@@ -5,10 +5,10 @@
 #include <iostream>
 #include <optional>
 
-#include "converge.h"
+#include "assets/envgen.h"
 #include "gl/context.h"
-#include "ibl_error.h"
-#include "pbrlab/envgen.h"
+#include "ibl/map_error.h"
+#include "render/converge.h"
 #include "test_support.h"
 
 using namespace pbrlab;

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <limits>
 
-#include "display_pass.h"
 #include "gl/context.h"
-#include "pbrlab/display.h"
-#include "renderer.h"
+#include "render/display.h"
+#include "render/display_pass.h"
+#include "render/renderer.h"
 
 using namespace pbrlab;
 

@@ -19,14 +19,14 @@
 #include <regex>
 #include <sstream>
 
+#include "assets/envgen.h"
+#include "course/autograder.h"
 #include "gl/context.h"
-#include "grade.h"
-#include "pbrlab/contract.h"
-#include "pbrlab/envgen.h"
-#include "pbrlab/error.h"
-#include "renderer.h"
-#include "step_grader.h"
+#include "grading/step_grader.h"
+#include "render/renderer.h"
+#include "steps/contract.h"
 #include "test_support.h"
+#include "util/error.h"
 
 using namespace pbrlab;
 namespace fs = std::filesystem;

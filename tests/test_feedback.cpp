@@ -4,8 +4,9 @@
 
 #include <cmath>
 
-#include "feedback.h"
-#include "term_fits.h"
+#include "grading/error_patterns.h"
+#include "grading/term_fits.h"
+#include "shader/code_facts.h"
 
 using namespace pbrlab;
 

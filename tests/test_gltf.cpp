@@ -6,9 +6,9 @@
 #include <fstream>
 #include <random>
 
-#include "pbrlab/error.h"
-#include "pbrlab/gltf.h"
+#include "assets/gltf.h"
 #include "test_support.h"
+#include "util/error.h"
 
 using namespace pbrlab;
 namespace fs = std::filesystem;

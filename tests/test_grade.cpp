@@ -7,10 +7,10 @@
 
 #include <fstream>
 
+#include "course/autograder.h"
+#include "course/kit.h"
 #include "gl/context.h"
-#include "grade.h"
-#include "kit.h"
-#include "pbrlab/contract.h"
+#include "steps/contract.h"
 #include "test_support.h"
 
 using namespace pbrlab;

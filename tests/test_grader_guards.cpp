@@ -8,10 +8,10 @@
 #include <regex>
 #include <sstream>
 
-#include "assignment.h"
+#include "course/assignment.h"
+#include "course/autograder.h"
 #include "gl/context.h"
-#include "grade.h"
-#include "grading.h"
+#include "grading/grade_step.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "pbrlab/image.h"
+#include "assets/image_io.h"
 #include "test_support.h"
 
 using namespace pbrlab;

@@ -12,7 +12,7 @@
 #include <sstream>
 #include <thread>
 
-#include "pbrlab/image.h"
+#include "assets/image_io.h"
 #include "test_support.h"
 
 using namespace pbrlab;

@@ -3,11 +3,11 @@
 #include <gtest/gtest.h>
 
 #include "gl/context.h"
-#include "grading.h"
-#include "ibl.h"
-#include "pbrlab/error.h"
-#include "pbrlab/log.h"
+#include "grading/grade_step.h"
+#include "ibl/precompute.h"
 #include "test_support.h"
+#include "util/error.h"
+#include "util/log.h"
 
 using namespace pbrlab;
 

@@ -16,12 +16,12 @@
 #include <random>
 #include <vector>
 
+#include "assets/envgen.h"
+#include "assets/image_io.h"
 #include "pbrlab/cube_sampler.h"
-#include "pbrlab/envgen.h"
-#include "pbrlab/error.h"
 #include "pbrlab/ibl_reference.h"
-#include "pbrlab/image.h"
 #include "test_support.h"
+#include "util/error.h"
 
 namespace {
 
@@ -885,7 +885,7 @@ TEST(IblEnvGen, GeneratedSkyIsDeterministicFiniteAndHighDynamicRange) {
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
-// TexelSums: the truth of the precompute's error measurement (ibl_error.cpp)
+// TexelSums: the truth of the precompute's error measurement (ibl/map_error.cpp)
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Image I/O (core/src/image.cpp) and the procedural metal-plates texture set (texgen).
+// Image I/O (core/assets/image_io.cpp) and the procedural metal-plates texture set (texgen).
 #include <gtest/gtest.h>
 #include <png.h>
 
@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "image_codecs.h"
-#include "pbrlab/error.h"
-#include "pbrlab/image.h"
-#include "pbrlab/texgen.h"
+#include "assets/image_codecs.h"
+#include "assets/image_io.h"
+#include "assets/texgen.h"
+#include "util/error.h"
 
 namespace fs = std::filesystem;
 using pbrlab::FileDepth;
@@ -295,7 +295,7 @@ TEST_F(ImageTest, TruncatedExrIsAnError) {
 TEST_F(ImageTest, CorruptedFilesGiveErrorsNotCrashes) {
     // Deterministic byte mutations (overwrites, sometimes a cut) of a valid file: each read
     // must either succeed or throw pbrlab::Error; anything else (crash, other exception) fails.
-    // Checked further under AddressSanitizer with 9000 mutations while writing image.cpp.
+    // Checked further under AddressSanitizer with 9000 mutations while writing assets/image_io.cpp.
     std::uint32_t state = 7;
     auto next = [&state] {
         state = state * 1664525u + 1013904223u;

@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "gl/context.h"
-#include "grading.h"
+#include "grading/grade_step.h"
 #include "pbrlab/ibl_reference.h"
 #include "test_support.h"
 

@@ -8,11 +8,11 @@
 #include <limits>
 #include <sstream>
 
+#include "course/autograder.h"
 #include "gl/context.h"
-#include "grade.h"
-#include "grading.h"
-#include "pbrlab/contract.h"
-#include "stability.h"
+#include "grading/grade_step.h"
+#include "grading/stability.h"
+#include "steps/contract.h"
 #include "test_support.h"
 
 using namespace pbrlab;
@@ -121,7 +121,7 @@ TEST(Inputs, EveryHostValueAStepReadsIsGradedAtTwoValuesOrMore) {
     int graded = 0;
     for (const LoadedModule& m : modules.modules()) {
         const ModuleDesc& d = *m.desc;
-        if (d.estimator) continue;  // 17-20: graded by convergence (grading_estimator.cpp)
+        if (d.estimator) continue;  // 17-20: graded by convergence (grading/estimator_band.cpp)
         const std::string code =
             readText(m.sourceDir / "solution.glsl") + readText(m.sourceDir / "view.glsl");
         std::vector<std::string> reads;

@@ -11,7 +11,7 @@
 #include "gl/context.h"
 #include "gui/lab.h"
 #include "gui/live_size.h"
-#include "renderer.h"
+#include "render/renderer.h"
 #include "test_support.h"
 
 using namespace pbrlab;

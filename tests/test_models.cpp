@@ -8,13 +8,13 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <set>
 
-#include "evaluate.h"
+#include "assets/gltf.h"
 #include "gl/context.h"
-#include "pbrlab/error.h"
-#include "pbrlab/gltf.h"
-#include "pbrlab/log.h"
-#include "renderer.h"
+#include "render/evaluate.h"
+#include "render/renderer.h"
 #include "test_support.h"
+#include "util/error.h"
+#include "util/log.h"
 
 using namespace pbrlab;
 namespace fs = std::filesystem;

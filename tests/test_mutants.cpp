@@ -9,11 +9,11 @@
 #include <set>
 #include <sstream>
 
+#include "course/mutation_score.h"
 #include "gl/context.h"
-#include "mutation.h"
-#include "pbrlab/contract.h"
-#include "semantic_mutants.h"
+#include "grading/mutants_semantic.h"
 #include "shader/program.h"
+#include "steps/contract.h"
 #include "test_support.h"
 
 using namespace pbrlab;

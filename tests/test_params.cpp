@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "pbrlab/error.h"
 #include "pbrlab/params.h"
+#include "util/error.h"
 
 using namespace pbrlab;
 

@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
-#include "pbrlab/error.h"
-#include "plugins.h"
+#include "steps/plugin_host.h"
 #include "test_support.h"
+#include "util/error.h"
 
 using namespace pbrlab;
 namespace fs = std::filesystem;

@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
-#include "pbrlab/error.h"
 #include "shader/preprocess.h"
 #include "test_support.h"
+#include "util/error.h"
 
 using namespace pbrlab;
 using pbrlab::test::TempDir;

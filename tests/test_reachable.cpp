@@ -11,9 +11,9 @@
 #include <set>
 
 #include "gl/context.h"
-#include "grading.h"
-#include "helper_mutants.h"
-#include "pbrlab/contract.h"
+#include "grading/grade_step.h"
+#include "grading/mutants_helper.h"
+#include "steps/contract.h"
 #include "test_support.h"
 
 using namespace pbrlab;

@@ -9,9 +9,9 @@
 #include <limits>
 #include <vector>
 
-#include "pbrlab/color.h"
 #include "pbrlab/ibl_reference.h"
 #include "pbrlab/reference.h"
+#include "util/color.h"
 
 namespace {
 
@@ -135,7 +135,7 @@ TEST(SrgbToLinear, IsContinuousAtTheKnee) {
 }
 
 TEST(SrgbEncode, MatchesStandardAtKnownPoints) {
-    // The host's encoding (pbrlab/color.h: display, textures), checked against values of the
+    // The host's encoding (util/color.h: display, textures), checked against values of the
     // IEC 61966-2-1 curve: linear 0.5 encodes to 0.735356983 (published sRGB tables), and
     // 0.214041140 is the decoding of 0.5 above. Tolerance 1e-9: the literals' digits.
     EXPECT_NEAR(pbrlab::srgbEncode(0.5), 0.735356983, 1e-9);

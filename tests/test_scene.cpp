@@ -3,9 +3,9 @@
 #include <fstream>
 #include <random>
 
-#include "pbrlab/error.h"
-#include "pbrlab/scene.h"
+#include "assets/scene.h"
 #include "test_support.h"
+#include "util/error.h"
 
 using namespace pbrlab;
 namespace fs = std::filesystem;

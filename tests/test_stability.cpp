@@ -2,9 +2,9 @@
 // extreme inputs, on the GPU and in the CPU reference.
 #include <gtest/gtest.h>
 
-#include "evaluate.h"
 #include "gl/context.h"
-#include "stability.h"
+#include "grading/stability.h"
+#include "render/evaluate.h"
 #include "test_support.h"
 
 using namespace pbrlab;

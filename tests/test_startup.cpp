@@ -1,4 +1,4 @@
-// Start-up: no program pays for OpenImageIO unless a file needs it (core/src/image_codecs.h),
+// Start-up: no program pays for OpenImageIO unless a file needs it (core/assets/image_codecs.h),
 // and a command about one module opens only that module's library.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "plugins.h"
+#include "steps/plugin_host.h"
 #include "test_support.h"
 
 using namespace pbrlab;

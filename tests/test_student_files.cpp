@@ -10,10 +10,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "pbrlab/error.h"
 #include "shader/preprocess.h"
 #include "shader/student_file.h"
 #include "test_support.h"
+#include "util/error.h"
 
 using namespace pbrlab;
 namespace fs = std::filesystem;

@@ -21,8 +21,8 @@
 
 #include <fstream>
 
-#include "grade.h"
-#include "pbrlab/contract.h"
+#include "course/autograder.h"
+#include "steps/contract.h"
 #include "test_support.h"
 
 using namespace pbrlab;

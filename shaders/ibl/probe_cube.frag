@@ -1,6 +1,6 @@
 // Reads a cube map at given directions (one per texel of uDirections), as the renderer reads
 // it: bilinear within the mip uLod, seamless across faces. The GPU side of the precompute's
-// error measurement (core/src/ibl_error.cpp).
+// error measurement (core/ibl/map_error.cpp).
 uniform sampler2D uDirections;
 uniform samplerCube uMap;
 uniform float uLod;

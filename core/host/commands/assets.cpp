@@ -3,15 +3,15 @@
 #include <cstdio>
 #include <iostream>
 
-#include "converge.h"
-#include "ibl.h"
-#include "pbrlab/envgen.h"
-#include "pbrlab/error.h"
-#include "pbrlab/gltf.h"
-#include "pbrlab/log.h"
-#include "pbrlab/texgen.h"
+#include "assets/envgen.h"
+#include "assets/gltf.h"
+#include "assets/texgen.h"
+#include "ibl/precompute.h"
+#include "render/converge.h"
 #include "session.h"
 #include "table.h"
+#include "util/error.h"
+#include "util/log.h"
 
 namespace fs = std::filesystem;
 

@@ -4,11 +4,11 @@
 #include <fstream>
 #include <iostream>
 
-#include "pbrlab/contract.h"
-#include "pbrlab/error.h"
+#include "grading/stability.h"
 #include "session.h"
-#include "stability.h"
+#include "steps/contract.h"
 #include "table.h"
+#include "util/error.h"
 
 namespace fs = std::filesystem;
 

@@ -1,6 +1,4 @@
 // The commands about grading: grade, kit, mutants, new-step.
-#include "grade.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -9,16 +7,17 @@
 #include <map>
 #include <thread>
 
-#include "batch.h"
-#include "classroom.h"
-#include "gradescope.h"
-#include "kit.h"
-#include "mutation.h"
-#include "new_step.h"
-#include "pbrlab/contract.h"
-#include "pbrlab/error.h"
+#include "course/autograder.h"
+#include "course/batch.h"
+#include "course/classroom.h"
+#include "course/gradescope.h"
+#include "course/kit.h"
+#include "course/mutation_score.h"
 #include "session.h"
+#include "steps/contract.h"
+#include "steps/new_step.h"
 #include "table.h"
+#include "util/error.h"
 
 namespace fs = std::filesystem;
 

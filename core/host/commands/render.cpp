@@ -4,12 +4,12 @@
 #include <iostream>
 #include <set>
 
-#include "grade.h"
-#include "grading.h"
-#include "pbrlab/contract.h"
-#include "pbrlab/log.h"
+#include "course/autograder.h"
+#include "grading/grade_step.h"
 #include "session.h"
+#include "steps/contract.h"
 #include "table.h"
+#include "util/log.h"
 
 namespace fs = std::filesystem;
 

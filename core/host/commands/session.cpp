@@ -4,9 +4,9 @@
 #include <iostream>
 #include <sstream>
 
-#include "pbrlab/display.h"
-#include "pbrlab/error.h"
-#include "pbrlab/log.h"
+#include "render/display.h"
+#include "util/error.h"
+#include "util/log.h"
 
 namespace fs = std::filesystem;
 

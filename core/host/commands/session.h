@@ -9,9 +9,9 @@
 
 #include "command.h"
 #include "gl/context.h"
-#include "paths.h"
-#include "plugins.h"
-#include "renderer.h"
+#include "render/renderer.h"
+#include "steps/paths.h"
+#include "steps/plugin_host.h"
 
 namespace pbrlab {
 

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <iostream>
 
-#include "pbrlab/error.h"
-#include "pbrlab/log.h"
+#include "util/error.h"
+#include "util/log.h"
 
 namespace pbrlab {
 

@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "evaluation_worker.h"
-#include "plugins.h"
+#include "steps/plugin_host.h"
 
 namespace fs = std::filesystem;
 

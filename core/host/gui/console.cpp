@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "lab.h"
-#include "pbrlab/error.h"
+#include "util/error.h"
 #include "view_status.h"
 
 extern char** environ;

@@ -3,10 +3,10 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "evaluate.h"
 #include "gl/context.h"
-#include "pbrlab/error.h"
-#include "pbrlab/log.h"
+#include "render/evaluate.h"
+#include "util/error.h"
+#include "util/log.h"
 
 namespace pbrlab {
 

@@ -17,13 +17,13 @@
 #include <thread>
 #include <vector>
 
-#include "compare.h"
-#include "paths.h"
+#include "assets/scene.h"
 #include "pbrlab/params.h"
-#include "pbrlab/scene.h"
-#include "plugins.h"
-#include "renderer.h"
+#include "render/compare.h"
+#include "render/renderer.h"
 #include "shader/program.h"
+#include "steps/paths.h"
+#include "steps/plugin_host.h"
 
 namespace pbrlab {
 

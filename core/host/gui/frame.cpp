@@ -4,10 +4,10 @@
 #include <ctime>
 
 #include "lab.h"
-#include "pbrlab/display.h"
-#include "pbrlab/log.h"
+#include "render/display.h"
 #include "shader/student_file.h"
 #include "term_views.h"
+#include "util/log.h"
 
 namespace fs = std::filesystem;
 

@@ -20,7 +20,7 @@
 #include "gl/context.h"
 #include "lab.h"
 #include "panels.h"
-#include "pbrlab/error.h"
+#include "util/error.h"
 
 namespace fs = std::filesystem;
 

@@ -5,10 +5,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "converge.h"
-#include "pbrlab/error.h"
-#include "pbrlab/log.h"
+#include "render/converge.h"
 #include "term_views.h"
+#include "util/error.h"
+#include "util/log.h"
 
 namespace fs = std::filesystem;
 

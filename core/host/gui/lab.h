@@ -15,16 +15,16 @@
 #include <vector>
 
 #include "badges.h"
-#include "compare.h"
-#include "display_pass.h"
 #include "evaluation_worker.h"
 #include "gui.h"
 #include "live_size.h"
-#include "paths.h"
-#include "plugins.h"
-#include "renderer.h"
+#include "render/compare.h"
+#include "render/display_pass.h"
+#include "render/renderer.h"
 #include "source_watch.h"
 #include "state.h"
+#include "steps/paths.h"
+#include "steps/plugin_host.h"
 
 namespace pbrlab {
 

@@ -5,7 +5,7 @@
 
 #include "handout.h"
 #include "panels.h"
-#include "pbrlab/log.h"
+#include "util/log.h"
 #include "view_status.h"
 
 namespace pbrlab {

@@ -7,7 +7,7 @@
 #include <cstdio>
 
 #include "panels.h"
-#include "pbrlab/display.h"
+#include "render/display.h"
 #include "term_views.h"
 #include "view_status.h"
 

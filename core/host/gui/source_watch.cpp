@@ -1,7 +1,7 @@
 #include "source_watch.h"
 
-#include "pbrlab/error.h"
 #include "shader/preprocess.h"
+#include "util/error.h"
 
 namespace fs = std::filesystem;
 

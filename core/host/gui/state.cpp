@@ -4,7 +4,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "plugins.h"
+#include "steps/plugin_host.h"
 
 namespace fs = std::filesystem;
 

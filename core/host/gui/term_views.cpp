@@ -1,7 +1,7 @@
 #include "term_views.h"
 
-#include "pbrlab/display.h"
-#include "plugins.h"
+#include "render/display.h"
+#include "steps/plugin_host.h"
 
 namespace pbrlab {
 

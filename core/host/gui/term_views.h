@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "pbrlab/image.h"
+#include "assets/image_io.h"
 #include "pbrlab/module.h"
 
 namespace pbrlab {

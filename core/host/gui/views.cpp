@@ -1,6 +1,6 @@
 #include "views.h"
 
-#include "pbrlab/error.h"
+#include "util/error.h"
 
 namespace pbrlab {
 

@@ -1,0 +1,563 @@
+#include "course/autograder.h"
+
+#include <poll.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "gl/context.h"
+#include "grading/stability.h"
+#include "render/display.h"
+#include "steps/contract.h"
+#include "util/error.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace pbrlab {
+
+namespace {
+
+json gradeJson(const ModuleGrade& g) {
+    return {{"id", g.id},
+            {"title", g.title},
+            {"status", g.status},
+            {"score", roundPoints(g.score)},
+            {"max_score", roundPoints(g.maxScore)},
+            {"message", g.message},
+            {"mistake", g.mistake},
+            {"named_by", g.namedBy},
+            {"mistake_group", g.mistakeGroup},
+            {"checks", g.checks},
+            {"instructor_note", g.instructorNote},
+            {"seconds", g.seconds}};
+}
+
+// Every string in `j` made valid UTF-8 (messages quote compiler logs of students' files).
+json sanitized(const json& j) {
+    if (j.is_string()) return validUtf8(j.get<std::string>());
+    if (j.is_array() || j.is_object()) {
+        json out = j;
+        for (auto it = out.begin(); it != out.end(); ++it) *it = sanitized(*it);
+        return out;
+    }
+    return j;
+}
+
+std::string dumpJson(const json& j, int indent = -1) {
+    return j.dump(indent, ' ', false, json::error_handler_t::replace);
+}
+
+// The student's and the reference's pictures of the module's scene, and their difference.
+void writeImages(LabRenderer& renderer, const LoadedModule& m, const DataPaths& paths,
+                 const GradeOptions& o) {
+    const ModuleDesc& d = *m.desc;
+    const fs::path dir = o.html / d.id;
+    fs::create_directories(dir);
+    const Scene scene = loadScene(paths.scene(d.scene));
+    const ParamValues params(d.params);
+    EvalRequest request;
+    request.render = {&m,      &params, &scene, StudentSource{o.submission, o.cumulative},
+                      nullptr, 192,     192};
+    request.render.seamlessCubes = false;
+    const Evaluation e = evaluate(renderer, request);
+    Image reference = e.render.value;
+    for (size_t i = 0; i < e.band.expected.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            reference.pixels[i * 4 + size_t(c)] = float(e.band.expected[i][c]);
+    writeImage(dir / "student.png", displayImage(e.render.value, d.display, d.components),
+               FileDepth::Uint8, true);
+    writeImage(dir / "reference.png", displayImage(reference, d.display, d.components),
+               FileDepth::Uint8, true);
+    // Colour scale: half the largest reference value, so a wrong step reads as bright and
+    // rounding stays dark.
+    double peak = 0;
+    for (const auto& v : e.band.expected)
+        for (int c = 0; c < d.components; ++c)
+            if (std::isfinite(v[c])) peak = std::max(peak, std::abs(v[c]));
+    const double range = std::max(0.5 * peak, 1e-6);
+    writeImage(dir / "difference.png",
+               differenceImage(e.render.value, reference, d.components, range), FileDepth::Uint8,
+               true);
+    // The scale the report's colour bar shows beside the difference image.
+    writeFileAtomically(dir / "difference.json", json{{"range", range}}.dump() + "\n");
+}
+
+// The difference image's colour bar: the false-colour map from 0 to the image's range (errors
+// beyond it saturate), and the colours of NaN and Inf.
+std::string colourBar(const fs::path& scaleFile) {
+    double range = 0;
+    try {
+        std::ifstream in(scaleFile);
+        range = json::parse(in).at("range").get<double>();
+    } catch (const std::exception&) {
+        return "";
+    }
+    auto hex = [](const glm::dvec3& c) {
+        char text[8];
+        std::snprintf(text, sizeof text, "#%02x%02x%02x", int(std::lround(c.r * 255)),
+                      int(std::lround(c.g * 255)), int(std::lround(c.b * 255)));
+        return std::string(text);
+    };
+    auto label = [](double v) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.3g", v);
+        return std::string(text);
+    };
+    const std::string id = "scale-" + scaleFile.parent_path().filename().string();  // the step
+    std::ostringstream s;
+    s << "<br><svg width=160 height=44 role=img><title>|student - reference| per pixel (largest "
+         "channel): dark 0, bright "
+      << label(range) << " or more</title><defs><linearGradient id=" << id << ">";
+    for (int i = 0; i <= 8; ++i)
+        s << "<stop offset=" << i * 12.5 << "% stop-color=" << hex(falseColor(i / 8.0)) << " />";
+    s << "</linearGradient></defs><rect width=160 height=10 fill=url(#" << id << ") />"
+      << "<text x=0 y=22 fill=#999 font-size=10>0</text><text x=80 y=22 fill=#999 font-size=10 "
+         "text-anchor=middle>"
+      << label(range / 2) << "</text><text x=160 y=22 fill=#999 font-size=10 text-anchor=end>&ge;"
+      << label(range) << "</text><rect x=0 y=31 width=9 height=9 fill=" << hex(kNanColor)
+      << " /><text x=12 y=40 fill=#999 font-size=10>NaN</text><rect x=42 y=31 width=9 height=9 "
+         "fill="
+      << hex(kInfColor) << " /><text x=54 y=40 fill=#999 font-size=10>Inf</text>"
+      << "<text x=160 y=40 fill=#999 font-size=10 text-anchor=end>|error|</text></svg>";
+    return s.str();
+}
+
+// One module graded in a child process: what the parent keeps while it runs.
+struct Child {
+    const LoadedModule* module = nullptr;
+    size_t slot = 0;  // where its grade goes in the report
+    pid_t pid = -1;
+    int fd = -1;
+    std::chrono::steady_clock::time_point deadline;
+    std::string text;  // what it wrote so far
+    bool timedOut = false;
+};
+
+// Forks and grades one module in the child, which tells each stage it starts ("stage ...")
+// before its result ("result" and one line of JSON), so a crash or a timeout can say where it
+// happened.
+Child startChild(const LoadedModule& m, const DataPaths& paths, const GradeOptions& o,
+                 size_t slot) {
+    int fds[2];
+    if (pipe(fds) != 0) throw Error("grade: pipe failed");
+    pid_t pid = fork();
+    if (pid < 0) throw Error("grade: fork failed");
+    if (pid == 0) {
+        close(fds[0]);
+        rlimit limit{o.memoryLimitMb << 20, o.memoryLimitMb << 20};
+        setrlimit(RLIMIT_AS, &limit);
+        auto send = [&](const std::string& text) {
+            for (size_t done = 0; done < text.size();) {
+                ssize_t n = write(fds[1], text.data() + done, text.size() - done);
+                if (n <= 0) break;
+                done += size_t(n);
+            }
+        };
+        std::string out;
+        try {
+            auto context = createHeadlessContext();
+            LabRenderer renderer(paths);
+            GradeOptions options = o;
+            options.settings.stage = [&](const std::string& what) {
+                send("stage " + validUtf8(what) + "\n");
+            };
+            out = dumpJson(sanitized(gradeJson(gradeModule(renderer, m, paths, options))));
+            // Out now, without tearing down the renderer and the GL context (llvmpipe's threads
+            // joined one by one): the kernel frees it all at once.
+            send("result\n" + out + "\n");
+            _exit(0);
+        } catch (const std::exception& e) {
+            ModuleGrade failed;
+            failed.id = m.desc->id;
+            failed.title = m.desc->title;
+            failed.status = "crashed";
+            failed.message = e.what();
+            out = dumpJson(sanitized(gradeJson(failed)));
+        }
+        send("result\n" + out + "\n");
+        close(fds[1]);
+        _exit(0);
+    }
+    close(fds[1]);
+    Child c;
+    c.module = &m;
+    c.slot = slot;
+    c.pid = pid;
+    c.fd = fds[0];
+    c.deadline =
+        std::chrono::steady_clock::now() + std::chrono::milliseconds(long(o.timeoutSeconds * 1000));
+    return c;
+}
+
+// The grade from what a finished (or killed) child wrote and how it ended.
+ModuleGrade finishChild(Child& c, const GradeOptions& o) {
+    close(c.fd);
+    if (c.timedOut) kill(c.pid, SIGKILL);
+    int status = 0;
+    waitpid(c.pid, &status, 0);
+    ModuleGrade g;
+    g.id = c.module->desc->id;
+    g.title = c.module->desc->title;
+    // The last stage the child announced, and its result when it got that far.
+    std::string stage, result;
+    {
+        std::istringstream lines(c.text);
+        for (std::string line; std::getline(lines, line);) {
+            if (line.rfind("stage ", 0) == 0) stage = line.substr(6);
+            if (line == "result") std::getline(lines, result);
+        }
+    }
+    const bool compiling = stage.size() >= 7 && stage.compare(stage.size() - 7, 7, "compile") == 0;
+    if (c.timedOut) {
+        g.status = "timeout";
+        g.message = "killed after " + std::to_string(int(o.timeoutSeconds)) + " s" +
+                    (compiling ? " while compiling the shader (a macro that expands without end?)"
+                               : " during " + stage + " (an endless loop in the shader?)");
+        return g;
+    }
+    try {
+        json j = json::parse(result);
+        g.status = j.at("status");
+        g.maxScore = j.at("max_score");
+        g.message = j.at("message");
+        g.mistake = j.value("mistake", "");
+        g.namedBy = j.value("named_by", "");
+        g.mistakeGroup = j.value("mistake_group", "");
+        g.instructorNote = j.value("instructor_note", "");
+        g.checks = j.value("checks", json::array());
+        g.seconds = j.value("seconds", 0.0);
+    } catch (const std::exception&) {
+        g.status = "crashed";
+        const std::string how = WIFSIGNALED(status) ? std::string("the grading process died (") +
+                                                          strsignal(WTERMSIG(status)) + ")"
+                                                    : "the grading process ended without a result";
+        g.message = compiling ? how +
+                                    " while the GLSL compiler read your file: something in "
+                                    "it crashes the compiler (a macro that expands without "
+                                    "end, a construct far too large?)"
+                              : how + (stage.empty() ? "" : " during " + stage);
+    }
+    // The score follows from the status here, whatever the child wrote.
+    g.score = g.status == "passed" ? g.maxScore : 0;
+    return g;
+}
+
+// Grades the jobs in children, at most `o.jobs` at a time, each within its time limit.
+void gradeInChildren(const std::vector<GradeJob>& work, const DataPaths& paths,
+                     const GradeOptions& o, std::vector<ModuleGrade>& grades) {
+    if (!work.empty()) preloadHeadlessLibrary();  // inherited by every child
+    const size_t jobs = size_t(std::max(1, o.jobs));
+    std::vector<Child> running;
+    size_t next = 0;
+    while (next < work.size() || !running.empty()) {
+        while (running.size() < jobs && next < work.size()) {
+            GradeOptions each = o;
+            each.submission = work[next].submission;
+            running.push_back(startChild(*work[next].module, paths, each, next));
+            ++next;
+        }
+        std::vector<pollfd> fds;
+        for (const Child& c : running) fds.push_back({c.fd, POLLIN, 0});
+        const auto now = std::chrono::steady_clock::now();
+        long wait = 1000;
+        for (const Child& c : running)
+            wait = std::min<long>(
+                wait, std::max<long>(
+                          0, std::chrono::duration_cast<std::chrono::milliseconds>(c.deadline - now)
+                                 .count()));
+        poll(fds.data(), fds.size(), int(wait));
+        for (size_t i = running.size(); i-- > 0;) {
+            Child& c = running[i];
+            bool done = false;
+            if (fds[i].revents & (POLLIN | POLLHUP | POLLERR)) {
+                char buf[65536];
+                ssize_t n = read(c.fd, buf, sizeof buf);
+                if (n > 0)
+                    c.text.append(buf, size_t(n));
+                else
+                    done = true;
+            }
+            if (!done && std::chrono::steady_clock::now() >= c.deadline) done = c.timedOut = true;
+            if (done) {
+                grades[c.slot] = finishChild(c, o);
+                if (o.progress) o.progress(grades[c.slot]);
+                running.erase(running.begin() + long(i));
+            }
+        }
+    }
+}
+
+// What a compiler message means in the contract's terms, where it can tell.
+std::string compileHints(const std::string& log) {
+    std::string hints;
+    std::vector<std::pair<std::string, const ContractStep*>> names;
+    for (const ContractStep& s : contractSteps())
+        names.push_back({s.function.substr(s.function.find(' ') + 1,
+                                           s.function.find('(') - s.function.find(' ') - 1),
+                         &s});
+    names.push_back({"fresnelSchlickRoughness", nullptr});
+    for (const auto& [name, step] : names) {
+        if (log.find("`" + name + "' redefined") == std::string::npos) continue;
+        hints += "\nhint: " + name + " is a contract function that pbrlab provides" +
+                 (step ? " (step " + std::to_string(step->step) + ", " + step->id + ")" : "") +
+                 ": call it, or give your own helper another name.";
+    }
+    // Recursion and the host's own functions (main) are hinted where the log is traced back
+    // to the student's line (mapCompilerLog), which knows whose function it is.
+    return hints;
+}
+
+}  // namespace
+
+std::string jsonText(const json& report) {
+    return dumpJson(report, 2);
+}
+
+std::string validUtf8(const std::string& text) {
+    std::string out;
+    const auto* p = reinterpret_cast<const unsigned char*>(text.data());
+    const size_t n = text.size();
+    for (size_t i = 0; i < n;) {
+        const unsigned char c = p[i];
+        int len = c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3 : (c >> 3) == 30 ? 4 : 0;
+        bool ok = len > 0 && i + size_t(len) <= n;
+        for (int k = 1; ok && k < len; ++k) ok = (p[i + size_t(k)] >> 6) == 2;
+        if (ok && len == 2) ok = c >= 0xC2;  // no overlong forms
+        if (ok && len == 3)
+            ok = !(c == 0xE0 && p[i + 1] < 0xA0) && !(c == 0xED && p[i + 1] >= 0xA0);
+        if (ok && len == 4)
+            ok = c <= 0xF4 && !(c == 0xF0 && p[i + 1] < 0x90) && !(c == 0xF4 && p[i + 1] >= 0x90);
+        if (ok && (c == 0 || (c < 0x20 && c != '\n' && c != '\t'))) ok = false;
+        if (ok) {
+            out.append(text, i, size_t(len));
+            i += size_t(len);
+        } else {
+            out += "\xEF\xBF\xBD";  // U+FFFD
+            ++i;
+        }
+    }
+    return out;
+}
+
+ModuleGrade gradeModule(LabRenderer& renderer, const LoadedModule& m, const DataPaths& paths,
+                        const GradeOptions& o) {
+    ModuleGrade g;
+    g.id = m.desc->id;
+    g.title = m.desc->title;
+    const StudentSource source{o.submission, o.cumulative};
+    try {
+        const StepResult r = gradeStep(renderer, m, paths, source, o.settings);
+        g.status = r.passed ? "passed" : "failed";
+        g.message = r.message;
+        g.mistake = r.mistake;
+        g.namedBy = r.namedBy;
+        g.mistakeGroup = r.mistakeGroup;
+        g.instructorNote = r.instructorNote;
+        g.seconds = r.seconds;
+        for (const CheckReport& c : r.checks) g.checks.push_back(toJson(c));
+        if (!o.html.empty()) writeImages(renderer, m, paths, o);
+    } catch (const ShaderError& e) {
+        g.status = "compile_error";
+        g.message = e.what() + compileHints(e.what());
+    } catch (const std::exception& e) {
+        g.status = "failed";
+        g.message = e.what();
+    }
+    g.score = g.status == "passed" ? g.maxScore : 0;
+    g.message = validUtf8(g.message);
+    return g;
+}
+
+std::vector<ModuleGrade> gradeJobs(const std::vector<GradeJob>& jobs, const DataPaths& paths,
+                                   const GradeOptions& options) {
+    std::vector<ModuleGrade> grades(jobs.size());
+    gradeInChildren(jobs, paths, options, grades);
+    return grades;
+}
+
+GradeReport gradeSubmission(const ModuleRegistry& modules, const DataPaths& paths,
+                            const GradeOptions& o) {
+    auto start = std::chrono::steady_clock::now();
+    GradeReport report;
+    report.submission = o.submission;
+    std::vector<GradeJob> work;
+    std::vector<size_t> slots;  // where each job's grade goes in the report
+    for (const auto& m : modules.modules()) {
+        if (!o.modules.empty() &&
+            std::find(o.modules.begin(), o.modules.end(), m.desc->id) == o.modules.end())
+            continue;
+        const fs::path file = o.submission / (m.desc->id + ".glsl");
+        ModuleGrade g;
+        g.id = m.desc->id;
+        g.title = m.desc->title;
+        try {
+            std::error_code ec;
+            const bool present = fs::exists(fs::symlink_status(file, ec));
+            if (!present) {
+                g.status = "missing";
+                g.message = file.filename().string() + " not found";
+            } else if (std::string why = screenStudentFile(file, o.submission); !why.empty()) {
+                g.status = "failed";
+                g.message = file.string() + ": " + why;
+            } else {
+                work.push_back({&m, o.submission});
+                slots.push_back(report.modules.size());
+            }
+        } catch (const std::exception& e) {
+            // Whatever went wrong with this file costs this step only.
+            g.status = "failed";
+            g.message = file.string() + ": " + e.what();
+        }
+        report.modules.push_back(std::move(g));
+    }
+    std::vector<ModuleGrade> graded = gradeJobs(work, paths, o);
+    for (size_t i = 0; i < graded.size(); ++i) report.modules[slots[i]] = std::move(graded[i]);
+    for (ModuleGrade& g : report.modules) {
+        if (o.scoring)
+            o.scoring(g);
+        else
+            g.score = g.status == "passed" ? g.maxScore : 0;
+        g.message = validUtf8(g.message);
+        g.score = roundPoints(g.score);
+        g.maxScore = roundPoints(g.maxScore);
+        report.score = addPoints(report.score, g.score);
+        report.maxScore = addPoints(report.maxScore, g.maxScore);
+    }
+    report.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return report;
+}
+
+std::int64_t toMicroPoints(double points) {
+    return std::isfinite(points) ? std::llround(points * 1e6) : 0;
+}
+
+double fromMicroPoints(std::int64_t micro) {
+    return double(micro) / 1e6;  // correctly rounded: the double nearest the decimal
+}
+
+double roundPoints(double points) {
+    return fromMicroPoints(toMicroPoints(points));
+}
+
+double addPoints(double a, double b) {
+    return fromMicroPoints(toMicroPoints(a) + toMicroPoints(b));
+}
+
+std::string formatPoints(double points) {
+    const std::int64_t micro = toMicroPoints(points);
+    const std::uint64_t magnitude = micro < 0 ? 0 - std::uint64_t(micro) : std::uint64_t(micro);
+    std::string text = (micro < 0 ? "-" : "") + std::to_string(magnitude / 1000000);
+    std::string fraction = std::to_string(magnitude % 1000000);
+    fraction.insert(0, 6 - fraction.size(), '0');
+    while (!fraction.empty() && fraction.back() == '0') fraction.pop_back();
+    return fraction.empty() ? text : text + "." + fraction;
+}
+
+json toJson(const GradeReport& r) {
+    json modules = json::array();
+    for (const auto& g : r.modules) modules.push_back(gradeJson(g));
+    return {{"submission", r.submission.string()},
+            {"score", roundPoints(r.score)},
+            {"max_score", roundPoints(r.maxScore)},
+            {"seconds", r.seconds},
+            {"modules", modules}};
+}
+
+json toGradescope(const GradeReport& r) {
+    json tests = json::array();
+    std::string summary;
+    for (const auto& g : r.modules) {
+        std::string output = g.status + (g.message.empty() ? "" : ": " + g.message);
+        tests.push_back({{"name", g.id + ": " + g.title},
+                         {"score", roundPoints(g.score)},
+                         {"max_score", roundPoints(g.maxScore)},
+                         {"status", g.status == "passed" ? "passed" : "failed"},
+                         {"output", output}});
+        summary += g.id + " " + g.status + "\n";
+    }
+    return {{"score", roundPoints(r.score)},
+            {"execution_time", r.seconds},
+            {"output", summary},
+            {"tests", tests}};
+}
+
+std::string readWholeFile(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw Error(file.string() + ": cannot read it");
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void writeFileAtomically(const fs::path& file, const std::string& text) {
+    if (file.has_parent_path()) fs::create_directories(file.parent_path());
+    fs::path tmp = file;
+    tmp += ".tmp" + std::to_string(getpid());
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        out << text;
+        if (!out) throw Error(tmp.string() + ": cannot write");
+    }
+    fs::rename(tmp, file);
+}
+
+void writeHtml(const GradeReport& r, const fs::path& folder) {
+    auto escape = [](const std::string& s) {
+        std::string o;
+        for (char c : s)
+            o += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
+        return o;
+    };
+    std::ostringstream h;
+    h << "<!doctype html><meta charset=utf-8><title>pbrlab grade</title><style>"
+         "body{font-family:sans-serif;background:#1c1d21;color:#ddd;max-width:1100px;margin:auto}"
+         "td,th{padding:6px;border-bottom:1px solid #333;vertical-align:top}"
+         ".passed{color:#6d6}.failed,.compile_error,.crashed,.timeout{color:#f85}.missing{color:#"
+         "999}"
+         "pre{white-space:pre-wrap;font-size:12px}</style>"
+      << "<h1>pbrlab: " << escape(r.submission.string()) << "</h1><p>score "
+      << formatPoints(r.score) << " / " << formatPoints(r.maxScore) << " (" << r.seconds
+      << " s)</p><table><tr><th>step</th><th>status</th>"
+      << "<th>student</th><th>reference</th><th>difference</th><th>feedback</th></tr>\n";
+    for (const auto& g : r.modules) {
+        bool images = fs::exists(folder / g.id / "student.png");
+        h << "<tr><td>" << escape(g.id) << "<br><small>" << escape(g.title)
+          << "</small></td><td class=" << g.status << ">" << g.status << "<br>"
+          << formatPoints(g.score) << " / " << formatPoints(g.maxScore) << "</td>";
+        for (const std::string img : {"student", "reference", "difference"})
+            h << "<td>" << (images ? "<img width=160 src=\"" + g.id + "/" + img + ".png\">" : "")
+              << (images && img == "difference" ? colourBar(folder / g.id / "difference.json") : "")
+              << "</td>";
+        h << "<td><pre>" << escape(g.message) << "</pre>";
+        if (!g.checks.empty()) {
+            h << "<details><summary>" << g.checks.size() << " checks</summary><ul>";
+            for (const auto& c : g.checks) {
+                const bool passed = c.value("passed", false), deducted = c.value("deducted", true);
+                h << "<li class="
+                  << (passed     ? "passed"
+                      : deducted ? "failed"
+                                 : "missing")
+                  << ">"
+                  << (passed     ? "ok"
+                      : deducted ? "FAILED"
+                                 : "reported")
+                  << " " << escape(c.value("name", "")) << ": <small>"
+                  << escape(c.value("detail", "")) << "</small></li>";
+            }
+            h << "</ul></details>";
+        }
+        h << "</td></tr>\n";
+    }
+    h << "</table>";
+    writeFileAtomically(folder / "index.html", h.str());
+}
+
+}  // namespace pbrlab

@@ -1,0 +1,97 @@
+// The autograder: every module of a submission graded in its own child process (time and
+// memory limits; a crash or an endless loop costs that module only), stepwise by default,
+// through gradeStep (grading/grade_step.h), with feedback that names the mistake.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "grading/grade_step.h"
+#include "render/renderer.h"
+#include "shader/student_file.h"
+#include "steps/plugin_host.h"
+
+namespace pbrlab {
+
+struct GradeOptions {
+    std::filesystem::path submission;
+    std::vector<std::string> modules;  // empty: all loaded modules
+    bool cumulative = false;
+    double timeoutSeconds = 60;        // per module, wall clock
+    std::size_t memoryLimitMb = 8192;  // per module, address space (llvmpipe reserves a lot)
+    int jobs = 2;                      // modules graded at once (one child process each)
+    std::filesystem::path html;        // folder for the HTML report and its images, or empty
+    GradeSettings settings;            // what gradeStep checks (size, seed, feedback)
+    // Told as each module's grade comes in (progress output).
+    std::function<void(const struct ModuleGrade&)> progress;
+    // Sets a grade's max_score and score (an assignment's points and partial credit,
+    // assignment.h); empty: 1 point per step, all or nothing.
+    std::function<void(struct ModuleGrade&)> scoring;
+};
+
+struct ModuleGrade {
+    std::string id, title;
+    // passed | failed | compile_error | timeout | missing | crashed
+    std::string status = "missing";
+    double score = 0, maxScore = 1;
+    std::string message;
+    std::string mistake;         // the mistake named from the shape of the error, when recognised
+    std::string namedBy;         // pattern | typical | mutant (see StepResult)
+    std::string mistakeGroup;    // see StepResult: what a class report counts
+    std::string instructorNote;  // see StepResult: not for the student's eyes
+    nlohmann::json checks = nlohmann::json::array();  // every check with what it measured
+    double seconds = 0;
+};
+
+struct GradeReport {
+    std::filesystem::path submission;
+    std::vector<ModuleGrade> modules;
+    double score = 0, maxScore = 0, seconds = 0;
+};
+
+// One step in this process (no fork): what a grade's child runs, and the GUI's badges.
+ModuleGrade gradeModule(LabRenderer& renderer, const LoadedModule& module, const DataPaths& paths,
+                        const GradeOptions& options);
+
+// One module of one submission folder.
+struct GradeJob {
+    const LoadedModule* module = nullptr;
+    std::filesystem::path submission;
+};
+
+// Each job in a child process (options.jobs at a time), grades in the order of the jobs.
+std::vector<ModuleGrade> gradeJobs(const std::vector<GradeJob>& jobs, const DataPaths& paths,
+                                   const GradeOptions& options);
+
+// Every step of the submission, each in a child process. Never throws for a bad submission:
+// whatever is wrong with one file is that step's status and message.
+GradeReport gradeSubmission(const ModuleRegistry& modules, const DataPaths& paths,
+                            const GradeOptions& options);
+
+// Points as every report gives them (docs/assignment.md, "Rounding"): whole micro-points.
+// A score is a whole number of millionths of a point, held as the double nearest that decimal
+// (which JSON and the text reports print as the decimal); a sum of scores is the sum of those
+// whole numbers, so that a total is exactly the sum of its parts in every report.
+std::int64_t toMicroPoints(double points);  // the nearest whole number of micro-points
+double fromMicroPoints(std::int64_t micro);
+double roundPoints(double points);        // to the nearest micro-point
+double addPoints(double a, double b);     // the exact sum of two rounded scores
+std::string formatPoints(double points);  // "2.025", "3", "0.083333": no trailing zeros
+
+nlohmann::json toJson(const GradeReport& report);
+nlohmann::json toGradescope(const GradeReport& report);
+void writeHtml(const GradeReport& report, const std::filesystem::path& folder);
+// Temporary file in the same folder, then rename: a reader never sees half a report.
+void writeFileAtomically(const std::filesystem::path& file, const std::string& text);
+// The whole file's bytes; throws pbrlab::Error naming the file when it cannot be read.
+std::string readWholeFile(const std::filesystem::path& file);
+// A report as indented JSON text (any invalid UTF-8 left in it replaced).
+std::string jsonText(const nlohmann::json& report);
+// `text` with every byte sequence that is not UTF-8 replaced by U+FFFD, so that a message
+// quoting a student's file can always be written as JSON.
+std::string validUtf8(const std::string& text);
+
+}  // namespace pbrlab

@@ -1,0 +1,81 @@
+#include "course/kit.h"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include "steps/contract.h"
+#include "steps/solution_stub.h"
+#include "util/error.h"
+
+namespace fs = std::filesystem;
+
+namespace pbrlab {
+
+namespace {
+
+std::string readFile(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    if (!in) throw Error(p.string() + ": cannot read");
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+void writeFile(const fs::path& p, const std::string& text) {
+    fs::create_directories(p.parent_path());
+    std::ofstream out(p, std::ios::binary);
+    out << text;
+    if (!out) throw Error(p.string() + ": cannot write");
+}
+
+}  // namespace
+
+int writeKit(const ModuleRegistry& modules, const KitOptions& o) {
+    std::error_code ec;
+    if (fs::exists(o.out, ec) && !fs::is_empty(o.out, ec) && !o.force)
+        throw Error(o.out.string() + " is not empty; use --force to write into it anyway");
+    int releaseStep = 0;
+    if (!o.releaseThrough.empty()) {
+        const ContractStep* s = findContractStep(o.releaseThrough);
+        if (!s) throw Error("--release-through " + o.releaseThrough + ": not a module id");
+        releaseStep = s->step;
+    }
+    int written = 0;
+    std::string list;
+    for (const LoadedModule& m : modules.modules()) {
+        const ModuleDesc& d = *m.desc;
+        if (!o.steps.empty() && std::find(o.steps.begin(), o.steps.end(), d.id) == o.steps.end())
+            continue;
+        fs::path solution = m.sourceDir / "solution.glsl";
+        std::string text = readFile(solution);
+        bool released = o.withSolutions || d.step <= releaseStep;
+        writeFile(o.out / (d.id + ".glsl"),
+                  released ? text : stubSolution(text, d.function, solution.string()));
+        fs::path handout = m.sourceDir / "README.md";
+        if (fs::exists(handout))
+            writeFile(o.out / "handouts" / (findContractStep(d.id)->numbered() + ".md"),
+                      readFile(handout));
+        list += "| " + std::to_string(d.step) + " | `" + d.id + ".glsl` | `" + d.function + "` | " +
+                (released ? "solution given" : "to write") + " |\n";
+        ++written;
+    }
+    writeFile(o.out / "README.md",
+              "# pbrlab kit\n\n"
+              "One file per step. Write the body of each function where the TODO is; you may "
+              "add helper functions of your own above it (do not name them `pbrlab_*`, and do "
+              "not define `PI`: it is provided, as are `NUM_LIGHTS`, `uLightPositions`, "
+              "`uLightColors` and the contract functions of the earlier steps). The "
+              "handouts "
+              "in `handouts/` explain each step.\n\n" +
+                  (o.due.empty() ? std::string() : "Due: " + o.due + "\n\n") +
+                  "| step | file | function | status |\n|---|---|---|---|\n" + list +
+                  "\n## Run and test\n\n"
+                  "    pbrlab gui                      # from this folder: live view, hot reload\n"
+                  "    pbrlab check ndotl --submission .   # grade one step, every check printed\n"
+                  "    pbrlab render ndotl --submission . --out ndotl.png\n"
+                  "    pbrlab grade .                  # every step, as the autograder does\n");
+    return written;
+}
+
+}  // namespace pbrlab

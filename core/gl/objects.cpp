@@ -1,0 +1,147 @@
+#include "gl/objects.h"
+
+#include <algorithm>
+#include <cstddef>
+
+#include "util/error.h"
+
+namespace pbrlab::gl {
+
+Handle makeTexture() {
+    GLuint id = 0;
+    GenTextures(1, &id);
+    return {id, [](GLuint i) { DeleteTextures(1, &i); }};
+}
+Handle makeBuffer() {
+    GLuint id = 0;
+    GenBuffers(1, &id);
+    return {id, [](GLuint i) { DeleteBuffers(1, &i); }};
+}
+Handle makeVertexArray() {
+    GLuint id = 0;
+    GenVertexArrays(1, &id);
+    return {id, [](GLuint i) { DeleteVertexArrays(1, &i); }};
+}
+Handle makeFramebuffer() {
+    GLuint id = 0;
+    GenFramebuffers(1, &id);
+    return {id, [](GLuint i) { DeleteFramebuffers(1, &i); }};
+}
+Handle makeRenderbuffer() {
+    GLuint id = 0;
+    GenRenderbuffers(1, &id);
+    return {id, [](GLuint i) { DeleteRenderbuffers(1, &i); }};
+}
+
+Handle uploadTexture(const Image& image, bool mipmaps, GLenum internalFormat) {
+    static const GLenum formats[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
+    static const GLenum floatFormats[] = {GL_R32F, GL_RG32F, GL_RGB32F, GL_RGBA32F};
+    if (image.channels < 1 || image.channels > 4 || image.width <= 0 || image.height <= 0)
+        throw Error("cannot upload an image of " + std::to_string(image.width) + "x" +
+                    std::to_string(image.height) + "x" + std::to_string(image.channels));
+    Handle texture = makeTexture();
+    BindTexture(GL_TEXTURE_2D, texture.id());
+    PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    // Image row 0 goes to t = 0: with glTF's uv convention (v = 0 at the image top) the
+    // picture comes out upright without flipping.
+    TexImage2D(
+        GL_TEXTURE_2D, 0, GLint(internalFormat ? internalFormat : floatFormats[image.channels - 1]),
+        image.width, image.height, 0, formats[image.channels - 1], GL_FLOAT, image.pixels.data());
+    if (mipmaps) GenerateMipmap(GL_TEXTURE_2D);
+    TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
+                  mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST);
+    TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, mipmaps ? GL_LINEAR : GL_NEAREST);
+    TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    checkError("uploading a texture");
+    return texture;
+}
+
+RenderTarget::RenderTarget(int width, int height, int colorCount, bool withDepth)
+    : width_(width), height_(height) {
+    framebuffer_ = makeFramebuffer();
+    BindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+    for (int i = 0; i < colorCount; ++i) {
+        Handle tex = makeTexture();
+        BindTexture(GL_TEXTURE_2D, tex.id());
+        TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
+        TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, tex.id(), 0);
+        colors_.push_back(std::move(tex));
+    }
+    if (withDepth) {
+        depth_ = makeRenderbuffer();
+        BindRenderbuffer(GL_RENDERBUFFER, depth_.id());
+        RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+        FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.id());
+    }
+    if (CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw Error("render target " + std::to_string(width) + "x" + std::to_string(height) +
+                    " with " + std::to_string(colorCount) + " RGBA32F attachments is incomplete");
+    checkError("creating a render target");
+}
+
+void RenderTarget::bind() const {
+    BindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+    Viewport(0, 0, width_, height_);
+    std::vector<GLenum> buffers;
+    for (size_t i = 0; i < colors_.size(); ++i) buffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
+    DrawBuffers(GLsizei(buffers.size()), buffers.data());
+}
+
+Image RenderTarget::read(int i) const {
+    Image image;
+    image.width = width_;
+    image.height = height_;
+    image.channels = 4;
+    image.pixels.resize(size_t(width_) * height_ * 4);
+    BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.id());
+    ReadBuffer(GL_COLOR_ATTACHMENT0 + i);
+    PixelStorei(GL_PACK_ALIGNMENT, 1);
+    ReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, image.pixels.data());
+    checkError("reading back a render target");
+    return flipRows(std::move(image));
+}
+
+GpuMesh::GpuMesh(const MeshData& mesh) : indexCount_(GLsizei(mesh.indices.size())) {
+    vertexArray_ = makeVertexArray();
+    vertices_ = makeBuffer();
+    indices_ = makeBuffer();
+    BindVertexArray(vertexArray_.id());
+    BindBuffer(GL_ARRAY_BUFFER, vertices_.id());
+    BufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.vertices.size() * sizeof(Vertex)),
+               mesh.vertices.data(), GL_STATIC_DRAW);
+    BindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.id());
+    BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
+               mesh.indices.data(), GL_STATIC_DRAW);
+    struct Attribute {
+        GLint size;
+        size_t offset;
+    };
+    const Attribute attributes[] = {{3, offsetof(Vertex, position)},
+                                    {3, offsetof(Vertex, normal)},
+                                    {2, offsetof(Vertex, uv)},
+                                    {4, offsetof(Vertex, tangent)}};
+    for (GLuint i = 0; i < 4; ++i) {
+        EnableVertexAttribArray(i);
+        VertexAttribPointer(i, attributes[i].size, GL_FLOAT, GL_FALSE, sizeof(Vertex),
+                            reinterpret_cast<const void*>(attributes[i].offset));
+    }
+    BindVertexArray(0);
+    checkError("uploading a mesh");
+}
+
+void GpuMesh::draw() const {
+    BindVertexArray(vertexArray_.id());
+    DrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
+}
+
+void FullscreenTriangle::draw() const {
+    BindVertexArray(vertexArray_.id());
+    DrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+}  // namespace pbrlab::gl

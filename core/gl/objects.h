@@ -1,0 +1,94 @@
+// Small RAII owners for OpenGL objects (no glDelete* anywhere else), float render targets
+// with read-back, and meshes on the GPU.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "assets/image_io.h"
+#include "assets/mesh.h"
+#include "gl/gl.h"
+
+namespace pbrlab::gl {
+
+// Owns one GL object name; moves, never copies.
+class Handle {
+public:
+    using Deleter = void (*)(GLuint);
+    Handle() = default;
+    Handle(GLuint id, Deleter deleter) : id_(id), deleter_(deleter) {}
+    Handle(Handle&& other) noexcept { *this = std::move(other); }
+    Handle& operator=(Handle&& other) noexcept {
+        if (this != &other) {
+            reset();
+            std::swap(id_, other.id_);
+            std::swap(deleter_, other.deleter_);
+        }
+        return *this;
+    }
+    Handle(const Handle&) = delete;
+    Handle& operator=(const Handle&) = delete;
+    ~Handle() { reset(); }
+    GLuint id() const { return id_; }
+    explicit operator bool() const { return id_ != 0; }
+    void reset() {
+        if (id_ && deleter_) deleter_(id_);
+        id_ = 0;
+    }
+
+private:
+    GLuint id_ = 0;
+    Deleter deleter_ = nullptr;
+};
+
+Handle makeTexture();
+Handle makeBuffer();
+Handle makeVertexArray();
+Handle makeFramebuffer();
+Handle makeRenderbuffer();
+
+// A 2D texture uploaded from an image (1-4 channels, float upload; internal format chosen
+// from the channel count: R32F, RG32F, RGB32F or RGBA32F unless `internalFormat` is given).
+Handle uploadTexture(const Image& image, bool mipmaps, GLenum internalFormat = 0);
+
+// Off-screen target: `colorCount` RGBA32F attachments plus a depth buffer.
+class RenderTarget {
+public:
+    RenderTarget(int width, int height, int colorCount, bool withDepth = true);
+    void bind() const;  // binds the framebuffer, sets the viewport, enables all draw buffers
+    int width() const { return width_; }
+    int height() const { return height_; }
+    GLuint colorTexture(int i) const { return colors_[i].id(); }
+    // Reads attachment i as RGBA floats, row 0 at the top (GL rows are bottom-up).
+    Image read(int i) const;
+
+private:
+    int width_, height_;
+    Handle framebuffer_, depth_;
+    std::vector<Handle> colors_;
+};
+
+// A mesh on the GPU: positions (0), normals (1), uvs (2), tangents (3).
+class GpuMesh {
+public:
+    explicit GpuMesh(const MeshData& mesh);
+    void draw() const;
+
+private:
+    Handle vertexArray_, vertices_, indices_;
+    GLsizei indexCount_ = 0;
+};
+
+// One triangle covering the viewport (vertex shader: shaders/fullscreen.vert). Core profile
+// needs a bound vertex array even when the shader makes up the vertices; it belongs to the
+// context that was current at construction.
+class FullscreenTriangle {
+public:
+    FullscreenTriangle() : vertexArray_(makeVertexArray()) {}
+    void draw() const;
+
+private:
+    Handle vertexArray_;
+};
+
+}  // namespace pbrlab::gl

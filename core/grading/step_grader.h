@@ -1,0 +1,158 @@
+// The grader of one step behind gradeStep, private to core/src. Its checks are defined by
+// responsibility in the grading*.cpp files:
+//   grading/grade_step.cpp            the order of the checks, the verdict, stages and their times
+//   grading/values.cpp     values against the reference's band: the probe, the scenes (the
+//                          sphere grid among a step's declared cases), random inputs, every
+//                          exercised parameter value, coloured lights
+//   grading/estimator_band.cpp  estimators by convergence to the converged integral
+//   grading/linearity.cpp  linear in radiance: steps that read the environment
+//   grading/checks.cpp     the contract (what a step may read), invariants, robustness
+//   grading/failure_message.cpp   the failure message and the mistake named from the error
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "grading/grade_step.h"
+
+namespace pbrlab::step_grading {
+
+constexpr int kRowWidth = 64;  // surface sets are uploaded as rows of 64 points
+
+// The IBL settings of the maps grading reads: the defaults, as every RenderRequest of the
+// grader leaves them, so that the references read the maps the views read.
+inline const IblSettings kGradingIbl{};
+
+// A number in a report line (4 significant digits unless told).
+std::string number(double v, int digits = 4);
+
+// Surfaces as a width-64 grid, padded with uncovered points.
+struct Grid {
+    std::vector<Surface> surfaces;
+    int width = kRowWidth, height = 1;
+};
+Grid grid(std::vector<Surface> surfaces);
+
+// The first `count` pixels of a rendered value image (RGBA32F), as the values a check compares.
+std::vector<glm::dvec3> pointValues(const Image& value, size_t count);
+
+// The module's parameters at their defaults, then these assignments ("samples=7").
+ParamValues withSets(const ModuleDesc& d, const std::vector<std::string>& set);
+
+// A check of values against a band, with what feedback needs if it fails.
+struct ValuesRun {
+    CheckReport report;
+    std::vector<Surface> surfaces;  // the inputs, as the view saw them
+    Image value;
+    Band band;
+    Scene scene;
+    ParamValues params;
+    bool fromScene = false;  // the scene's G-buffer (else the surfaces were uploaded)
+    int width = 0, height = 0;
+    int worstIndex = -1;         // the point outside the band by most
+    double outlierFraction = 0;  // of the band (Tolerance::outlierFraction)
+    // At a count above the graded ones (StepGrader::gradeHighCounts): the feedback renders its
+    // candidates at the failing run's count, so it reads such a run only when nothing at the
+    // graded counts failed (65536 samples made mc_specular's feedback take 10 s).
+    bool aboveGradedCounts = false;
+};
+
+// The report of a values check from its comparison; `probe` or `width` say how its worst
+// point is located (probe axes, a pixel, or only its inputs).
+CheckReport reportFor(const std::string& name, const ModuleDesc& d, const Comparison& c,
+                      const std::vector<Surface>& surfaces, double outlierFraction,
+                      const Probe* probe, int width);
+
+class StepGrader {
+public:
+    StepGrader(LabRenderer& renderer, const LoadedModule& m, const DataPaths& paths,
+               const StudentSource& source, const GradeSettings& settings)
+        : renderer_(renderer),
+          m_(m),
+          d_(*m.desc),
+          paths_(paths),
+          source_(source),
+          settings_(settings) {}
+
+    StepResult run();
+    // The estimator's statistical checks alone (convergence on every environment, the counts
+    // above): what the false-failure measurement repeats per seed (tests/estimator_seeds.cpp).
+    StepResult runEstimatorStatistics();
+
+private:
+    struct Stopped {};
+
+    // grading/grade_step.cpp
+    void record(const CheckReport& c);
+    void stage(const std::string& what);
+
+    // grading/values.cpp
+    // `ibl`: the settings of the precomputed maps the view reads (and the reference with it).
+    ValuesRun runValues(const std::string& name, const std::string& category, const Scene& scene,
+                        const ParamValues& params, const std::vector<Surface>* surfaces, int width,
+                        int height, const Probe* probe, const IblSettings& ibl = kGradingIbl);
+    // Notes the host-provided values a render gave the step's program (StepResult::hostValues).
+    void noteHostValues(const Scene& scene, const ParamValues& params, const IblSettings& ibl);
+    void keep(ValuesRun&& run);
+    // Sets run.report.showsWork when it is a values check passed that the step's stub fails
+    // (the stub rendered on the same inputs, against the same band): asked until one such
+    // check is found.
+    void noteWork(ValuesRun& run);
+    void gradeCase(const std::string& name, GradeCase::Inputs inputs, const Scene& scene,
+                   const ParamValues& params, const std::string& sceneCategory = "scenes");
+    void gradeValues(const Scene& scene);
+    // What the host provides graded at other values than its defaults: NUM_LIGHTS, the maps'
+    // mip count (uPrefilterMaxLod) and sizes.
+    void gradeHostValues(const Scene& scene);
+
+    // grading/estimator_band.cpp
+    struct PointSet;
+    void gradeEstimator(const Scene& scene);
+    void gradeConvergence(const Scene& scene, const std::string& environment, bool first);
+    void gradeHighCounts(const Scene& judged, const PointSet& probe, const PointSet& random);
+    void gradeEnvironmentSize(const Scene& judged, const PointSet& random);
+    void rescale(const std::string& name, Image& value, const std::vector<Surface>& surfaces,
+                 const std::vector<Estimate>& truth);
+    void biasTest(const std::vector<PointSet>& sets, int n, const std::string& onEnvironment);
+
+    // grading/linearity.cpp: steps that read the environment, on multiples and sums of it
+    void gradeLinearity(const Scene& scene);
+
+    // grading/checks.cpp
+    void checkSamplers(const Program& program);
+    void gradeInvariants(const Scene& scene);
+    void gradeCallerInputs(const Scene& scene);
+    void gradeRobustness(const Scene& scene);
+
+    // grading/failure_message.cpp
+    struct Sample;
+    struct Agreement;
+    struct MutantMatch;
+    void explain();
+    Sample sample(const ValuesRun& f);
+    Image valuesOn(const ValuesRun& f, const Sample& sample, const StudentSource& source);
+    Agreement agreement(const ValuesRun& f, const Sample& sample, const Image& candidate) const;
+    std::string typicalMistake(const ValuesRun& f, const Sample& sample);
+    MutantMatch mutantMatch(const ValuesRun& f, const Sample& sample);
+
+    LabRenderer& renderer_;
+    const LoadedModule& m_;
+    const ModuleDesc& d_;
+    const DataPaths& paths_;
+    const StudentSource& source_;
+    const GradeSettings& settings_;
+    StepResult result_;
+    std::unique_ptr<ValuesRun> failed_;  // the values check that failed worst
+    Probe probe_;                        // the estimator's subsampled probe
+    std::string stageName_;              // the stage running, and since when
+    std::chrono::steady_clock::time_point stageStart_;
+    double stageCpuMs_ = 0;
+    bool workShown_ = false;         // a check showed work (noteWork)
+    bool statisticsOnly_ = false;    // runEstimatorStatistics
+    std::filesystem::path stubDir_;  // the stub's <id>.glsl, written when first needed
+};
+
+}  // namespace pbrlab::step_grading

@@ -1,0 +1,527 @@
+#include "shader/preprocess.h"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "shader/code_facts.h"
+#include "shader/student_file.h"
+#include "util/error.h"
+#include "util/fs.h"
+
+namespace fs = std::filesystem;
+
+namespace pbrlab {
+
+ShaderPreprocessor::ShaderPreprocessor(std::vector<fs::path> roots) : roots_(std::move(roots)) {}
+
+namespace {
+
+std::string readText(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path.string() + ": cannot open shader file");
+    std::ostringstream s;
+    s << in.rdbuf();
+    std::string text = s.str();
+    // GL reads the source as a C string: a NUL would silently cut the program short there.
+    if (text.find('\0') != std::string::npos)
+        throw Error(path.string() + ": contains NUL bytes (not text): refused");
+    return text;
+}
+
+// A logical line of a student's file as the compiler reads it: line continuations joined and
+// comments left out (each replaced by a space), with the file's line of each character.
+struct CodeLine {
+    std::string code;
+    std::vector<int> lines;
+    int lineAt(size_t i) const { return lines.empty() ? 0 : lines[std::min(i, lines.size() - 1)]; }
+};
+
+// The file's logical lines, in order; `openComment` gets the line of a /* left open at the
+// end (0 when none). Continuations are joined before comments are found, as the compiler
+// does, so a name hidden by `*\` + newline + `/` is seen where the compiler sees it.
+std::vector<CodeLine> codeLines(const std::string& text, int* openComment) {
+    // Continuations joined first, each character keeping the line it was on.
+    std::string joined;
+    std::vector<int> lineOf;
+    for (size_t i = 0, line = 1; i < text.size(); ++i) {
+        if (text[i] == '\\' &&
+            (text.compare(i + 1, 1, "\n") == 0 || text.compare(i + 1, 2, "\r\n") == 0)) {
+            i += text[i + 1] == '\r' ? 2 : 1;
+            ++line;
+            continue;
+        }
+        joined += text[i];
+        lineOf.push_back(int(line));
+        if (text[i] == '\n') ++line;
+    }
+    std::vector<CodeLine> result(1);
+    int commentStart = 0;
+    bool block = false, lineComment = false;
+    for (size_t i = 0; i < joined.size(); ++i) {
+        const char c = joined[i];
+        const char next = i + 1 < joined.size() ? joined[i + 1] : '\0';
+        if (c == '\n') {
+            lineComment = false;
+            if (!block) result.emplace_back();
+        } else if (lineComment) {
+            continue;  // up to the end of the line
+        } else if (block) {
+            if (c == '*' && next == '/') {
+                block = false;
+                ++i;
+                result.back().code += ' ';
+                result.back().lines.push_back(lineOf[i]);
+            }
+        } else if (c == '/' && (next == '/' || next == '*')) {
+            (next == '/' ? lineComment : block) = true;
+            commentStart = lineOf[i];
+            ++i;
+        } else {
+            result.back().code += c;
+            result.back().lines.push_back(lineOf[i]);
+        }
+    }
+    *openComment = block ? commentStart : 0;
+    return result;
+}
+
+// Calls f(identifier, its offset) for each identifier of a line of code (a letter or _, then
+// letters, digits and _; a number's suffix, as in 1e5 or 2u, is part of the number).
+template <class F>
+void forEachIdentifier(const std::string& code, F f) {
+    auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    for (size_t i = 0; i < code.size();) {
+        if (!word(code[i])) {
+            ++i;
+            continue;
+        }
+        size_t end = i;
+        while (end < code.size() && word(code[end])) ++end;
+        if (!std::isdigit(static_cast<unsigned char>(code[i]))) f(code.substr(i, end - i), i);
+        i = end;
+    }
+}
+
+// The names of the functions a host file defines: a return type and a name at the start of a
+// line (column 0), then `(`, and the body's `{` on that line or the signature going on after it
+// (not a prototype's `;`). The host's files are written that way.
+std::vector<std::string> definedFunctions(const std::string& text) {
+    static const std::regex definition(R"(^(\w+)\s+(\w+)\s*\((?:[^)]*\)\s*\{.*|[^;]*)$)");
+    std::vector<std::string> names;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+        // Only lines that can start a definition reach the (slow) regular expression.
+        if (line.empty() || !std::isalpha(static_cast<unsigned char>(line[0])) ||
+            line.find('(') == std::string::npos)
+            continue;
+        std::smatch m;
+        if (std::regex_search(line, m, definition)) names.push_back(m[2].str());
+    }
+    return names;
+}
+
+struct Expander {
+    std::vector<fs::path> roots;
+    fs::path studentFolder;  // set while expanding a student's file (see ShaderPart)
+    ExpandedShader out;
+    std::set<fs::path> included;
+    // The macros the host's text defines (the define set and #define lines outside students'
+    // files), which a student's file may neither redefine nor #undef.
+    std::set<std::string> hostMacros;
+    // Functions of the program no student's part may name -> whose they are (see expand).
+    std::map<std::string, std::string> privateHelpers;
+    // The macros the current student's part defined, #undef'd after it.
+    std::set<std::string> studentMacros;
+    // The current student's part's ShaderPart::unreachable.
+    const std::map<std::string, std::string>* unreachable = nullptr;
+
+    int sourceIndex(const std::string& name) {
+        out.sourceNames.push_back(name);
+        return int(out.sourceNames.size() - 1);
+    }
+
+    // An include is looked up next to the including file, then in each root; whatever it
+    // resolves to must stay inside a root (no "../" or symlink escapes).
+    fs::path resolve(const std::string& target, const fs::path& from, const std::string& where) {
+        std::vector<fs::path> candidates;
+        if (!from.empty()) candidates.push_back(from.parent_path() / target);
+        for (const auto& root : roots) candidates.push_back(root / target);
+        for (const auto& c : candidates) {
+            std::error_code ec;
+            if (!fs::exists(c, ec)) {
+                if (ec && ec != std::errc::no_such_file_or_directory)
+                    throw Error(where + ": #include \"" + target + "\" cannot be read (" +
+                                ec.message() + ")");
+                continue;
+            }
+            bool allowed = false;
+            for (const auto& root : roots) allowed = allowed || isInside(c, root);
+            if (!allowed)
+                throw Error(where + ": #include \"" + target +
+                            "\" leaves the allowed shader folders");
+            fs::path resolved = fs::canonical(c, ec);
+            if (ec)
+                throw Error(where + ": #include \"" + target + "\" cannot be resolved (" +
+                            ec.message() + ")");
+            return resolved;
+        }
+        throw Error(where + ": #include \"" + target + "\" not found");
+    }
+
+    std::string read(const fs::path& file) const {
+        return studentFolder.empty() ? readText(file) : readStudentFile(file, studentFolder);
+    }
+
+    // Refuses what a student's file may not write (see ShaderPreprocessor::expand) and notes
+    // the macros it defines.
+    void screenStudentText(const std::string& text, const std::string& name) {
+        auto refuse = [&](int line, const std::string& why) {
+            throw ShaderError(name + ":" + std::to_string(line) + ": error: " + why);
+        };
+        int openComment = 0;
+        const std::vector<CodeLine> lines = codeLines(text, &openComment);
+        static const std::regex directive(R"(^\s*#\s*(\w+)\s*(\w*))");
+        for (const CodeLine& l : lines) {
+            std::smatch d;
+            const size_t first = l.code.find_first_not_of(" \t\r");
+            const bool isDirective = first != std::string::npos && l.code[first] == '#' &&
+                                     std::regex_search(l.code, d, directive);
+            if (isDirective && d[1].str() == "include") continue;  // its path is no name
+            if (isDirective && (d[1].str() == "define" || d[1].str() == "undef")) {
+                const std::string macro = d[2].str();
+                if (hostMacros.count(macro))
+                    refuse(l.lineAt(0), "#" + d[1].str() + " " + macro + ": " + macro +
+                                            " is a macro of the host's (the program's code after "
+                                            "your file reads it): a step's file may read it, "
+                                            "but neither redefine nor #undef it");
+                if (d[1].str() == "define" && macro.rfind("GL_", 0) != 0 &&
+                    macro.find("__") == std::string::npos)
+                    studentMacros.insert(macro);  // (the compiler refuses GL_ and __ names)
+            }
+            if (isDirective && l.code.find("##") != std::string::npos)
+                refuse(l.lineAt(l.code.find("##")),
+                       "token pasting (##) is not allowed in a step's file: it can form a name "
+                       "the file does not write, such as a private helper of pbrlab's");
+            forEachIdentifier(l.code, [&](const std::string& identifier, size_t at) {
+                auto helper = privateHelpers.find(identifier);
+                if (helper != privateHelpers.end())
+                    refuse(l.lineAt(at),
+                           helper->first + " is private to " + helper->second +
+                               ", which this program links: a step's file may not name it, nor "
+                               "define a function of that name. Write that computation "
+                               "yourself.");
+            });
+        }
+        // A loop with no way out (grading/error_patterns.h reads it): what the compiler makes of it
+        // depends on the rest of the program (measured on Mesa: ndotl's `while (true) { x += 1.0;
+        // }` before its return gave 0 in a program with every step, the right value in one with
+        // steps 1..4), so the function's value would not be its own. Refused at the loop.
+        if (whyAlwaysZero(text).rfind("Your function has a loop that never ends", 0) == 0) {
+            static const std::regex endless(
+                R"(\bwhile\s*\(\s*(true|1)\s*\)|\bfor\s*\([^;()]*;\s*(true|1)?\s*;)");
+            int at = 1;
+            for (const CodeLine& l : lines) {
+                std::smatch m;
+                if (std::regex_search(l.code, m, endless)) {
+                    at = l.lineAt(size_t(m.position(0)));
+                    break;
+                }
+            }
+            refuse(at,
+                   "a loop that never ends (no break or return in it): a step's function "
+                   "must return, and what the compiler makes of such a loop depends on the "
+                   "rest of the program (it deletes the loop, or the code after it too), so "
+                   "your function's value would not be its own. Give the loop a condition "
+                   "that ends it.");
+        }
+        if (openComment)
+            refuse(openComment,
+                   "a /* comment that is not closed in this file: it would swallow the code "
+                   "that follows your file in the program");
+    }
+
+    // After a student's part: a line that ends a continuation left on its last line, then an
+    // #undef of every macro it defined, so none reaches the host's code after it.
+    void closeStudentPart() {
+        out.text += "\n";
+        for (const std::string& macro : studentMacros) out.text += "#undef " + macro + "\n";
+        studentMacros.clear();
+    }
+
+    void expandText(const std::string& text, const std::string& name, const fs::path& file) {
+        int index = sourceIndex(name);
+        if (!studentFolder.empty()) {
+            screenStudentText(text, name);
+            out.studentTexts[index] = text;
+            if (unreachable && !unreachable->empty()) out.unreachable[index] = *unreachable;
+        }
+        out.text += "#line 1 " + std::to_string(index) + "\n";
+        static const std::regex includeLine(R"(^\s*#\s*include\s*"([^"]+)\"\s*(//.*)?$)");
+        static const std::regex versionLine(R"(^\s*#\s*version\b.*$)");
+        static const std::regex hostDirective(R"(^\s*#\s*(extension|line)\b.*$)");
+        std::istringstream in(text);
+        std::string line;
+        int lineNo = 0;
+        while (std::getline(in, line)) {
+            ++lineNo;
+            if (!line.empty() && line.back() == '\r') line.pop_back();
+            std::smatch m;
+            if (std::regex_match(line, m, includeLine)) {
+                std::string where = name + ":" + std::to_string(lineNo);
+                fs::path target = resolve(m[1].str(), file, where);
+                if (included.insert(target).second) {
+                    out.files.push_back(target);
+                    expandText(read(target), target.string(), target);
+                }
+                out.text +=
+                    "#line " + std::to_string(lineNo + 1) + " " + std::to_string(index) + "\n";
+            } else if (std::regex_match(line, versionLine)) {
+                out.text += "\n";  // the host writes #version once, first
+            } else if (std::regex_match(line, m, hostDirective) && !studentFolder.empty()) {
+                // The compiler accepts these only before any code, or would map its messages
+                // through the student's #line: it reports them in the host's files.
+                throw ShaderError(name + ":" + std::to_string(lineNo) + ": error: #" + m[1].str() +
+                                  " is not allowed in a step's file: the host writes the "
+                                  "program's #version, extensions and line markers (the step's "
+                                  "file is pasted in the middle of the program)");
+            } else {
+                static const std::regex defineLine(R"(^\s*#\s*define\s+(\w+))");
+                if (studentFolder.empty() && std::regex_search(line, m, defineLine))
+                    hostMacros.insert(m[1].str());
+                out.text += line + "\n";
+            }
+        }
+    }
+};
+
+}  // namespace
+
+ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
+                                          const Defines& defines) const {
+    Expander ex;
+    ex.roots = roots_;
+    ex.out.text = "#version 450 core\n";
+    for (const auto& [name, value] : defines) {
+        ex.out.text += "#define " + name + " " + value + "\n";
+        ex.hostMacros.insert(name);
+    }
+    // The functions no student's part may name, found before any is read (one defined after
+    // the student's part can still be called through a prototype): the private helpers of
+    // every reference solution in the program, and the host's pbrlab_ functions after the
+    // first student's part (common.glsl's, before it, are utilities that compute no step, and
+    // the reference solutions call them).
+    const bool anyStudent = std::any_of(
+        parts.begin(), parts.end(), [](const ShaderPart& p) { return !p.studentFolder.empty(); });
+    bool afterStudent = false;
+    for (const auto& part : parts) {
+        if (!anyStudent) break;  // no one to screen
+        afterStudent = afterStudent || !part.studentFolder.empty();
+        if (!part.studentFolder.empty() || (part.solutionOf.empty() && !afterStudent)) continue;
+        const bool generated = !part.text.empty() || part.file.empty();
+        for (const std::string& f : definedFunctions(generated ? part.text : readText(part.file))) {
+            if (!part.solutionOf.empty() && f != part.solutionOf)
+                ex.privateHelpers.emplace(f, "the reference solution of " + part.solutionOf);
+            else if (part.solutionOf.empty() && f.rfind("pbrlab_", 0) == 0)
+                ex.privateHelpers.emplace(f, "the host's code after your file");
+        }
+    }
+    for (const auto& part : parts) {
+        ex.unreachable = &part.unreachable;
+        if (!part.text.empty() || part.file.empty()) {
+            ex.roots = roots_;
+            ex.studentFolder.clear();
+            ex.expandText(part.text, part.name.empty() ? "<generated>" : part.name, {});
+            continue;
+        }
+        std::error_code ec;
+        fs::path file = fs::weakly_canonical(part.file, ec);
+        if (ec) throw Error(part.file.string() + ": cannot be resolved (" + ec.message() + ")");
+        if (!ex.included.insert(file).second) continue;
+        ex.out.files.push_back(file);
+        ex.studentFolder = part.studentFolder;
+        ex.roots = part.studentFolder.empty() ? roots_ : std::vector<fs::path>{part.studentFolder};
+        // A student's file is read by the name it was given, so that the screening sees a
+        // link as a link (and names the file as the student knows it).
+        ex.expandText(ex.read(part.studentFolder.empty() ? file : part.file), file.string(), file);
+        if (!part.studentFolder.empty()) ex.closeStudentPart();
+    }
+    return ex.out;
+}
+
+std::string mapCompilerLog(const std::string& log, const std::vector<std::string>& sourceNames) {
+    // Mesa writes "0:12(5): error: ...", others "0(12) : error ...".
+    static const std::regex ref(R"((^|\n|\s)(\d+)(:(\d+)\((\d+)\)|\((\d+)\)))");
+    std::string result;
+    auto begin = log.cbegin();
+    std::smatch m;
+    while (std::regex_search(begin, log.cend(), m, ref)) {
+        result.append(begin, m[0].first);
+        size_t index = std::stoul(m[2].str());
+        std::string name = index < sourceNames.size() ? sourceNames[index] : m[2].str();
+        result += m[1].str() + name + ":" +
+                  (m[4].matched ? m[4].str() + "(" + m[5].str() + ")" : m[6].str());
+        begin = m[0].second;
+    }
+    result.append(begin, log.cend());
+    return result;
+}
+
+namespace {
+
+// The line (1-based) of the first line of `text` that `matches`, or 0.
+template <class Matches>
+int firstLine(const std::string& text, Matches matches) {
+    std::istringstream in(text);
+    int lineNo = 0;
+    for (std::string line; std::getline(in, line);) {
+        ++lineNo;
+        if (matches(line)) return lineNo;
+    }
+    return 0;
+}
+
+// The line of a definition or prototype of function `name` in `text`, or 0.
+int definitionLine(const std::string& text, const std::string& name) {
+    const std::regex definition("^\\s*(\\w+\\s+)+" + name + "\\s*\\(");
+    return firstLine(text, [&](const std::string& line) {
+        std::smatch m;
+        return std::regex_search(line, m, definition) && m[1].str().rfind("return", 0) != 0;
+    });
+}
+
+// The line of the first call of function `name` in `text` (comments left out), or 0.
+int callLine(const std::string& text, const std::string& name) {
+    const std::regex call("\\b" + name + "\\s*\\(");
+    return firstLine(text, [&](const std::string& line) {
+        return std::regex_search(line.substr(0, line.find("//")), call);
+    });
+}
+
+// The body of the first definition of `name` (its braces), or "".
+std::string bodyOf(const std::string& text, const std::string& name) {
+    const std::regex definition("\\b" + name + "\\s*\\([^)]*\\)\\s*\\{");
+    std::smatch m;
+    if (!std::regex_search(text, m, definition)) return "";
+    const size_t open = size_t(m.position(0) + m.length(0) - 1);
+    int depth = 0;
+    for (size_t i = open; i < text.size(); ++i) {
+        depth += text[i] == '{' ? 1 : text[i] == '}' ? -1 : 0;
+        if (depth == 0) return text.substr(open, i - open + 1);
+    }
+    return text.substr(open);
+}
+
+// What ShaderPart::unreachable says about `name` for the student's source `index`, or "".
+std::string unreachableReason(const ExpandedShader& shader, int index, const std::string& name) {
+    auto names = shader.unreachable.find(index);
+    if (names == shader.unreachable.end()) return "";
+    auto why = names->second.find(name);
+    return why == names->second.end() ? "" : why->second;
+}
+
+bool isStudentSource(const ExpandedShader& shader, const std::string& file) {
+    for (const auto& [index, text] : shader.studentTexts)
+        if (size_t(index) < shader.sourceNames.size() && shader.sourceNames[size_t(index)] == file)
+            return true;
+    return false;
+}
+
+// What to say about a function of the student's file that the compiler names in `message`.
+std::string hintFor(const std::string& message, const std::string& name, const std::string& code,
+                    const std::vector<std::string>& hostNames) {
+    const bool hosts = std::find(hostNames.begin(), hostNames.end(), name) != hostNames.end();
+    if (message.find("redefined") != std::string::npos) {
+        if (name == "main")
+            return "main is the host's (it calls your function for every pixel): a step's file "
+                   "holds only your function and helpers of your own.";
+        // A contract function's redefinition is hinted by the grader, which knows its step.
+        return hosts ? "" : name + " is already defined by pbrlab: give your helper another name.";
+    }
+    if (message.find("recursion") != std::string::npos) {
+        const std::string body = bodyOf(code, name);
+        const std::regex call("\\b" + name + "\\s*\\(");
+        if (!body.empty() && std::regex_search(body, call))
+            return name + " calls itself, and GLSL allows no recursion: write it as a loop.";
+        return name + " is part of a cycle of calls" +
+               (hosts ? " through a contract function that calls yours back" : "") +
+               ", and GLSL allows no recursion: compute that part yourself.";
+    }
+    return "";
+}
+
+}  // namespace
+
+std::string mapCompilerLog(const std::string& log, const ExpandedShader& shader) {
+    const std::string mapped = mapCompilerLog(log, shader.sourceNames);
+    if (shader.studentTexts.empty()) return mapped;
+    // "file:L(C): error: message" as mapCompilerLog writes Mesa's messages.
+    static const std::regex located(R"(^(.*):(\d+)\((\d+)\): (error|warning): (.*)$)");
+    // The function a message is about: `name' redefined, `float name(float)' has static
+    // recursion.
+    static const std::regex named(R"(`(?:[\w ]*\s)?(\w+)(?:\([^']*\))?')");
+    // The host's function names a student may collide with: contract functions are declared
+    // by prototypes (each before its step's part); others are found by their definition in
+    // the host's text.
+    std::vector<std::string> hostNames;
+    {
+        static const std::regex prototype(R"(^\s*\w+\s+(\w+)\s*\([^;{]*\)\s*;)");
+        static const std::regex marker(R"(^#line \d+ (\d+)$)");
+        std::istringstream in(shader.text);
+        int source = -1;
+        for (std::string line; std::getline(in, line);) {
+            std::smatch m;
+            if (std::regex_match(line, m, marker))
+                source = std::stoi(m[1].str());
+            else if (!shader.studentTexts.count(source) && std::regex_search(line, m, prototype))
+                hostNames.push_back(m[1].str());
+        }
+    }
+    // A call of a function the program does not declare. Mesa reports it at a wrong source
+    // string (common.glsl's), so it is moved to the student's call; a contract function of a
+    // later step is said as such (ShaderPart::unreachable).
+    static const std::regex undeclared(R"(no function with name '(\w+)')");
+    std::istringstream in(mapped);
+    std::string out;
+    for (std::string line; std::getline(in, line);) {
+        std::smatch m, n;
+        if (std::regex_match(line, m, located) && std::regex_search(line, n, undeclared)) {
+            const std::string name = n[1].str();
+            for (const auto& [index, code] : shader.studentTexts) {
+                const int at = callLine(code, name);
+                if (at == 0) continue;
+                const std::string why = unreachableReason(shader, index, name);
+                line = shader.sourceNames[size_t(index)] + ":" + std::to_string(at) + ": " +
+                       m[4].str() + ": " + (why.empty() ? m[5].str() : why);
+                break;
+            }
+        } else if (std::regex_match(line, m, located) && !isStudentSource(shader, m[1].str()) &&
+                   std::regex_search(line, n, named)) {
+            const std::string message = m[5].str(), name = n[1].str();
+            for (const auto& [index, code] : shader.studentTexts) {
+                // Where the student defines the function, else where the student calls it
+                // (a host function in the cycle is reached from the student's call).
+                const int defined = definitionLine(code, name);
+                const bool recursion = message.find("recursion") != std::string::npos;
+                const int at = defined ? defined : recursion ? callLine(code, name) : 0;
+                if (at == 0) continue;
+                const std::string hint =
+                    defined ? hintFor(message, name, code, hostNames)
+                            : "you call " + name +
+                                  ", which calls your function back, and GLSL allows no "
+                                  "recursion: compute that part yourself.";
+                line = shader.sourceNames[size_t(index)] + ":" + std::to_string(at) + ": " +
+                       m[4].str() + ": " + message + (hint.empty() ? "" : "\nhint: " + hint);
+                break;
+            }
+        }
+        out += line + "\n";
+    }
+    if (!mapped.empty() && mapped.back() != '\n' && !out.empty()) out.pop_back();
+    return out;
+}
+
+}  // namespace pbrlab
