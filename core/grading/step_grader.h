@@ -1,13 +1,13 @@
-// The grader of one step behind gradeStep, private to core/src. Its checks are defined by
-// responsibility in the grading*.cpp files:
-//   grading/grade_step.cpp            the order of the checks, the verdict, stages and their times
-//   grading/values.cpp     values against the reference's band: the probe, the scenes (the
-//                          sphere grid among a step's declared cases), random inputs, every
-//                          exercised parameter value, coloured lights
-//   grading/estimator_band.cpp  estimators by convergence to the converged integral
-//   grading/linearity.cpp  linear in radiance: steps that read the environment
-//   grading/checks.cpp     the contract (what a step may read), invariants, robustness
-//   grading/failure_message.cpp   the failure message and the mistake named from the error
+// The grader of one step behind gradeStep, private to core/grading. Its checks are defined by
+// responsibility, one file each:
+//   grade_step.cpp       the order of the checks, the verdict, stages and their times
+//   values.cpp           values against the reference's band: the probe, the scenes (the
+//                        sphere grid among a step's declared cases), random inputs, every
+//                        exercised parameter value, coloured lights
+//   estimator_band.cpp   estimators by convergence to the converged integral
+//   linearity.cpp        linear in radiance: steps that read the environment
+//   checks.cpp           the contract (what a step may read), invariants, robustness
+//   failure_message.cpp  the failure message and the mistake named from the error
 #pragma once
 
 #include <chrono>
