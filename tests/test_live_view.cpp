@@ -236,3 +236,69 @@ TEST(LiveView, ANewerEditSupersedesTheEvaluationRunning) {
                              {}, kRenderSize, kRenderSize, false);
     EXPECT_EQ(r.value.pixels, lab.shown().solutionValue.pixels);
 }
+
+// An environment's maps are built on the evaluation thread and handed to the window's
+// renderer with its result: a drag before they arrive draws no live picture (which would build
+// them in the frame) and says why; after, the window's renderer holds the same texels as a
+// headless renderer builds, and a drag draws at once.
+TEST(LiveView, AnEnvironmentsMapsAreBuiltOnTheEvaluationThreadNotInAFrame) {
+    auto context = createHeadlessContext();
+    test::TempDir dir;
+    const char* config = std::getenv("XDG_CONFIG_HOME");
+    const std::string oldConfig = config ? config : "";
+    setenv("XDG_CONFIG_HOME", dir.path.c_str(), 1);
+    struct Restore {
+        std::string value;
+        ~Restore() {
+            if (value.empty())
+                unsetenv("XDG_CONFIG_HOME");
+            else
+                setenv("XDG_CONFIG_HOME", value.c_str(), 1);
+        }
+    } restore{oldConfig};
+    GuiOptions options;
+    options.modulesDirs = {PBRLAB_MODULE_DIR};
+    options.module = "split_sum";  // reads the environment cube and every derived map
+    GuiState state;
+    Lab lab(options, state);
+    Requests requests;
+    const Scene scene = lab.currentScene(state);
+    const IblSettings ibl = lab.iblFor(scene);
+    lab.update(state, requests);  // still: the evaluation starts, and builds the maps
+    ASSERT_TRUE(lab.evaluating());
+    state.camera.yaw += 0.5;  // the student drags before it arrives
+    requests.moved = true;
+    lab.update(state, requests);
+    EXPECT_TRUE(lab.shown().liveWaitsForMaps);
+    EXPECT_EQ(lab.shown().liveTexture, 0u);
+    EXPECT_EQ(lab.renderer().environmentMapsBuilt(scene.environment, ibl), 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // past the settle delay
+    lab.update(state, requests);
+    framesUntilEvaluated(lab, state, requests);
+    ASSERT_EQ(lab.renderer().environmentMapsBuilt(scene.environment, ibl), 2);
+
+    LabRenderer headless{lab.paths(), RendererOptions{{}, {}}};
+    headless.environmentMaps(scene, ibl);
+    const auto built = headless.environmentMapImages(scene.environment, ibl);
+    const auto taken = lab.renderer().environmentMapImages(scene.environment, ibl);
+    ASSERT_TRUE(built && taken);
+    auto same = [](const std::vector<std::vector<Image>>& a,
+                   const std::vector<std::vector<Image>>& b) {
+        if (a.size() != b.size()) return false;
+        for (size_t level = 0; level < a.size(); ++level)
+            for (size_t face = 0; face < a[level].size(); ++face)
+                if (a[level][face].pixels != b[level][face].pixels) return false;
+        return true;
+    };
+    EXPECT_TRUE(same(built->environment, taken->environment));
+    EXPECT_TRUE(same(built->irradiance, taken->irradiance));
+    EXPECT_TRUE(same(built->prefilter, taken->prefilter));
+    EXPECT_EQ(built->lut.pixels, taken->lut.pixels);
+    EXPECT_EQ(built->prefilterMaxLod, taken->prefilterMaxLod);
+
+    state.camera.yaw += 0.02;  // a drag now draws at once
+    requests.moved = true;
+    lab.update(state, requests);
+    EXPECT_FALSE(lab.shown().liveWaitsForMaps);
+    EXPECT_NE(lab.shown().liveTexture, 0u);
+}

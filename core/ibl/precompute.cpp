@@ -458,6 +458,43 @@ Image IblPrecompute::readTexture(GLuint texture, int width, int height) {
     return readAttachment(GL_TEXTURE_2D, texture, 0, width, height);
 }
 
+IblMapImages IblPrecompute::readImages(const IblMaps& maps) {
+    const IblSettings& s = maps.settings;
+    IblMapImages images;
+    images.settings = s;
+    images.environment =
+        readCube(maps.environment.id(), s.environmentSize, fullMipCount(s.environmentSize));
+    images.derived = maps.derived;
+    if (!maps.derived) return images;
+    images.irradiance = readCube(maps.irradiance.id(), s.irradianceSize, 1);
+    images.prefilter = readCube(maps.prefilter.id(), s.prefilterSize, s.prefilterMips);
+    images.lut = readLut(maps);
+    images.prefilterMaxLod = maps.prefilterMaxLod;
+    return images;
+}
+
+std::unique_ptr<IblMaps> IblPrecompute::fromImages(const IblMapImages& images) {
+    const IblSettings& s = images.settings;
+    auto maps = makeMaps(s);
+    maps->environment = makeCube(s.environmentSize, int(images.environment.size()));
+    uploadCube(maps->environment.id(), images.environment);
+    maps->passes.push_back({"environment", "environment cube, from another context", 0, true});
+    if (!images.derived) return maps;
+    maps->irradiance = makeCube(s.irradianceSize, int(images.irradiance.size()));
+    uploadCube(maps->irradiance.id(), images.irradiance);
+    maps->prefilter = makeCube(s.prefilterSize, int(images.prefilter.size()));
+    uploadCube(maps->prefilter.id(), images.prefilter);
+    maps->lut = makeLutTexture(images.lut.width, images.lut.height);
+    gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl::TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, images.lut.width, images.lut.height, GL_RGBA,
+                      GL_FLOAT, images.lut.pixels.data());
+    gl::checkError("uploading the LUT");
+    maps->prefilterMaxLod = images.prefilterMaxLod;
+    maps->derived = true;
+    maps->passes.push_back({"irradiance", "derived maps, from another context", 0, true});
+    return maps;
+}
+
 Image IblPrecompute::readLut(const IblMaps& maps) {
     return readTexture(maps.lut.id(), maps.settings.lutWidth, maps.settings.lutHeight);
 }

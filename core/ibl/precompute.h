@@ -94,6 +94,17 @@ struct IblMaps {
     double milliseconds(const std::string& map) const;  // the passes of that map, summed
 };
 
+// The maps as images, read back on one context to be uploaded on another (the GUI's evaluation
+// thread builds them, the window's renderer takes them): mips[level][face], RGBA, row 0 = t = 0.
+struct IblMapImages {
+    IblSettings settings;
+    std::vector<std::vector<Image>> environment;  // every mip
+    bool derived = false;                         // the maps below are held (IblMaps::derived)
+    std::vector<std::vector<Image>> irradiance, prefilter;
+    Image lut;  // RGBA as read back; the texture holds its red and green
+    float prefilterMaxLod = 0;
+};
+
 // The precomputed maps on disk: the irradiance cube and prefiltered mips keyed by the
 // environment's pixels, the settings and every GLSL file and CPU algorithm that computes them;
 // the LUT keyed by its own settings and files only (it does not depend on the environment).
@@ -123,6 +134,10 @@ public:
     std::unique_ptr<IblMaps> buildEnvironment(const Image& equirect, const IblSettings& settings);
     void buildDerived(IblMaps& maps, const Image& equirect, const IblDiskCache* cache = nullptr);
     static std::unique_ptr<IblMaps> makeMaps(const IblSettings& settings);
+    // Every map `maps` holds (the derived ones when built) read back, and maps made from such
+    // images on another context: the same texels, no pass run.
+    static IblMapImages readImages(const IblMaps& maps);
+    static std::unique_ptr<IblMaps> fromImages(const IblMapImages& images);
     // Called as each pass starts ("[2/4] irradiance bins 16 -> 32"): progress for people.
     std::function<void(const std::string&)> onPass;
 

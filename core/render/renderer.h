@@ -150,6 +150,15 @@ public:
     // True when the scene's environment maps with these settings are ready (no precompute on
     // a render that reads them).
     bool hasEnvironmentMaps(const Scene& scene, const IblSettings& settings) const;
+    // Which of those maps are built: 0 none, 1 the environment cube, 2 the derived maps too.
+    int environmentMapsBuilt(const std::string& environment, const IblSettings& settings) const;
+    // The maps of (environment, settings) read back from this renderer's context (null when
+    // none is built), and another renderer's maps taken instead of building them: the GUI's
+    // evaluation thread builds the maps, the window's renderer uploads its images
+    // (milliseconds, against a precompute of tenths of a second to seconds in a frame).
+    std::shared_ptr<const IblMapImages> environmentMapImages(const std::string& environment,
+                                                             const IblSettings& settings) const;
+    void adoptEnvironmentMaps(const std::string& environment, const IblMapImages& images);
     const std::filesystem::path& cacheRoot() const { return options_.cacheRoot; }
 
     // Whether the module's view may read this IBL sampler: the environment cube when it needs

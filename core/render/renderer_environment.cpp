@@ -19,8 +19,11 @@ namespace pbrlab {
 namespace {
 
 // What a scene's environment maps are kept by: their source and every setting they depend on.
+std::string environmentKey(const std::string& environment, const IblSettings& settings) {
+    return environment + "|" + settings.key();
+}
 std::string environmentKey(const Scene& scene, const IblSettings& settings) {
-    return scene.environment + "|" + settings.key();
+    return environmentKey(scene.environment, settings);
 }
 
 }  // namespace
@@ -83,8 +86,29 @@ LabRenderer::Environment& LabRenderer::environment(const Scene& scene, const Ibl
 }
 
 bool LabRenderer::hasEnvironmentMaps(const Scene& scene, const IblSettings& settings) const {
-    auto it = environments_.find(environmentKey(scene, settings));
-    return it != environments_.end() && it->second.maps && it->second.maps->derived;
+    return environmentMapsBuilt(scene.environment, settings) == 2;
+}
+
+int LabRenderer::environmentMapsBuilt(const std::string& environment,
+                                      const IblSettings& settings) const {
+    auto it = environments_.find(environmentKey(environment, settings));
+    if (it == environments_.end() || !it->second.maps) return 0;
+    return it->second.maps->derived ? 2 : 1;
+}
+
+std::shared_ptr<const IblMapImages> LabRenderer::environmentMapImages(
+    const std::string& environment, const IblSettings& settings) const {
+    auto it = environments_.find(environmentKey(environment, settings));
+    if (it == environments_.end() || !it->second.maps) return nullptr;
+    return std::make_shared<const IblMapImages>(IblPrecompute::readImages(*it->second.maps));
+}
+
+void LabRenderer::adoptEnvironmentMaps(const std::string& environment, const IblMapImages& images) {
+    Environment& env = environments_[environmentKey(environment, images.settings)];
+    if (env.maps && (env.maps->derived || !images.derived)) return;  // as much held already
+    env = Environment{};
+    logLine("environment", environment + " (" + images.settings.key() + ") from another context");
+    env.maps = IblPrecompute::fromImages(images);
 }
 
 float LabRenderer::prefilterMaxLod(const Scene& scene, const IblSettings& settings) const {

@@ -223,6 +223,11 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
     }
     if (!r.studentRendered) r.studentValue = Image();
     if (job.compose && r.renderError.empty()) r.composed = job.compose(r);
+    if (job.environmentMapsHeld >= 0 &&
+        renderer.environmentMapsBuilt(job.scene.environment, job.ibl) > job.environmentMapsHeld) {
+        r.environment = job.scene.environment;
+        r.environmentMaps = renderer.environmentMapImages(job.scene.environment, job.ibl);
+    }
     r.compiled = renderer.programs().compiled();
     r.milliseconds = millisecondsSince(start);
     return r;

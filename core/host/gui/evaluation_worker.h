@@ -68,6 +68,9 @@ struct EvaluationJob {
     std::filesystem::path submission;
     bool student = false;  // the student's file exists and may be read: render it too
     int side = 0;          // the picture's width and height
+    // The environment's maps the window's renderer holds (LabRenderer::environmentMapsBuilt):
+    // the result brings the worker's when it has built more (-1: never).
+    int environmentMapsHeld = -1;
     // Run on the worker after the evaluation, when the solution's rendered (empty: not run).
     std::function<ComposedView(const EvaluationResult&)> compose;
 };
@@ -88,6 +91,10 @@ struct EvaluationResult {
     double milliseconds = 0;                // the whole evaluation, on the worker
     std::vector<CompiledProgram> compiled;  // the worker's programs so far, in order
     std::optional<ComposedView> composed;   // EvaluationJob::compose's
+    // The maps of the job's environment, when the worker built more than the window held:
+    // the window's renderer takes them instead of building them in a frame.
+    std::string environment;
+    std::shared_ptr<const IblMapImages> environmentMaps;
 };
 
 // Where the job running is, for the progress line under the picture.

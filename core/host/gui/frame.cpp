@@ -111,17 +111,16 @@ void Lab::update(GuiState& state, Requests& requests) {
     // reference, the probes and the statistics follow once it has been still for a moment
     // (dirty_ stays set until then), on the evaluation thread: the frames go on meanwhile.
     const bool moving = std::chrono::steady_clock::now() - lastMove_ < kSettleDelay;
-    // The first live picture of an environment precomputes for seconds: show a frame that
-    // says so, once per step and environment (a step that reads no derived map never has them
-    // all: a notice every other frame would halve its frame rate).
-    if (dirty_ && moving && (m.needs & NeedsEnvironment) &&
-        !renderer_->hasEnvironmentMaps(scene, iblFor(scene)) &&
-        precomputeNoticed_.insert(m.id + "|" + scene.environment + "|" + iblFor(scene).key())
-            .second)
-        return;
     if (m.needs & NeedsEnvironment) useBudgetSettings(scene);
+    // An environment's maps are built on the evaluation thread, which hands them to the
+    // window's renderer with its result (showEvaluation): a live picture before they arrive
+    // would build them in the frame (0.1 s to seconds). Until then a drag keeps the picture
+    // on screen and says why.
+    shown_.liveWaitsForMaps =
+        dirty_ && moving && (m.needs & NeedsEnvironment) &&
+        renderer_->environmentMapsBuilt(scene.environment, iblFor(scene)) == 0;
     if (dirty_ && moving) {
-        if (!drawLive(state)) startEvaluation(state);
+        if (!shown_.liveWaitsForMaps && !drawLive(state)) startEvaluation(state);
     } else if (dirty_) {
         // Still (a step, scene or saved file; the input stopped): the picture on screen stays
         // until the evaluation arrives, with its progress under it. No live picture here: for
@@ -252,6 +251,8 @@ void Lab::startEvaluation(const GuiState& state) {
     job.params = state.params.at(d.id);
     job.scene = currentScene(state);
     job.ibl = iblFor(job.scene);
+    if (d.needs & NeedsEnvironment)
+        job.environmentMapsHeld = renderer_->environmentMapsBuilt(job.scene.environment, job.ibl);
     job.submission = submission_;
     job.side = kRenderSize;
     updatePermutation(state, applyParamBindings(job.scene, d, job.params));
@@ -283,6 +284,7 @@ void Lab::startEvaluation(const GuiState& state) {
 // superseded it): what the panels show.
 void Lab::showEvaluation(EvaluationResult r, const GuiState& state) {
     shown_.liveTexture = 0;
+    if (r.environmentMaps) renderer_->adoptEnvironmentMaps(r.environment, *r.environmentMaps);
     const ModuleDesc& d = module(state);
     if (r.renderError.empty()) {
         shown_.solutionValue = std::move(r.solutionValue);

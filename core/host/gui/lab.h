@@ -77,6 +77,9 @@ struct Shown {
     GLuint liveTexture = 0;    // while the input moves: the live picture (0: the settled image)
     const char* liveWho = "";  // whose function the live picture is
     int liveSide = 0;          // the live picture's side (kRenderSize: not reduced)
+    // The input moves but no live picture is drawn: the environment's maps are being built
+    // on the evaluation thread (they arrive with its result).
+    bool liveWaitsForMaps = false;
     // The step's programs for the scene on screen: (label, defines) as compiled() lists them.
     std::set<std::pair<std::string, std::string>> permutation;
     double frameMs = 0, renderMs = 0;
@@ -129,13 +132,14 @@ public:
     LiveSize& liveSize() { return live_; }  // the live picture's side (tests set it)
     // The term views of the loaded steps (term_views.h), in the view chooser's order.
     const std::vector<TermView>& termViews() const { return termViews_; }
+    // The IBL settings the scene's maps are built with (--error-budget's, else the defaults).
+    IblSettings iblFor(const Scene& scene) const;
 
 private:
     void select(GuiState& state, int index);
     void loadScene(GuiState& state);
     void noteModelWarnings(const Scene& scene);
     void useBudgetSettings(const Scene& scene);
-    IblSettings iblFor(const Scene& scene) const;
     bool drawLive(const GuiState& state);
     void startEvaluation(const GuiState& state);
     void showEvaluation(EvaluationResult result, const GuiState& state);
@@ -175,7 +179,6 @@ private:
     std::map<std::string, IblSettings> budgetSettings_;  // --error-budget, per environment
     // The evaluation is out of date (dirty_) and the input last moved at lastMove_.
     bool dirty_ = true;
-    std::set<std::string> precomputeNoticed_;  // step|environment|settings noticed already
     std::chrono::steady_clock::time_point lastMove_{};
     LiveSize live_{kRenderSize};  // the live picture's side
     std::vector<int> liveSizes_;  // of every live frame, for --orbit's report

@@ -197,7 +197,11 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
     // The live picture is the student's (or the solution's), drawn at a reduced size while the
     // input moves: say so, and what follows when it stops (or, stopped, when the evaluation
     // under it arrives: its progress is the line below).
-    if (shown.liveTexture && lab.evaluating())
+    if (shown.liveWaitsForMaps)
+        ImGui::TextDisabled(
+            "moving: the environment's maps are being built on the evaluation "
+            "thread; the picture follows when they arrive");
+    else if (shown.liveTexture && lab.evaluating())
         ImGui::TextDisabled("%s picture at %dx%d; the %s view, %dx%d, when evaluated",
                             shown.liveWho, shown.liveSide, shown.liveSide,
                             viewName(state.view, state.term, lab.termViews()).c_str(), kRenderSize,
