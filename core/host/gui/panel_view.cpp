@@ -198,9 +198,7 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
     // input moves: say so, and what follows when it stops (or, stopped, when the evaluation
     // under it arrives: its progress is the line below).
     if (shown.liveWaitsForMaps)
-        ImGui::TextDisabled(
-            "moving: the environment's maps are being built on the evaluation "
-            "thread; the picture follows when they arrive");
+        ImGui::TextDisabled("moving: the picture follows when the environment's maps arrive");
     else if (shown.liveTexture && lab.evaluating())
         ImGui::TextDisabled("%s picture at %dx%d; the %s view, %dx%d, when evaluated",
                             shown.liveWho, shown.liveSide, shown.liveSide,

@@ -57,7 +57,7 @@ ViewStatus viewStatus(const Lab& lab, const GuiState& state) {
         s.statsHeading = text;
         return s;
     }
-    if (shown.liveTexture) {
+    if (shown.liveTexture || shown.liveWaitsForMaps) {
         s.statsHeading = "vs the CPU reference: follows when the input stops";
         return s;
     }
