@@ -113,6 +113,27 @@ TEST(LiveView, CoarseSpheresMoveThePictureByUnderAPixel) {
     EXPECT_LT(changedCoverage, coveredPixels / 20);
 }
 
+// An empty XDG_CONFIG_HOME for one test, so that no remembered step, scene or model (gui.json)
+// is read; the old value comes back at the end of the test.
+class EmptyConfigHome {
+public:
+    EmptyConfigHome() {
+        const char* old = std::getenv("XDG_CONFIG_HOME");
+        old_ = old ? old : "";
+        setenv("XDG_CONFIG_HOME", dir_.path.c_str(), 1);
+    }
+    ~EmptyConfigHome() {
+        if (old_.empty())
+            unsetenv("XDG_CONFIG_HOME");
+        else
+            setenv("XDG_CONFIG_HOME", old_.c_str(), 1);
+    }
+
+private:
+    test::TempDir dir_;
+    std::string old_;
+};
+
 // The window's frames while the evaluation thread works, until its result has arrived (each
 // frame returns at once: the evaluation is not waited for).
 void framesUntilEvaluated(Lab& lab, GuiState& state, Requests& requests) {
@@ -130,20 +151,7 @@ void framesUntilEvaluated(Lab& lab, GuiState& state, Requests& requests) {
 // what the headless renderer (`pbrlab render`) draws for that camera.
 TEST(LiveView, MovingFramesAreReducedAndTheStillFrameIsTheHeadlessRender) {
     auto context = createHeadlessContext();
-    test::TempDir dir;
-    // No remembered step, scene or model (gui.json), for this test only.
-    const char* config = std::getenv("XDG_CONFIG_HOME");
-    const std::string oldConfig = config ? config : "";
-    setenv("XDG_CONFIG_HOME", dir.path.c_str(), 1);
-    struct Restore {
-        std::string value;
-        ~Restore() {
-            if (value.empty())
-                unsetenv("XDG_CONFIG_HOME");
-            else
-                setenv("XDG_CONFIG_HOME", value.c_str(), 1);
-        }
-    } restore{oldConfig};
+    const EmptyConfigHome config;  // no remembered step, scene or model (gui.json)
     GuiOptions options;
     options.modulesDirs = {PBRLAB_MODULE_DIR};
     options.module = "ndf";
@@ -200,19 +208,7 @@ TEST(LiveView, MovingFramesAreReducedAndTheStillFrameIsTheHeadlessRender) {
 // drops it at its next stage), and the one shown is the newer state's.
 TEST(LiveView, ANewerEditSupersedesTheEvaluationRunning) {
     auto context = createHeadlessContext();
-    test::TempDir dir;
-    const char* config = std::getenv("XDG_CONFIG_HOME");
-    const std::string oldConfig = config ? config : "";
-    setenv("XDG_CONFIG_HOME", dir.path.c_str(), 1);
-    struct Restore {
-        std::string value;
-        ~Restore() {
-            if (value.empty())
-                unsetenv("XDG_CONFIG_HOME");
-            else
-                setenv("XDG_CONFIG_HOME", value.c_str(), 1);
-        }
-    } restore{oldConfig};
+    const EmptyConfigHome config;
     GuiOptions options;
     options.modulesDirs = {PBRLAB_MODULE_DIR};
     options.module = "ndotl";
@@ -243,19 +239,7 @@ TEST(LiveView, ANewerEditSupersedesTheEvaluationRunning) {
 // headless renderer builds, and a drag draws at once.
 TEST(LiveView, AnEnvironmentsMapsAreBuiltOnTheEvaluationThreadNotInAFrame) {
     auto context = createHeadlessContext();
-    test::TempDir dir;
-    const char* config = std::getenv("XDG_CONFIG_HOME");
-    const std::string oldConfig = config ? config : "";
-    setenv("XDG_CONFIG_HOME", dir.path.c_str(), 1);
-    struct Restore {
-        std::string value;
-        ~Restore() {
-            if (value.empty())
-                unsetenv("XDG_CONFIG_HOME");
-            else
-                setenv("XDG_CONFIG_HOME", value.c_str(), 1);
-        }
-    } restore{oldConfig};
+    const EmptyConfigHome config;
     GuiOptions options;
     options.modulesDirs = {PBRLAB_MODULE_DIR};
     options.module = "split_sum";  // reads the environment cube and every derived map

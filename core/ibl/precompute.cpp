@@ -117,6 +117,16 @@ gl::Handle makeLutTexture(int width, int height) {
     return lut;
 }
 
+// A LUT texture holding an image read back from one (RGBA: its red and green are the texture's).
+gl::Handle uploadLut(const Image& rg) {
+    gl::Handle lut = makeLutTexture(rg.width, rg.height);
+    gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl::TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, rg.width, rg.height, GL_RGBA, GL_FLOAT,
+                      rg.pixels.data());
+    gl::checkError("uploading the LUT");
+    return lut;
+}
+
 class PassTimer {
 public:
     PassTimer(IblMaps& maps, std::string map, std::string label,
@@ -301,11 +311,7 @@ void IblPrecompute::buildDerived(IblMaps& maps, const Image& equirect, const Ibl
     std::vector<std::vector<Image>> lut;
     if (cache && readMaps(lutFile, lut) && lut[0].size() == 1 && lut[0][0].width == s.lutWidth &&
         lut[0][0].height == s.lutHeight) {
-        const Image& rg = lut[0][0];
-        maps.lut = makeLutTexture(s.lutWidth, s.lutHeight);
-        gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-        gl::TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, rg.width, rg.height, GL_RGBA, GL_FLOAT,
-                          rg.pixels.data());
+        maps.lut = uploadLut(lut[0][0]);
         maps.passes.push_back({"lut", "brdf lut (cached)", 0, true});
         logLine("precompute", "LUT from " + lutFile.string());
     } else {
@@ -484,11 +490,7 @@ std::unique_ptr<IblMaps> IblPrecompute::fromImages(const IblMapImages& images) {
     uploadCube(maps->irradiance.id(), images.irradiance);
     maps->prefilter = makeCube(s.prefilterSize, int(images.prefilter.size()));
     uploadCube(maps->prefilter.id(), images.prefilter);
-    maps->lut = makeLutTexture(images.lut.width, images.lut.height);
-    gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    gl::TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, images.lut.width, images.lut.height, GL_RGBA,
-                      GL_FLOAT, images.lut.pixels.data());
-    gl::checkError("uploading the LUT");
+    maps->lut = uploadLut(images.lut);
     maps->prefilterMaxLod = images.prefilterMaxLod;
     maps->derived = true;
     maps->passes.push_back({"irradiance", "derived maps, from another context", 0, true});

@@ -147,10 +147,8 @@ public:
     // its name): what a cached value computed from those maps is keyed by.
     std::uint64_t environmentDigest(const Scene& scene, const IblSettings& settings,
                                     bool derived = true);
-    // True when the scene's environment maps with these settings are ready (no precompute on
-    // a render that reads them).
-    bool hasEnvironmentMaps(const Scene& scene, const IblSettings& settings) const;
-    // Which of those maps are built: 0 none, 1 the environment cube, 2 the derived maps too.
+    // Which of an environment's maps with these settings are built (a render that reads them
+    // precomputes nothing): 0 none, 1 the environment cube, 2 the derived maps too.
     int environmentMapsBuilt(const std::string& environment, const IblSettings& settings) const;
     // The maps of (environment, settings) read back from this renderer's context (null when
     // none is built), and another renderer's maps taken instead of building them: the GUI's

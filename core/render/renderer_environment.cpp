@@ -85,10 +85,6 @@ LabRenderer::Environment& LabRenderer::environment(const Scene& scene, const Ibl
     return env;
 }
 
-bool LabRenderer::hasEnvironmentMaps(const Scene& scene, const IblSettings& settings) const {
-    return environmentMapsBuilt(scene.environment, settings) == 2;
-}
-
 int LabRenderer::environmentMapsBuilt(const std::string& environment,
                                       const IblSettings& settings) const {
     auto it = environments_.find(environmentKey(environment, settings));
