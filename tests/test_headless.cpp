@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "gl/context.h"
+#include "gl/objects.h"
 #include "grading/grade_step.h"
 #include "ibl/precompute.h"
 #include "test_support.h"
@@ -198,6 +199,52 @@ TEST(Headless, ARenderIsAFunctionOfItsRequest) {
     EXPECT_NE(a.pixels, b.pixels);
     EXPECT_EQ(render(small).pixels, a.pixels);
     EXPECT_EQ(render(smaller).pixels, b.pixels);
+}
+
+TEST(Headless, ADrawInBandsShadesEveryPixelAsOneDrawDoes) {
+    // The evaluation thread draws in bands (gl::setDrawBudgetOnThisThread) so that the
+    // window's context, which shares llvmpipe's rasterizer, waits one band, not a whole view
+    // pass. The pictures must not change: split_sum's precompute passes (irradiance,
+    // prefilter, LUT) and its view, and prefilter's, are the same to the bit with bands of
+    // two rows and with one draw.
+    Headless h;
+    IblSettings small;
+    small.environmentSize = 64;
+    small.irradianceSize = 8;
+    small.prefilterSize = 16;
+    small.prefilterMips = 3;
+    small.lutWidth = small.lutHeight = 16;
+    auto render = [&](const std::string& id, double budgetMs) {
+        test::TempDir cache;  // the maps precomputed again, under this budget
+        RendererOptions options;
+        options.cacheRoot = cache.path;
+        LabRenderer renderer{h.paths, options};
+        const LoadedModule& m = h.modules.find(id);
+        const Scene scene = loadScene(h.paths.scene(m.desc->scene));
+        const ParamValues params(m.desc->params);
+        RenderRequest request{&m, &params, &scene, {}, nullptr, 96, 96};
+        request.ibl = small;
+        gl::setDrawBudgetOnThisThread(budgetMs);
+        Image value = renderer.render(request).value;
+        gl::setDrawBudgetOnThisThread(0);
+        return value;
+    };
+    for (const char* id : {"prefilter", "split_sum"}) {
+        // 1e-6 ms: every band is the smallest, two rows.
+        const Image banded = render(id, 1e-6), whole = render(id, 0);
+        ASSERT_FALSE(whole.pixels.empty());
+        EXPECT_EQ(banded.pixels, whole.pixels) << id;
+    }
+    // The bands did happen, and leave the scissor test as they found it.
+    gl::RenderTarget target(32, 96, 1, false);
+    target.bind();
+    gl::Viewport(0, 0, 32, 96);
+    const gl::FullscreenTriangle triangle;
+    gl::setDrawBudgetOnThisThread(1e-6);
+    EXPECT_EQ(triangle.draw(), 1 + (96 - 16) / 2);  // a first band of 16 rows, then 2 each
+    gl::setDrawBudgetOnThisThread(0);
+    EXPECT_EQ(triangle.draw(), 1);
+    EXPECT_FALSE(gl::IsEnabled(GL_SCISSOR_TEST));
 }
 
 TEST(Headless, StudentFilesCannotIncludeTheReferenceSolutions) {

@@ -11,6 +11,8 @@
 #include "gl/context.h"
 #include "gui/lab.h"
 #include "gui/live_size.h"
+#include "ibl/map_error.h"
+#include "render/converge.h"
 #include "render/renderer.h"
 #include "test_support.h"
 
@@ -285,4 +287,42 @@ TEST(LiveView, AnEnvironmentsMapsAreBuiltOnTheEvaluationThreadNotInAFrame) {
     lab.update(state, requests);
     EXPECT_FALSE(lab.shown().liveWaitsForMaps);
     EXPECT_NE(lab.shown().liveTexture, 0u);
+}
+
+// --error-budget's search (precomputes measured against the exact sums: 0.6-0.8 s) runs on
+// the evaluation thread too: the window's renderer never compiles a precompute pass, a drag
+// before the choice arrives waits for it, and the settings the window then uses are the ones
+// `pbrlab precompute --error-budget` chooses, with their maps.
+TEST(LiveView, TheErrorBudgetsSettingsAreChosenOnTheEvaluationThread) {
+    auto context = createHeadlessContext();
+    const EmptyConfigHome config;
+    GuiOptions options;
+    options.modulesDirs = {PBRLAB_MODULE_DIR};
+    options.module = "split_sum";
+    options.errorBudget = 0.05;
+    GuiState state;
+    Lab lab(options, state);
+    Requests requests;
+    const Scene scene = lab.currentScene(state);
+    lab.update(state, requests);  // still: the evaluation starts with the search
+    ASSERT_TRUE(lab.evaluating());
+    state.camera.yaw += 0.5;
+    requests.moved = true;
+    lab.update(state, requests);
+    EXPECT_TRUE(lab.shown().liveWaitsForMaps);
+    EXPECT_EQ(lab.shown().liveTexture, 0u);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    lab.update(state, requests);
+    framesUntilEvaluated(lab, state, requests);
+
+    LabRenderer headless{lab.paths(), RendererOptions{{}, {}}};
+    const Image equirect = loadEnvironmentImage(scene.environment);
+    IblTruth truth(equirect);
+    IblPrecompute precompute(headless.programs(), lab.paths().shaders());
+    const IblChoice choice = chooseIblSettings(precompute, equirect, truth, 0.05, nullptr);
+    EXPECT_EQ(lab.iblFor(scene).key(), choice.settings.key());
+    EXPECT_NE(choice.settings.key(), IblSettings().key());  // not vacuous: the budget changes them
+    EXPECT_EQ(lab.renderer().environmentMapsBuilt(scene.environment, choice.settings), 2);
+    for (const CompiledProgram& p : lab.renderer().programs().compiled())
+        EXPECT_EQ(p.label.find("precompute"), std::string::npos) << p.label;
 }

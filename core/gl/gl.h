@@ -17,6 +17,8 @@
     X(PFNGLCLEARBUFFERFVPROC, ClearBufferfv)                     \
     X(PFNGLENABLEPROC, Enable)                                   \
     X(PFNGLDISABLEPROC, Disable)                                 \
+    X(PFNGLISENABLEDPROC, IsEnabled)                             \
+    X(PFNGLSCISSORPROC, Scissor)                                 \
     X(PFNGLDEPTHFUNCPROC, DepthFunc)                             \
     X(PFNGLFINISHPROC, Finish)                                   \
     X(PFNGLREADPIXELSPROC, ReadPixels)                           \

@@ -1,6 +1,7 @@
 #include "gl/objects.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstddef>
 
 #include "util/error.h"
@@ -139,9 +140,50 @@ void GpuMesh::draw() const {
     DrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
 }
 
-void FullscreenTriangle::draw() const {
+namespace {
+
+thread_local double drawBudgetMs = 0;
+
+}  // namespace
+
+void setDrawBudgetOnThisThread(double ms) {
+    drawBudgetMs = ms;
+}
+
+int FullscreenTriangle::draw() const {
     BindVertexArray(vertexArray_.id());
-    DrawArrays(GL_TRIANGLES, 0, 3);
+    if (drawBudgetMs <= 0) {
+        DrawArrays(GL_TRIANGLES, 0, 3);
+        return 1;
+    }
+    GLint viewport[4] = {0, 0, 0, 0};
+    GetIntegerv(GL_VIEWPORT, viewport);
+    GLint scissorBox[4] = {0, 0, 0, 0};
+    GetIntegerv(GL_SCISSOR_BOX, scissorBox);
+    const GLboolean scissorWas = IsEnabled(GL_SCISSOR_TEST);
+    Enable(GL_SCISSOR_TEST);
+    Finish();  // what came before is not this draw's to time
+    // Bands of an even number of rows, starting on even rows: the 2x2 quads that derivatives
+    // read are never split. The first is small, for a program whose cost is not known yet
+    // (its first draw also compiles it, on llvmpipe); each next one is sized from the last,
+    // growing at most 4 times.
+    int rows = 16, draws = 0;
+    for (int y = 0; y < viewport[3]; ++draws) {
+        rows = std::min(rows, viewport[3] - y);
+        Scissor(viewport[0], viewport[1] + y, viewport[2], rows);
+        const auto start = std::chrono::steady_clock::now();
+        DrawArrays(GL_TRIANGLES, 0, 3);
+        Finish();
+        const double ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
+        y += rows;
+        const double fits = rows * drawBudgetMs / std::max(ms, 1e-3);
+        rows = std::max(2, int(std::min(fits, 4.0 * rows)) / 2 * 2);
+    }
+    Scissor(scissorBox[0], scissorBox[1], scissorBox[2], scissorBox[3]);
+    if (!scissorWas) Disable(GL_SCISSOR_TEST);
+    return draws;
 }
 
 }  // namespace pbrlab::gl

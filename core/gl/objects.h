@@ -79,13 +79,24 @@ private:
     GLsizei indexCount_ = 0;
 };
 
+// The longest a fullscreen draw made on this thread may keep the rasterizer (0, the default:
+// no limit). llvmpipe rasterizes one submission at a time for every context of the process
+// (its rasterizer threads belong to the screen, not to a context), so while the evaluation
+// thread's view pass rasterizes, the window's swap waits for it: 177 ms measured for prefilter
+// at 128 samples, 512x512. With a budget, FullscreenTriangle::draw draws bands of rows, each
+// finished before the next, sized from the band before to take about `ms`: another context
+// waits about one band. The pixels are the same (each is shaded once, by the same program).
+void setDrawBudgetOnThisThread(double ms);
+
 // One triangle covering the viewport (vertex shader: shaders/fullscreen.vert). Core profile
 // needs a bound vertex array even when the shader makes up the vertices; it belongs to the
 // context that was current at construction.
 class FullscreenTriangle {
 public:
     FullscreenTriangle() : vertexArray_(makeVertexArray()) {}
-    void draw() const;
+    // In bands on a thread with a draw budget (setDrawBudgetOnThisThread), else one draw.
+    // Returns the number of draws.
+    int draw() const;
 
 private:
     Handle vertexArray_;

@@ -3,7 +3,12 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <cstdio>
+
 #include "gl/context.h"
+#include "gl/objects.h"
+#include "ibl/map_error.h"
+#include "render/converge.h"
 #include "render/evaluate.h"
 #include "util/error.h"
 #include "util/log.h"
@@ -110,6 +115,7 @@ void EvaluationWorker::loop() {
     std::string startError;
     try {
         context_->makeCurrent();
+        gl::setDrawBudgetOnThisThread(kDrawBudgetMs);
         renderer = std::make_unique<LabRenderer>(paths_);
     } catch (const std::exception& e) {
         startError = std::string("the evaluation thread has no OpenGL: ") + e.what();
@@ -157,17 +163,25 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
     const auto start = std::chrono::steady_clock::now();
     const LoadedModule& m = *job.module;
     const ModuleDesc& d = *m.desc;
-    const int stages = job.student ? 4 : 2;
+    const int stages = (job.student ? 4 : 2) + (job.errorBudget > 0 ? 1 : 0);
+    int stage = 0;
     EvaluationResult r;
     r.generation = generation;
+    IblSettings ibl = job.ibl;
+    if (job.errorBudget > 0) {
+        enter(++stage, stages, "the IBL settings within the error budget");
+        r.budgetChoice = chooseForBudget(renderer, job.scene.environment, job.errorBudget);
+        ibl = r.budgetChoice->settings;
+        if (superseded(generation)) return std::nullopt;
+    }
     Band band;  // the reference's band on the picture, for the student's statistics
     try {
-        enter(1, stages, "the solution's picture and the reference");
+        enter(++stage, stages, "the solution's picture and the reference");
         EvalRequest request;
         request.render = {&m, &job.params, &job.scene, {}, nullptr, job.side, job.side};
         request.render.readSurfaces = true;
         request.render.seamlessCubes = false;
-        request.render.ibl = job.ibl;
+        request.render.ibl = ibl;
         Evaluation solution = evaluate(renderer, request);
         r.solutionMs = solution.render.milliseconds;
         r.solutionValue = std::move(solution.render.value);
@@ -179,12 +193,12 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
             for (int c = 0; c < 3; ++c)
                 r.referenceValue.pixels[i * 4 + size_t(c)] = float(band.expected[i][c]);
         if (superseded(generation)) return std::nullopt;
-        enter(2, stages, "the solution's probe");
+        enter(++stage, stages, "the solution's probe");
         const std::vector<Surface> probe = probeSurfaces(d.probe);
         RenderRequest probeRequest{&m,     &job.params,   &job.scene,    {},
                                    &probe, d.probe.width, d.probe.height};
         probeRequest.seamlessCubes = false;
-        probeRequest.ibl = job.ibl;
+        probeRequest.ibl = ibl;
         r.probeSolution = renderer.render(probeRequest).value;
     } catch (const Error& e) {
         r.renderError = e.what();
@@ -195,23 +209,23 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
     // and renders the third time with the last good programs (this renderer's cache kept them).
     for (int attempt = 0; job.student && attempt < 3 && !r.studentRendered; ++attempt) {
         try {
-            enter(3, stages, "your picture");
+            enter(stage + 1, stages, "your picture");
             RenderRequest request{&m,      &job.params, &job.scene, studentSource,
                                   nullptr, job.side,    job.side};
             request.seamlessCubes = false;
-            request.ibl = job.ibl;
+            request.ibl = ibl;
             r.studentValue = renderer.render(request).value;
             // Without the solution's band (its render failed) there is nothing to compare with.
             if (r.renderError.empty())
                 r.studentStats = compareWithBand(r.studentValue, r.surfaces, band, d.components,
                                                  d.nonNegative, d.tolerance.outlierFraction);
             if (superseded(generation)) return std::nullopt;
-            enter(4, stages, "your probe");
+            enter(stage + 2, stages, "your probe");
             const std::vector<Surface> probe = probeSurfaces(d.probe);
             RenderRequest probeRequest{&m,     &job.params,   &job.scene,    studentSource,
                                        &probe, d.probe.width, d.probe.height};
             probeRequest.seamlessCubes = false;
-            probeRequest.ibl = job.ibl;
+            probeRequest.ibl = ibl;
             r.probeStudent = renderer.render(probeRequest).value;
             r.studentRendered = true;
         } catch (const Error& e) {
@@ -224,13 +238,46 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
     if (!r.studentRendered) r.studentValue = Image();
     if (job.compose && r.renderError.empty()) r.composed = job.compose(r);
     if (job.environmentMapsHeld >= 0 &&
-        renderer.environmentMapsBuilt(job.scene.environment, job.ibl) > job.environmentMapsHeld) {
+        renderer.environmentMapsBuilt(job.scene.environment, ibl) > job.environmentMapsHeld) {
         r.environment = job.scene.environment;
-        r.environmentMaps = renderer.environmentMapImages(job.scene.environment, job.ibl);
+        r.environmentMaps = renderer.environmentMapImages(job.scene.environment, ibl);
     }
     r.compiled = renderer.programs().compiled();
     r.milliseconds = millisecondsSince(start);
     return r;
+}
+
+// Measured the first time an environment is shown, as `pbrlab precompute --error-budget`
+// measures it (with the disk cache of maps and exact sums); an environment that cannot be
+// measured gets the defaults, and the line says why.
+const BudgetChoice& EvaluationWorker::chooseForBudget(LabRenderer& renderer,
+                                                      const std::string& environment,
+                                                      double budget) {
+    const auto key = std::make_pair(environment, budget);
+    if (const auto found = budgetChoices_.find(key); found != budgetChoices_.end())
+        return found->second;
+    BudgetChoice chosen{environment, IblSettings(), ""};
+    try {
+        const Image equirect = loadEnvironmentImage(environment, renderer.cacheRoot());
+        IblTruth truth(equirect);
+        IblPrecompute precompute(renderer.programs(), paths_.shaders());
+        const IblDiskCache cache(renderer.cacheRoot());
+        const IblChoice choice = chooseIblSettings(precompute, equirect, truth, budget,
+                                                   renderer.cacheRoot().empty() ? nullptr : &cache);
+        const IblErrors& e = choice.run.errors;
+        char line[256];
+        std::snprintf(line, sizeof line,
+                      "error budget %g on %s: %s; mean errors irradiance %.4f, prefilter %.4f, "
+                      "LUT %.4f",
+                      budget, environment.c_str(),
+                      choice.met ? "met" : "NOT met (the most accurate settings)",
+                      e.irradiance.mean, e.prefilter.mean, e.lut.mean);
+        chosen.settings = choice.settings;
+        chosen.summary = std::string(line) + "; " + choice.settings.describe();
+    } catch (const Error& e) {
+        chosen.summary = std::string("error budget: ") + e.what();
+    }
+    return budgetChoices_.emplace(key, std::move(chosen)).first->second;
 }
 
 }  // namespace pbrlab

@@ -10,6 +10,7 @@
 #include <condition_variable>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -32,6 +33,10 @@ namespace pbrlab {
 // cores to the window's thread: nice 10 weighs 110 against nice 0's 1024 in the scheduler, so
 // with both cores busy the frames still get most of one.
 constexpr int kBackgroundNice = 10;
+// The longest the evaluation thread keeps llvmpipe's rasterizer, which the window's context
+// shares (gl::setDrawBudgetOnThisThread): the window's frame waits about this much at most,
+// beside its own 4-5 ms, inside the 33 ms of a frame at 30 a second.
+constexpr double kDrawBudgetMs = 8;
 
 // A GL context for the evaluation thread: made where its backend allows (a GLFW window only on
 // the main thread), current on the worker only.
@@ -65,6 +70,10 @@ struct EvaluationJob {
     ParamValues params;
     Scene scene;  // with the state's camera
     IblSettings ibl;
+    // --error-budget (> 0), when the window has no settings for the environment yet: the
+    // worker chooses them first (chooseIblSettings, 0.6-0.8 s measured) and renders with them
+    // instead of `ibl`; the result brings the choice.
+    double errorBudget = 0;
     std::filesystem::path submission;
     bool student = false;  // the student's file exists and may be read: render it too
     int side = 0;          // the picture's width and height
@@ -75,8 +84,17 @@ struct EvaluationJob {
     std::function<ComposedView(const EvaluationResult&)> compose;
 };
 
+// --error-budget's settings for an environment, as `pbrlab precompute --error-budget` chooses
+// them, and the line that says how they meet it (or why the defaults are used).
+struct BudgetChoice {
+    std::string environment;
+    IblSettings settings;
+    std::string summary;
+};
+
 struct EvaluationResult {
     unsigned generation = 0;
+    std::optional<BudgetChoice> budgetChoice;  // EvaluationJob::errorBudget's
     std::string renderError;  // the solution's evaluation failed (its fields are empty)
     Image solutionValue, referenceValue, probeSolution;
     std::vector<Surface> surfaces;  // the G-buffer's inputs, one per pixel
@@ -132,6 +150,8 @@ private:
                                         unsigned generation);
     bool superseded(unsigned generation) const { return generation != latest_.load(); }
     void enter(int stage, int stages, const char* what);
+    const BudgetChoice& chooseForBudget(LabRenderer& renderer, const std::string& environment,
+                                        double budget);
 
     DataPaths paths_;
     std::unique_ptr<WorkerContext> context_;
@@ -144,6 +164,8 @@ private:
     bool stop_ = false;
     EvaluationProgress progress_;
     std::chrono::steady_clock::time_point started_;
+    // The worker's own: choices already made, kept when the job that made one was superseded.
+    std::map<std::pair<std::string, double>, BudgetChoice> budgetChoices_;
     std::thread thread_;  // last: started once the members above exist
 };
 

@@ -111,14 +111,14 @@ void Lab::update(GuiState& state, Requests& requests) {
     // reference, the probes and the statistics follow once it has been still for a moment
     // (dirty_ stays set until then), on the evaluation thread: the frames go on meanwhile.
     const bool moving = std::chrono::steady_clock::now() - lastMove_ < kSettleDelay;
-    if (m.needs & NeedsEnvironment) useBudgetSettings(scene);
-    // An environment's maps are built on the evaluation thread, which hands them to the
-    // window's renderer with its result (showEvaluation): a live picture before they arrive
-    // would build them in the frame (0.1 s to seconds). Until then a drag keeps the picture
-    // on screen and says why.
+    // An environment's maps (and --error-budget's settings for them) are made on the
+    // evaluation thread, which hands them to the window's renderer with its result
+    // (showEvaluation): a live picture before they arrive would make them in the frame (0.1 s
+    // to seconds). Until then a drag keeps the picture on screen and says why.
     shown_.liveWaitsForMaps =
         dirty_ && moving && (m.needs & NeedsEnvironment) &&
-        renderer_->environmentMapsBuilt(scene.environment, iblFor(scene)) == 0;
+        (waitsForBudgetSettings(scene) ||
+         renderer_->environmentMapsBuilt(scene.environment, iblFor(scene)) == 0);
     if (dirty_ && moving) {
         if (!shown_.liveWaitsForMaps && !drawLive(state)) startEvaluation(state);
     } else if (dirty_) {
@@ -251,8 +251,13 @@ void Lab::startEvaluation(const GuiState& state) {
     job.params = state.params.at(d.id);
     job.scene = currentScene(state);
     job.ibl = iblFor(job.scene);
-    if (d.needs & NeedsEnvironment)
-        job.environmentMapsHeld = renderer_->environmentMapsBuilt(job.scene.environment, job.ibl);
+    if (d.needs & NeedsEnvironment) {
+        const bool choose = waitsForBudgetSettings(job.scene);
+        job.errorBudget = choose ? options_.errorBudget : 0;
+        // The window holds no maps for settings not chosen yet.
+        job.environmentMapsHeld =
+            choose ? 0 : renderer_->environmentMapsBuilt(job.scene.environment, job.ibl);
+    }
     job.submission = submission_;
     job.side = kRenderSize;
     updatePermutation(state, applyParamBindings(job.scene, d, job.params));
@@ -284,6 +289,9 @@ void Lab::startEvaluation(const GuiState& state) {
 // superseded it): what the panels show.
 void Lab::showEvaluation(EvaluationResult r, const GuiState& state) {
     shown_.liveTexture = 0;
+    if (r.budgetChoice &&
+        budgetSettings_.emplace(r.budgetChoice->environment, r.budgetChoice->settings).second)
+        logLine("gui", r.budgetChoice->summary);
     if (r.environmentMaps) renderer_->adoptEnvironmentMaps(r.environment, *r.environmentMaps);
     const ModuleDesc& d = module(state);
     if (r.renderError.empty()) {

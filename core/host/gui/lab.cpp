@@ -5,7 +5,6 @@
 #include <fstream>
 #include <sstream>
 
-#include "render/converge.h"
 #include "term_views.h"
 #include "util/error.h"
 #include "util/log.h"
@@ -150,41 +149,15 @@ Scene Lab::currentScene(const GuiState& state) const {
     return s;
 }
 
-// --error-budget: the settings chosen for this scene's environment (measured the first time
-// it is shown, as `pbrlab precompute --error-budget` measures them) go into its requests.
-void Lab::useBudgetSettings(const Scene& scene) {
-    if (options_.errorBudget <= 0) return;
-    if (!budgetSettings_.count(scene.environment)) {
-        try {
-            const Image equirect = loadEnvironmentImage(scene.environment, renderer_->cacheRoot());
-            IblTruth truth(equirect);
-            IblPrecompute precompute(renderer_->programs(), paths_.shaders());
-            const IblDiskCache cache(renderer_->cacheRoot());
-            const IblChoice choice =
-                chooseIblSettings(precompute, equirect, truth, options_.errorBudget,
-                                  renderer_->cacheRoot().empty() ? nullptr : &cache);
-            const IblErrors& e = choice.run.errors;
-            char line[256];
-            std::snprintf(line, sizeof line,
-                          "error budget %g on %s: %s; mean errors irradiance %.4f, prefilter "
-                          "%.4f, LUT %.4f",
-                          options_.errorBudget, scene.environment.c_str(),
-                          choice.met ? "met" : "NOT met (the most accurate settings)",
-                          e.irradiance.mean, e.prefilter.mean, e.lut.mean);
-            logLine("gui", std::string(line) + "; " + choice.settings.describe());
-            budgetSettings_.emplace(scene.environment, choice.settings);
-        } catch (const Error& e) {
-            logLine("gui", std::string("error budget: ") + e.what());
-            budgetSettings_.emplace(scene.environment, IblSettings());
-        }
-    }
-}
-
 // The IBL settings of every request for this scene: --error-budget's choice for its
-// environment, else the defaults.
+// environment (made on the evaluation thread, the first time it is shown), else the defaults.
 IblSettings Lab::iblFor(const Scene& scene) const {
     const auto chosen = budgetSettings_.find(scene.environment);
     return chosen != budgetSettings_.end() ? chosen->second : IblSettings();
+}
+
+bool Lab::waitsForBudgetSettings(const Scene& scene) const {
+    return options_.errorBudget > 0 && !budgetSettings_.count(scene.environment);
 }
 
 }  // namespace pbrlab

@@ -139,7 +139,8 @@ private:
     void select(GuiState& state, int index);
     void loadScene(GuiState& state);
     void noteModelWarnings(const Scene& scene);
-    void useBudgetSettings(const Scene& scene);
+    // --error-budget's settings for the scene's environment are still being chosen.
+    bool waitsForBudgetSettings(const Scene& scene) const;
     bool drawLive(const GuiState& state);
     void startEvaluation(const GuiState& state);
     void showEvaluation(EvaluationResult result, const GuiState& state);
