@@ -4,6 +4,7 @@
 // The mechanism, not its speed: docs/speed.md has the frame times.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <thread>
@@ -325,4 +326,26 @@ TEST(LiveView, TheErrorBudgetsSettingsAreChosenOnTheEvaluationThread) {
     EXPECT_EQ(lab.renderer().environmentMapsBuilt(scene.environment, choice.settings), 2);
     for (const CompiledProgram& p : lab.renderer().programs().compiled())
         EXPECT_EQ(p.label.find("precompute"), std::string::npos) << p.label;
+}
+
+// A newer edit stops the CPU reference of the evaluation running between two points, not at
+// the end of its stage (brdf_lut's band at 1024 samples: 7-9 s): the band asks `stop` before
+// each point and throws Cancelled once it says so; asked never, it is the same band.
+TEST(LiveView, AReferenceBandStopsBetweenPointsWhenAsked) {
+    ModuleRegistry modules{PBRLAB_MODULE_DIR};
+    const ModuleDesc& d = *modules.find("ndf").desc;
+    const std::vector<Surface> surfaces = probeSurfaces(d.probe);
+    ASSERT_GT(surfaces.size(), 1000u);
+    const ParamValues params(d.params);
+    const ReferenceContext context{
+        params, {{glm::dvec3(2, 3, 4), glm::dvec3(1)}}, glm::dvec3(0, 0, 3)};
+    std::atomic<int> asked{0};
+    EXPECT_THROW(referenceBand(d, surfaces, context, [&] { return ++asked > 10; }), Cancelled);
+    // Each worker thread asks once more at most after the first yes.
+    EXPECT_LE(asked.load(), 10 + 8);
+    const Band whole = referenceBand(d, surfaces, context);
+    const Band askedNever = referenceBand(d, surfaces, context, [] { return false; });
+    EXPECT_EQ(whole.expected, askedNever.expected);
+    EXPECT_EQ(whole.lo, askedNever.lo);
+    EXPECT_EQ(whole.hi, askedNever.hi);
 }

@@ -1,6 +1,7 @@
 #include "render/compare.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <sstream>
 
@@ -118,7 +119,7 @@ static void bandAt(const ModuleDesc& module, const Surface& s, const ReferenceCo
 }
 
 Band referenceBand(const ModuleDesc& module, const std::vector<Surface>& surfaces,
-                   const ReferenceContext& context) {
+                   const ReferenceContext& context, const StopRequested& stop) {
     Band band;
     band.resize(surfaces.size());
     for (const AcceptedAlternative& a : module.alternatives)
@@ -127,8 +128,16 @@ Band referenceBand(const ModuleDesc& module, const std::vector<Surface>& surface
     for (int c = 0; c < module.components; ++c) ulps = std::max(ulps, module.toleranceFor(c).ulps);
     // Nine or more reference evaluations per point (the spread's eight corners): on every
     // core. The references are pure functions of their inputs.
-    parallelFor(surfaces.size(),
-                [&](size_t i) { bandAt(module, surfaces[i], context, ulps, i, band); });
+    std::atomic<bool> stopped{false};
+    parallelFor(surfaces.size(), [&](size_t i) {
+        if (stopped.load(std::memory_order_relaxed)) return;
+        if (stop && stop()) {
+            stopped = true;
+            return;
+        }
+        bandAt(module, surfaces[i], context, ulps, i, band);
+    });
+    if (stopped) throw Cancelled();
     return band;
 }
 

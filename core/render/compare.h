@@ -8,6 +8,7 @@
 
 #include "assets/image_io.h"
 #include "pbrlab/module.h"
+#include "util/cancel.h"
 
 namespace pbrlab {
 
@@ -34,9 +35,10 @@ glm::dvec3 referenceSpread(const ModuleDesc& module, const Surface& surface,
                            const ReferenceContext& context, double ulps, std::uint64_t seed);
 
 // The module's band on these surfaces: its reference, its accepted alternatives and its
-// tolerance (pbrlab::Tolerance). Points that are not covered are left at zero.
+// tolerance (pbrlab::Tolerance). Points that are not covered are left at zero. Throws
+// Cancelled when `stop` says so (asked between points).
 Band referenceBand(const ModuleDesc& module, const std::vector<Surface>& surfaces,
-                   const ReferenceContext& context);
+                   const ReferenceContext& context, const StopRequested& stop = {});
 
 struct Comparison {
     int compared = 0;  // covered points

@@ -27,7 +27,7 @@ Evaluation evaluate(LabRenderer& renderer, const EvalRequest& request) {
     if (!request.band) return e;
     const Scene scene = applyParamBindings(*r.scene, d, *r.params);
     const ReferenceContext context = referenceContext(renderer, d, scene, *r.params, r.ibl);
-    e.band = referenceBand(d, e.render.surfaces, context);
+    e.band = referenceBand(d, e.render.surfaces, context, request.stop);
     e.comparison = compareWithBand(e.render.value, e.render.surfaces, e.band, d.components,
                                    d.nonNegative, d.tolerance.outlierFraction);
     return e;

@@ -18,6 +18,7 @@ ReferenceContext referenceContext(LabRenderer& renderer, const ModuleDesc& modul
 struct EvalRequest {
     RenderRequest render;  // set render.seamlessCubes = false to compare (EvalRequest does)
     bool band = true;      // build the reference's pass band and compare with it
+    StopRequested stop;    // asked while the band is built (it throws Cancelled)
     EvalRequest() { render.seamlessCubes = false; }
 };
 

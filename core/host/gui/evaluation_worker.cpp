@@ -182,6 +182,7 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
         request.render.readSurfaces = true;
         request.render.seamlessCubes = false;
         request.render.ibl = ibl;
+        request.stop = [this, generation] { return superseded(generation); };
         Evaluation solution = evaluate(renderer, request);
         r.solutionMs = solution.render.milliseconds;
         r.solutionValue = std::move(solution.render.value);
@@ -200,6 +201,8 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
         probeRequest.seamlessCubes = false;
         probeRequest.ibl = ibl;
         r.probeSolution = renderer.render(probeRequest).value;
+    } catch (const Cancelled&) {
+        return std::nullopt;
     } catch (const Error& e) {
         r.renderError = e.what();
     }
