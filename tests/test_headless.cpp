@@ -247,6 +247,36 @@ TEST(Headless, ADrawInBandsShadesEveryPixelAsOneDrawDoes) {
     EXPECT_FALSE(gl::IsEnabled(GL_SCISSOR_TEST));
 }
 
+TEST(Headless, AReusedGBufferIsOnlyEverTheSceneOnScreen) {
+    // The GUI's evaluation thread reuses the G-buffer it holds when the scene's key is the
+    // same (an edit of a light or a parameter). Every picture equals a fresh renderer's: a
+    // light's edit, then the camera's (a new key: drawn again), then back.
+    Headless h;
+    const LoadedModule& m = h.modules.find("ndf");
+    Scene scene = loadScene(h.paths.scene("sphere-grid"));
+    const ParamValues params(m.desc->params);
+    LabRenderer reusing{h.paths, RendererOptions{{}, {}}};
+    auto render = [&](LabRenderer& renderer, bool reuse) {
+        RenderRequest request{&m, &params, &scene, {}, nullptr, 64, 64};
+        request.reuseGBuffer = reuse;
+        request.readSurfaces = true;
+        const RenderResult r = renderer.render(request);
+        return std::make_pair(r.value.pixels, r.surfaces.size());
+    };
+    auto fresh = [&] {
+        LabRenderer renderer{h.paths, RendererOptions{{}, {}}};
+        return render(renderer, false);
+    };
+    EXPECT_EQ(render(reusing, true), fresh());
+    scene.lights[0].position += glm::dvec3(1, 0, 0);
+    EXPECT_EQ(render(reusing, true), fresh());
+    const glm::dvec3 camera = scene.camera.position;
+    scene.camera.position += glm::dvec3(0.5, 0.2, 0);
+    EXPECT_EQ(render(reusing, true), fresh());
+    scene.camera.position = camera;
+    EXPECT_EQ(render(reusing, true), fresh());
+}
+
 TEST(Headless, StudentFilesCannotIncludeTheReferenceSolutions) {
     Headless h;
     test::TempDir kit;

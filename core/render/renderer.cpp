@@ -259,8 +259,8 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
     RenderResult result;
     std::vector<GLuint> inputs;
     if (!request.surfaces) {
-        const glm::mat4 viewProjection = drawGBuffer(scene, d.needs, request.width, request.height,
-                                                     request.cacheGBuffer, request.coarseSpheres);
+        const glm::mat4 viewProjection =
+            drawGBuffer(scene, d.needs, request.width, request.height, request);
         for (int i = 0; i < kGBufferTextures; ++i) inputs.push_back(gbuffer_->colorTexture(i));
         result.milliseconds =
             runView(request, scene, false, inputs, request.width, request.height, viewProjection);

@@ -74,6 +74,12 @@ struct RenderRequest {
     // Scene: keep the G-buffer on disk when its draws read no image, and read it from there
     // (grading draws the same few scenes, small, in every process; see drawGBuffer).
     bool cacheGBuffer = false;
+    // Scene: when the G-buffer target still holds this scene's G-buffer (the same key as the
+    // disk cache's: camera, objects, materials, size), use it as it is; in memory only. The
+    // GUI's evaluation thread: an edit of a parameter or a light draws no G-buffer (the sphere
+    // grid's: 0.15 s of vertex work, and 15-30 ms of llvmpipe's rasterizer, which the
+    // window's frames wait for).
+    bool reuseGBuffer = false;
     // Scene: read the value back into RenderResult::value (off: only valueTexture, for a view
     // drawn straight from the GPU while the input moves).
     bool readValue = true;
@@ -182,13 +188,13 @@ private:
     const gl::GpuMesh& mesh(const MeshData* data);  // nullptr: the unit sphere
     // Draws (or reads from the disk cache) the scene's G-buffer; returns the view-projection
     // it drew with.
-    glm::mat4 drawGBuffer(const Scene& scene, unsigned needs, int width, int height, bool cache,
-                          bool coarseSpheres);
+    glm::mat4 drawGBuffer(const Scene& scene, unsigned needs, int width, int height,
+                          const RenderRequest& request);
     // drawGBuffer's disk cache, for the lesson's sphere grid above all (49 spheres of 9216
-    // triangles: half a second of llvmpipe in every grading process). The file for these draws
-    // (empty: not cacheable), and the attachments read from it or written to it.
-    std::filesystem::path gbufferCacheFile(const Scene& scene, const std::vector<DrawItem>& items,
-                                           unsigned needs, const glm::mat4& viewProjection);
+    // triangles: half a second of llvmpipe in every grading process). The key of these draws
+    // (empty: not cacheable), and the attachments read from a file or written to it.
+    std::string gbufferKey(const Scene& scene, const std::vector<DrawItem>& items, unsigned needs,
+                           const glm::mat4& viewProjection);
     bool readGBuffer(const std::filesystem::path& file);
     void writeGBuffer(const std::filesystem::path& file) const;
     // `viewProjection`: the G-buffer's, for the sky behind a scene (unused on probes).
@@ -216,7 +222,7 @@ private:
     std::set<std::shared_ptr<const ModelData>> keepModels_;
     std::map<std::string, gl::Handle> textures_;            // by TextureSource::key
     std::map<const MeshData*, std::uint64_t> meshDigests_;  // for the G-buffer cache's key
-    std::filesystem::path gbufferHolds_;  // the cached G-buffer gbuffer_ holds, if any
+    std::string gbufferHolds_;  // the key of the G-buffer gbuffer_ holds, if known
     std::vector<gl::Handle> probeInputs_;
     gl::Handle blackCube_, black2d_;
 

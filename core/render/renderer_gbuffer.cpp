@@ -113,7 +113,8 @@ std::vector<LabRenderer::MaterialMap> LabRenderer::materialMaps(const MaterialDe
 }
 
 glm::mat4 LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int height,
-                                   bool cache, bool coarseSpheres) {
+                                   const RenderRequest& request) {
+    const bool coarseSpheres = request.coarseSpheres;
     if (!gbuffer_ || gbuffer_->width() != width || gbuffer_->height() != height) {
         gbuffer_ = std::make_unique<gl::RenderTarget>(width, height, kGBufferTextures);
         gbufferHolds_.clear();
@@ -130,11 +131,14 @@ glm::mat4 LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width
     for (const SceneModel& model : scene.models) keepModels_.insert(model.data);
 
     const std::vector<DrawItem> items = drawItems(scene);
-    const fs::path cached = cache && !coarseSpheres
-                                ? gbufferCacheFile(scene, items, needs, viewProjection)
-                                : fs::path();
-    if (!cached.empty() && (cached == gbufferHolds_ || readGBuffer(cached))) {
-        gbufferHolds_ = cached;
+    const std::string key = (request.cacheGBuffer || request.reuseGBuffer) && !coarseSpheres
+                                ? gbufferKey(scene, items, needs, viewProjection)
+                                : std::string();
+    const fs::path file = request.cacheGBuffer && !key.empty() && !options_.cacheRoot.empty()
+                              ? options_.cacheRoot / "gbuffer" / (key + ".bin")
+                              : fs::path();
+    if (!key.empty() && (key == gbufferHolds_ || (!file.empty() && readGBuffer(file)))) {
+        gbufferHolds_ = key;
         // Compiled all the same: what a scene compiles stays observable (--stats, the GUI).
         programs_.get(gbufferRecipe(scene.materials.at(size_t(items[0].material)), needs));
         return viewProjection;
@@ -189,8 +193,8 @@ glm::mat4 LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width
     }
     gl::Disable(GL_DEPTH_TEST);
     gl::checkError("G-buffer pass");
-    if (!cached.empty()) writeGBuffer(cached);
-    gbufferHolds_ = cached;
+    if (!file.empty()) writeGBuffer(file);
+    gbufferHolds_ = key;
     return viewProjection;
 }
 
@@ -198,9 +202,9 @@ glm::mat4 LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width
 // and material factors, the camera, the size, the code that turns them into draws (the
 // executable's build ID) and the GL driver; all of them are the key. Only draws that read no
 // image: a map would bring the image decoder into the key.
-fs::path LabRenderer::gbufferCacheFile(const Scene& scene, const std::vector<DrawItem>& items,
-                                       unsigned needs, const glm::mat4& viewProjection) {
-    if (options_.cacheRoot.empty() || items.empty()) return {};
+std::string LabRenderer::gbufferKey(const Scene& scene, const std::vector<DrawItem>& items,
+                                    unsigned needs, const glm::mat4& viewProjection) {
+    if (items.empty()) return {};
     const ProgramRecipe recipe =
         gbufferRecipe(scene.materials.at(size_t(items[0].material)), needs);
     for (const DrawItem& item : items)
@@ -232,7 +236,7 @@ fs::path LabRenderer::gbufferCacheFile(const Scene& scene, const std::vector<Dra
         }
         key.add(digest->second);
     }
-    return options_.cacheRoot / "gbuffer" / (key.hex() + ".bin");
+    return key.hex();
 }
 
 namespace {

@@ -180,6 +180,7 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
         EvalRequest request;
         request.render = {&m, &job.params, &job.scene, {}, nullptr, job.side, job.side};
         request.render.readSurfaces = true;
+        request.render.reuseGBuffer = true;  // a parameter's or a light's edit draws none
         request.render.seamlessCubes = false;
         request.render.ibl = ibl;
         request.stop = [this, generation] { return superseded(generation); };
@@ -215,6 +216,7 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
             enter(stage + 1, stages, "your picture");
             RenderRequest request{&m,      &job.params, &job.scene, studentSource,
                                   nullptr, job.side,    job.side};
+            request.reuseGBuffer = true;  // the solution's, drawn in stage 1
             request.seamlessCubes = false;
             request.ibl = ibl;
             r.studentValue = renderer.render(request).value;
