@@ -2,7 +2,8 @@
 // reference, the probes, the student's picture and its statistics: 1-6 s on llvmpipe) on a
 // thread of its own, with its own GL context and renderer, so that the window keeps drawing
 // while it runs. One job at a time; a newer job supersedes an older one, which stops at its
-// next stage and is never delivered (a generation counter: each post or cancel is newer).
+// next stage (its CPU reference between two points) and is never delivered (a generation
+// counter: each post or cancel is newer).
 #pragma once
 
 #include <atomic>
