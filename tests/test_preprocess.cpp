@@ -104,6 +104,12 @@ TEST(CompilerLog, MapsSourceNumbersToFiles) {
     EXPECT_EQ(mapCompilerLog("1:7(12): error: syntax error", names),
               "/kit/ndotl.glsl:7(12): error: syntax error");
     EXPECT_EQ(mapCompilerLog("ERROR: 1(7) : bad", names), "ERROR: /kit/ndotl.glsl:7 : bad");
+    // ANGLE's (Chromium's WebGL 2): "ERROR: S:L: ...", each message on its line.
+    EXPECT_EQ(mapCompilerLog("ERROR: 1:11: 'x' : undeclared identifier\n"
+                             "WARNING: 0:3: 'y' : unused\nERROR: 9:2: out of range",
+                             names),
+              "ERROR: /kit/ndotl.glsl:11: 'x' : undeclared identifier\n"
+              "WARNING: <generated>:3: 'y' : unused\nERROR: 9:2: out of range");
 }
 
 // What a student's part may write (ShaderPreprocessor::expand): nothing it writes reaches code

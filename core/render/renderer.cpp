@@ -34,7 +34,7 @@ Scene applyParamBindings(Scene scene, const ModuleDesc& module, const ParamValue
 LabRenderer::LabRenderer(const DataPaths& paths, RendererOptions options)
     : paths_(paths),
       options_(std::move(options)),
-      programs_(ShaderPreprocessor({paths.shaders(), paths.labs()})) {}
+      programs_(ShaderPreprocessor({paths.shaders(), paths.labs()}, options_.dialect)) {}
 
 std::string parameterUniforms(const ModuleDesc& d) {
     std::string text;

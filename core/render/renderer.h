@@ -113,6 +113,8 @@ struct RendererOptions {
     std::filesystem::path cacheRoot = IblDiskCache::defaultRoot();
     // Told as each precompute pass starts, for progress output.
     std::function<void(const std::string&)> onPrecomputePass;
+    // The GLSL every program is written in (Es300: WebGL 2's, ShaderPreprocessor).
+    GlslDialect dialect = GlslDialect::Desktop450;
 };
 
 class LabRenderer {

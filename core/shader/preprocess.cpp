@@ -16,7 +16,43 @@ namespace fs = std::filesystem;
 
 namespace pbrlab {
 
-ShaderPreprocessor::ShaderPreprocessor(std::vector<fs::path> roots) : roots_(std::move(roots)) {}
+ShaderPreprocessor::ShaderPreprocessor(std::vector<fs::path> roots, GlslDialect dialect)
+    : roots_(std::move(roots)), dialect_(dialect) {}
+
+namespace {
+
+// GlslDialect::Es300's header. The built-ins' replacements are exact: a swap network for the
+// bit reversal, a binary search for the most significant bit (of ~x for a negative int, as
+// GLSL 4.00 defines it).
+const char* const kEs300Header = R"(#version 300 es
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+precision highp samplerCube;
+precision highp sampler3D;
+precision highp sampler2DArray;
+uint bitfieldReverse(uint x) {
+    x = ((x & 0x55555555u) << 1u) | ((x >> 1u) & 0x55555555u);
+    x = ((x & 0x33333333u) << 2u) | ((x >> 2u) & 0x33333333u);
+    x = ((x & 0x0F0F0F0Fu) << 4u) | ((x >> 4u) & 0x0F0F0F0Fu);
+    x = ((x & 0x00FF00FFu) << 8u) | ((x >> 8u) & 0x00FF00FFu);
+    return (x << 16u) | (x >> 16u);
+}
+int bitfieldReverse(int x) { return int(bitfieldReverse(uint(x))); }
+int findMSB(uint x) {
+    if (x == 0u) return -1;
+    int n = 0;
+    for (int s = 16; s > 0; s >>= 1)
+        if (x >= (1u << uint(s))) {
+            x >>= uint(s);
+            n += s;
+        }
+    return n;
+}
+int findMSB(int x) { return findMSB(uint(x < 0 ? ~x : x)); }
+)";
+
+}  // namespace
 
 namespace {
 
@@ -304,7 +340,7 @@ ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
                                           const Defines& defines) const {
     Expander ex;
     ex.roots = roots_;
-    ex.out.text = "#version 450 core\n";
+    ex.out.text = dialect_ == GlslDialect::Es300 ? kEs300Header : "#version 450 core\n";
     for (const auto& [name, value] : defines) {
         ex.out.text += "#define " + name + " " + value + "\n";
         ex.hostMacros.insert(name);
@@ -353,12 +389,30 @@ ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
 }
 
 std::string mapCompilerLog(const std::string& log, const std::vector<std::string>& sourceNames) {
+    // ANGLE (Chromium's WebGL 2) writes "ERROR: 0:12: ...": rewritten first, its source
+    // number only when it names a source (an unknown one stays a number, which the pattern
+    // below, with its parentheses, never matches).
+    static const std::regex angle(R"((^|\n)(ERROR|WARNING): (\d+):(\d+):)");
+    std::string angleMapped;
+    {
+        auto begin = log.cbegin();
+        std::smatch m;
+        while (std::regex_search(begin, log.cend(), m, angle)) {
+            angleMapped.append(begin, m[0].first);
+            const size_t index = std::stoul(m[3].str());
+            const std::string name = index < sourceNames.size() ? sourceNames[index] : m[3].str();
+            angleMapped += m[1].str() + m[2].str() + ": " + name + ":" + m[4].str() + ":";
+            begin = m[0].second;
+        }
+        angleMapped.append(begin, log.cend());
+    }
     // Mesa writes "0:12(5): error: ...", others "0(12) : error ...".
     static const std::regex ref(R"((^|\n|\s)(\d+)(:(\d+)\((\d+)\)|\((\d+)\)))");
+    const std::string& source = angleMapped;
     std::string result;
-    auto begin = log.cbegin();
+    auto begin = source.cbegin();
     std::smatch m;
-    while (std::regex_search(begin, log.cend(), m, ref)) {
+    while (std::regex_search(begin, source.cend(), m, ref)) {
         result.append(begin, m[0].first);
         size_t index = std::stoul(m[2].str());
         std::string name = index < sourceNames.size() ? sourceNames[index] : m[2].str();
@@ -366,7 +420,7 @@ std::string mapCompilerLog(const std::string& log, const std::vector<std::string
                   (m[4].matched ? m[4].str() + "(" + m[5].str() + ")" : m[6].str());
         begin = m[0].second;
     }
-    result.append(begin, log.cend());
+    result.append(begin, source.cend());
     return result;
 }
 

@@ -55,13 +55,22 @@ struct ExpandedShader {
     std::map<int, std::map<std::string, std::string>> unreachable;
 };
 
+// The GLSL the host writes every program in. Es300 is WebGL 2's (OpenGL ES 3.00), for the
+// lab in a browser: its own #version line, default precisions (an ES fragment shader has
+// none for float, and samplers default to lowp), and the two GLSL 4.00 built-ins the steps
+// use that ES 3.00 lacks, as user functions of the same names (bitfieldReverse: hammersley's
+// solution; findMSB: irradiance's), which ES 3.00 does not reserve. Everything else the
+// programs use is common to both (tests/test_glsl_es.cpp renders every step in both).
+enum class GlslDialect { Desktop450, Es300 };
+
 class ShaderPreprocessor {
 public:
-    explicit ShaderPreprocessor(std::vector<std::filesystem::path> roots);
+    explicit ShaderPreprocessor(std::vector<std::filesystem::path> roots,
+                                GlslDialect dialect = GlslDialect::Desktop450);
 
-    // "#version 450 core", the defines, then each part with its includes expanded (each file
-    // at most once). Throws pbrlab::Error naming file and line for a missing include or one
-    // that leaves the roots.
+    // The dialect's header ("#version 450 core"), the defines, then each part with its includes
+    // expanded (each file at most once). Throws pbrlab::Error naming file and line for a missing
+    // include or one that leaves the roots.
     //
     // A student's part (and what it includes) is screened so that nothing it writes reaches
     // code that is not its own; each refusal is a ShaderError at the student's line:
@@ -84,6 +93,7 @@ public:
 
 private:
     std::vector<std::filesystem::path> roots_;
+    GlslDialect dialect_;
 };
 
 // Rewrites "S:L(C)" / "S(L)" source references in a compiler log to "file:L(C)".
