@@ -115,6 +115,10 @@ struct RendererOptions {
     std::function<void(const std::string&)> onPrecomputePass;
     // The GLSL every program is written in (Es300: WebGL 2's, ShaderPreprocessor).
     GlslDialect dialect = GlslDialect::Desktop450;
+    // Cube maps always filtered across face edges, whatever RenderRequest::seamlessCubes asks:
+    // WebGL 2 cannot turn seamless filtering off (its cube maps are always seamless), so this
+    // is the browser's renderer, on the desktop (tests/test_glsl_es.cpp grades with it).
+    bool seamlessCubesAlways = false;
 };
 
 class LabRenderer {
