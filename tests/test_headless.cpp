@@ -242,6 +242,16 @@ TEST(Headless, ADrawInBandsShadesEveryPixelAsOneDrawDoes) {
     const gl::FullscreenTriangle triangle;
     gl::setDrawBudgetOnThisThread(1e-6);
     EXPECT_EQ(triangle.draw(), 1 + (96 - 16) / 2);  // a first band of 16 rows, then 2 each
+    // A generous budget: the bands grow from the first (16, 24, 36, then the 20 rows left).
+    gl::setDrawBudgetOnThisThread(1e6);
+    EXPECT_EQ(triangle.draw(), 4);
+    // The next band fits the budget at the last one's cost, grows at most 1.5 times, and
+    // grows back from the smallest (a band slowed once does not leave the rest at 2 rows).
+    EXPECT_EQ(gl::nextBandRows(16, 16, 8), 8);
+    EXPECT_EQ(gl::nextBandRows(16, 1, 8), 24);
+    EXPECT_EQ(gl::nextBandRows(16, 1000, 8), 2);
+    EXPECT_EQ(gl::nextBandRows(2, 0.1, 8), 4);
+    EXPECT_EQ(gl::nextBandRows(4, 0.1, 8), 6);
     gl::setDrawBudgetOnThisThread(0);
     EXPECT_EQ(triangle.draw(), 1);
     EXPECT_FALSE(gl::IsEnabled(GL_SCISSOR_TEST));

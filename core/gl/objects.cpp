@@ -151,6 +151,11 @@ void setDrawBudgetOnThisThread(double ms) {
     drawBudgetMs = ms;
 }
 
+int nextBandRows(int rows, double ms, double budgetMs) {
+    const double fits = rows * budgetMs / std::max(ms, 1e-3);
+    return std::max(2, int(std::min(fits, std::max(1.5 * rows, rows + 2.0))) / 2 * 2);
+}
+
 int FullscreenTriangle::draw() const {
     BindVertexArray(vertexArray_.id());
     if (drawBudgetMs <= 0) {
@@ -166,9 +171,7 @@ int FullscreenTriangle::draw() const {
     Finish();  // what came before is not this draw's to time
     // Bands of an even number of rows, starting on even rows: the 2x2 quads that derivatives
     // read are never split. The first is small, for a program whose cost is not known yet
-    // (its first draw also compiles it, on llvmpipe); each next one is sized from the last,
-    // growing at most 1.5 times: a view's cost per row varies across the picture (brdf_lut's
-    // at 1024 samples: 0.5-2.5 ms a row), and a band that grew 4 times took 45 ms.
+    // (its first draw also compiles it, on llvmpipe); each next one nextBandRows.
     int rows = 16, draws = 0;
     for (int y = 0; y < viewport[3]; ++draws) {
         rows = std::min(rows, viewport[3] - y);
@@ -183,8 +186,7 @@ int FullscreenTriangle::draw() const {
         // A context waiting for the rasterizer takes it now: a mutex is not handed over in
         // order, and this thread could take it again before the waiting one runs.
         if (y < viewport[3]) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        const double fits = rows * drawBudgetMs / std::max(ms, 1e-3);
-        rows = std::max(2, int(std::min(fits, 1.5 * rows)) / 2 * 2);
+        rows = nextBandRows(rows, ms, drawBudgetMs);
     }
     Scissor(scissorBox[0], scissorBox[1], scissorBox[2], scissorBox[3]);
     if (!scissorWas) Disable(GL_SCISSOR_TEST);

@@ -87,6 +87,12 @@ private:
 // finished before the next, sized from the band before to take about `ms`: another context
 // waits about one band. The pixels are the same (each is shaded once, by the same program).
 void setDrawBudgetOnThisThread(double ms);
+// The rows of the next band after one of `rows` took `ms`: as many as fit the budget at that
+// cost, even, at least 2, growing at most 1.5 times (or by 2 rows, from 2 or 4): a view's cost
+// per row varies across the picture (brdf_lut's at 1024 samples: 0.5-2.5 ms a row), and a band
+// that grew 4 times took 45 ms. A band slowed by a compile or another context shrinks the
+// next one, which grows back as the draws run at their own cost.
+int nextBandRows(int rows, double ms, double budgetMs);
 
 // One triangle covering the viewport (vertex shader: shaders/fullscreen.vert). Core profile
 // needs a bound vertex array even when the shader makes up the vertices; it belongs to the
