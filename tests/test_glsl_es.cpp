@@ -7,9 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
+#include "course/autograder.h"
 #include "gl/context.h"
 #include "grading/grade_step.h"
 #include "render/renderer.h"
@@ -20,17 +19,6 @@ using namespace pbrlab;
 
 namespace {
 
-// Small maps: quick to precompute twice, and the maps' own code runs all the same.
-IblSettings smallMaps() {
-    IblSettings s;
-    s.environmentSize = 64;
-    s.irradianceSize = 8;
-    s.prefilterSize = 16;
-    s.prefilterMips = 3;
-    s.lutWidth = s.lutHeight = 16;
-    return s;
-}
-
 // Equal values, a NaN equal to a NaN (a planted mistake may divide by zero: it must do so in
 // both dialects).
 bool sameValues(const Image& a, const Image& b) {
@@ -39,13 +27,6 @@ bool sameValues(const Image& a, const Image& b) {
         if (a.pixels[i] != b.pixels[i] && !(std::isnan(a.pixels[i]) && std::isnan(b.pixels[i])))
             return false;
     return true;
-}
-
-std::string readText(const std::filesystem::path& file) {
-    std::ifstream in(file);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
 }
 
 struct Renderers {
@@ -65,7 +46,7 @@ struct Renderers {
         RenderRequest request{&m,        &params,       &scene,        source,
                               &surfaces, d.probe.width, d.probe.height};
         request.seamlessCubes = false;
-        request.ibl = smallMaps();
+        request.ibl = test::smallMaps();
         return renderer.render(request).value;
     }
 };
@@ -104,7 +85,7 @@ TEST(GlslEs, EveryPlantedMistakeCompilesInGlslEs300AsOnTheDesktop) {
             if (entry.path().extension() != ".glsl") continue;
             SCOPED_TRACE(entry.path().string());
             test::TempDir submission;
-            submission.write(m.desc->id + ".glsl", readText(entry.path()));
+            submission.write(m.desc->id + ".glsl", readWholeFile(entry.path()));
             const StudentSource source{submission.path, false};
             const Image desktop = r.probe(r.desktop, m, source);
             Image es;
@@ -142,7 +123,7 @@ TEST(GlslEs, GradingWithSeamlessCubeFilteringDisagreesOnlyOnSplitSumsReference) 
             for (const auto& entry : std::filesystem::directory_iterator(folder)) {
                 if (entry.path().extension() != ".glsl") continue;
                 submissions.push_back(std::make_unique<test::TempDir>());
-                submissions.back()->write(m.desc->id + ".glsl", readText(entry.path()));
+                submissions.back()->write(m.desc->id + ".glsl", readWholeFile(entry.path()));
                 sources.push_back(
                     {entry.path().stem().string(), {submissions.back()->path, false}});
             }

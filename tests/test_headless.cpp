@@ -177,12 +177,7 @@ TEST(Headless, ARenderIsAFunctionOfItsRequest) {
     RendererOptions options;
     options.cacheRoot = cache.path;  // nothing from, or into, the user's cache
     LabRenderer renderer{h.paths, options};
-    IblSettings small;  // small maps, quick to precompute
-    small.environmentSize = 64;
-    small.irradianceSize = 8;
-    small.prefilterSize = 16;
-    small.prefilterMips = 3;
-    small.lutWidth = small.lutHeight = 16;
+    const IblSettings small = test::smallMaps();
     IblSettings smaller = small;
     smaller.irradianceSize = 4;
     smaller.prefilterSize = 8;
@@ -208,12 +203,7 @@ TEST(Headless, ADrawInBandsShadesEveryPixelAsOneDrawDoes) {
     // prefilter, LUT) and its view, and prefilter's, are the same to the bit with bands of
     // two rows and with one draw.
     Headless h;
-    IblSettings small;
-    small.environmentSize = 64;
-    small.irradianceSize = 8;
-    small.prefilterSize = 16;
-    small.prefilterMips = 3;
-    small.lutWidth = small.lutHeight = 16;
+    const IblSettings small = test::smallMaps();
     auto render = [&](const std::string& id, double budgetMs) {
         test::TempDir cache;  // the maps precomputed again, under this budget
         RendererOptions options;

@@ -10,7 +10,21 @@
 #include <sstream>
 #include <string>
 
+#include "ibl/precompute.h"
+
 namespace pbrlab::test {
+
+// Small environment maps, quick to precompute: for tests of a mechanism (caches, bands,
+// dialects), not of the maps' accuracy.
+inline IblSettings smallMaps() {
+    IblSettings s;
+    s.environmentSize = 64;
+    s.irradianceSize = 8;
+    s.prefilterSize = 16;
+    s.prefilterMips = 3;
+    s.lutWidth = s.lutHeight = 16;
+    return s;
+}
 
 // A fresh, empty folder under the system temp dir, removed when the object dies.
 struct TempDir {
