@@ -97,16 +97,16 @@ TEST(GlslEs, EveryPlantedMistakeCompilesInGlslEs300AsOnTheDesktop) {
     EXPECT_GE(mistakes, 70);
 }
 
-TEST(GlslEs, GradingWithSeamlessCubeFilteringDisagreesOnlyOnSplitSumsReference) {
-    // The one difference WebGL 2 cannot remove: its cube maps are always filtered across face
-    // edges, and grading turns that off on the desktop (the GPU then reads the texels the CPU
-    // reference reads). Graded with seamless filtering forced on, as in a browser, every step
-    // that reads a cube map gets native `pbrlab grade`'s verdict on its reference solutions
-    // and on each planted mistake (all fail in both), but one: split_sum's reference solutions
-    // fail (measured: 21 of 2145 probe points outside the band where 0.1% may be, worst 3.4x
-    // the tolerance, at roughness 1, which reads the prefiltered map's smallest mips, whose
-    // faces are a few texels wide: there the face-edge filtering is most of each texel). The
-    // page's badge must account for it (docs/web.md); this test says when that changes.
+TEST(GlslEs, GradingAsWebGl2FiltersCubeMapsGivesNativeGradingsVerdicts) {
+    // WebGL 2's cube maps are always filtered across face edges; grading turns that off on the
+    // desktop (the GPU then reads the texels the per-face CPU sampler reads). A renderer that
+    // cannot turn it off (seamlessCubesAlways, the page's) gives its CPU references a sampler
+    // that filters across the edges too (CubeSampler's seamless mode). Graded that way, every
+    // step that reads a cube map gets native `pbrlab grade`'s verdict on its reference
+    // solutions and on each planted mistake (all fail in both). Measured before the seamless
+    // sampler: split_sum's reference solutions failed (21 of 2145 probe points outside the
+    // band where 0.1% may be, worst 3.4x the tolerance, at roughness 1, which reads the
+    // prefiltered map's smallest mips, whose faces are a few texels wide).
     Renderers r;
     test::TempDir seamlessCache;
     RendererOptions seamlessOptions{seamlessCache.path, {}, GlslDialect::Es300};
@@ -137,5 +137,5 @@ TEST(GlslEs, GradingWithSeamlessCubeFilteringDisagreesOnlyOnSplitSumsReference) 
         }
     }
     EXPECT_GE(graded, 15);
-    EXPECT_EQ(disagreements, std::vector<std::string>{"split_sum: the reference"});
+    EXPECT_EQ(disagreements, std::vector<std::string>{});
 }

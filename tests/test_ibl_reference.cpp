@@ -847,6 +847,66 @@ TEST(IblCubeFaces, FollowTheOpenGlFaceTable) {
             }
 }
 
+TEST(IblCubeSampler, SeamlessFilteringIsContinuousAcrossEveryFaceEdge) {
+    // A 4x4-texel cube holding a smooth function of direction (each texel: the direction
+    // through its centre, normalised). Filtered across face edges (WebGL 2's cube maps, the
+    // page's references), a sample just on either side of an edge is the same value: both
+    // sides mix the same two texels. Clamped at each face's edge (the desktop's grading), the
+    // two sides read different texels: the jump this test would find if the seamless mode
+    // clamped. Away from the edges the two modes are the same bilinear filter.
+    const int n = 4;
+    std::vector<std::vector<Image>> mips(1, std::vector<Image>(6));
+    for (int face = 0; face < 6; ++face) {
+        Image& im = mips[0][size_t(face)];
+        im.width = im.height = n;
+        im.channels = 4;
+        im.pixels.resize(size_t(n) * n * 4);
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const dvec3 d = glm::normalize(pbrlab::cubeFaceDirection(
+                    face, 2.0 * (x + 0.5) / n - 1, 2.0 * (y + 0.5) / n - 1));
+                for (int c = 0; c < 3; ++c) im.at(x, y, c) = float(d[c]);
+                im.at(x, y, 3) = 1;
+            }
+    }
+    const pbrlab::CubeSampler seamless(mips, true), clamped(mips, false);
+    double worstSeamless = 0, leastClamped = 1;
+    int edges = 0;
+    // Every edge: a point of face `face`'s border at parameter u along it, and the same
+    // point nudged into each of the two faces that share it.
+    for (int face = 0; face < 6; ++face)
+        for (int side = 0; side < 4; ++side)
+            for (double u = -0.8; u < 0.85; u += 0.4) {
+                const double s = side == 0 ? -1 : side == 1 ? 1 : u;
+                const double t = side == 2 ? -1 : side == 3 ? 1 : u;
+                const dvec3 onEdge = glm::normalize(pbrlab::cubeFaceDirection(face, s, t));
+                const dvec3 inward = glm::normalize(pbrlab::cubeFaceDirection(face, 0, 0)) * 1e-9;
+                const dvec3 here = onEdge + inward, there = onEdge - inward;
+                ASSERT_EQ(pbrlab::cubeFacePoint(here).face, face);
+                ASSERT_NE(pbrlab::cubeFacePoint(there).face, face);
+                worstSeamless = std::max(
+                    worstSeamless, glm::length(seamless.sample(here) - seamless.sample(there)));
+                leastClamped = std::min(leastClamped,
+                                        glm::length(clamped.sample(here) - clamped.sample(there)));
+                ++edges;
+            }
+    EXPECT_EQ(edges, 6 * 4 * 5);
+    // The nudge moves a sample by 1e-9 of a face: rounding and that much of a texel.
+    EXPECT_LT(worstSeamless, 1e-8);
+    // Clamped, the two sides are a texel apart: about 2/n of the face in direction.
+    EXPECT_GT(leastClamped, 0.1);
+    // Inside a face, more than half a texel from its edges, the filters are one.
+    for (int face = 0; face < 6; ++face)
+        for (double s = -0.5; s <= 0.5; s += 0.25)
+            for (double t = -0.5; t <= 0.5; t += 0.25) {
+                const dvec3 d = pbrlab::cubeFaceDirection(face, s, t);
+                EXPECT_EQ(seamless.sample(d), clamped.sample(d));
+            }
+    // At a corner three faces meet: a value among theirs, finite.
+    const dvec3 corner = seamless.sample(dvec3(1, 1, 1));
+    EXPECT_NEAR(glm::length(corner), 1.0, 0.2);
+}
+
 TEST(IblEnvGen, GeneratedSkyIsDeterministicFiniteAndHighDynamicRange) {
     const Image& sky = shippedSky();
     ASSERT_EQ(sky.width, 512);

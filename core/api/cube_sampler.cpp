@@ -69,11 +69,41 @@ glm::dvec3 cubeFaceDirection(int face, double s, double t) {
     }
 }
 
+glm::dvec4 CubeSampler::texelAcrossEdges(int level, int face, int x, int y) const {
+    const Image& im = mips_[size_t(level)][size_t(face)];
+    const int n = im.width;
+    const bool xOut = x < 0 || x >= n, yOut = y < 0 || y >= n;
+    if (!xOut && !yOut) return texel(im, x, y);
+    if (xOut && yOut) {  // a corner: the three texels that meet there
+        const int xc = std::clamp(x, 0, n - 1), yc = std::clamp(y, 0, n - 1);
+        return (texel(im, xc, yc) + texelAcrossEdges(level, face, x, yc) +
+                texelAcrossEdges(level, face, xc, y)) /
+               3.0;
+    }
+    // The texel's centre lies just beyond the edge: the direction through it selects the
+    // neighbouring face, and the texel of that face it falls in.
+    const double s = 2.0 * (x + 0.5) / n - 1, t = 2.0 * (y + 0.5) / n - 1;
+    const CubeFacePoint q = cubeFacePoint(cubeFaceDirection(face, s, t));
+    const auto index = [n](double c) {
+        return std::clamp(int(std::floor(0.5 * (c + 1) * n)), 0, n - 1);
+    };
+    return texel(mips_[size_t(level)][size_t(q.face)], index(q.s), index(q.t));
+}
+
 glm::dvec3 CubeSampler::sampleLevel(const glm::dvec3& d, int level) const {
     const CubeFacePoint p = cubeFacePoint(d);
     if (p.face < 0) return glm::dvec3(0);
     const glm::dvec2 st(0.5 * (p.s + 1), 0.5 * (p.t + 1));
-    return glm::dvec3(sampleTexture(mips_[size_t(level)][size_t(p.face)], st));
+    const Image& im = mips_[size_t(level)][size_t(p.face)];
+    if (!seamless_) return glm::dvec3(sampleTexture(im, st));
+    const double x = st.x * im.width - 0.5, y = st.y * im.height - 0.5;
+    const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+    const double fx = x - x0, fy = y - y0;
+    const auto at = [&](int dx, int dy) {
+        return texelAcrossEdges(level, p.face, x0 + dx, y0 + dy);
+    };
+    return glm::dvec3(
+        glm::mix(glm::mix(at(0, 0), at(1, 0), fx), glm::mix(at(0, 1), at(1, 1), fx), fy));
 }
 
 glm::dvec3 CubeSampler::sample(const glm::dvec3& dir, double lod) const {

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <locale>
 #include <sstream>
 
 #include "util/error.h"
@@ -20,8 +21,18 @@ bool parseDouble(const std::string& text, double& out) {
     const char* begin = text.data();
     const char* end = text.data() + text.size();
     while (begin < end && *begin == ' ') ++begin;
+#if defined(_LIBCPP_VERSION) && _LIBCPP_VERSION < 170000
+    // libc++ before 17 (Emscripten's, in the browser's build) has no from_chars for double: a
+    // stream in the classic locale reads the same numbers (it also takes a '+', refused here).
+    if (begin == end || *begin == '+') return false;
+    std::istringstream in(std::string(begin, end));
+    in.imbue(std::locale::classic());
+    in >> out;
+    return !in.fail() && in.peek() == std::char_traits<char>::eof() && std::isfinite(out);
+#else
     auto [ptr, ec] = std::from_chars(begin, end, out);
     return ec == std::errc() && ptr == end && std::isfinite(out);
+#endif
 }
 
 std::vector<std::string> split(const std::string& text, char sep) {

@@ -1,6 +1,7 @@
 // The project's own glTF test models (writeSphereGridGlb, writeTexturedSphereGlb in
 // assets/gltf.h), written with tinygltf: small, deterministic, made by the project's code.
 #include <tiny_gltf.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>

@@ -71,6 +71,13 @@ std::string decodePng(const unsigned char* bytes, std::size_t size, DecodedImage
 std::string encodePng(const Image& image, FileDepth depth, const void* codes, bool markSrgb,
                       std::vector<unsigned char>& file);
 
+// The colour-space name OpenImageIO 2.4 gives a PNG file's chunks, so one set of rules
+// (assets/image_io.cpp) interprets both PNG paths: its "oiio:ColorSpace" text chunk first
+// (null: none), then sRGB, then gAMA (`fileGamma`, 0 when absent; rounded to hundredths, as
+// OpenImageIO does), else OpenImageIO's PNG default "sRGB" (image_io.cpp's chunk scan tells an
+// untagged file from a tagged one).
+std::string pngColourSpaceName(const char* text, bool srgbChunk, double fileGamma);
+
 // 32-bit float OpenEXR (1 to 4 channels), straight to `file`.
 std::string writeExr(const std::filesystem::path& file, const Image& image);
 

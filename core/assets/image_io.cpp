@@ -49,6 +49,23 @@ std::string lower(std::string s) {
     return s;
 }
 
+}  // namespace
+
+std::string pngColourSpaceName(const char* text, bool srgbChunk, double fileGamma) {
+    if (text) return text;
+    if (srgbChunk) return "sRGB";
+    if (fileGamma > 0.0) {
+        const float g = std::round(100.0f * float(1.0 / fileGamma)) / 100.0f;
+        if (g == 1.0f) return "linear";
+        char name[32];
+        std::snprintf(name, sizeof name, "Gamma%.2g", double(g));
+        return name;
+    }
+    return "sRGB";
+}
+
+namespace {
+
 // What the PNG chunk structure says, beyond what the decoders report.
 struct PngScan {
     // A chunk before the pixel data says how to interpret the values: sRGB, gAMA, iCCP, or

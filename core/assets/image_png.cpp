@@ -98,21 +98,8 @@ bool readPixels(PngRead& r, png_bytepp rows) {
     return true;
 }
 
-// The colour-space name OpenImageIO 2.4 gives the same chunks, so one set of rules
-// (assets/image_io.cpp) interprets both: its text chunk first, then sRGB, then gAMA (rounded to
-// hundredths, as OpenImageIO does), else OpenImageIO's PNG default "sRGB" (assets/image_io.cpp's
-// chunk scan tells an untagged file from a tagged one).
 std::string colourSpaceName(const PngHeader& h) {
-    if (h.colourSpaceText) return h.colourSpaceText;
-    if (h.srgbChunk) return "sRGB";
-    if (h.fileGamma > 0.0) {
-        const float g = std::round(100.0f * float(1.0 / h.fileGamma)) / 100.0f;
-        if (g == 1.0f) return "linear";
-        char name[32];
-        std::snprintf(name, sizeof name, "Gamma%.2g", double(g));
-        return name;
-    }
-    return "sRGB";
+    return pngColourSpaceName(h.colourSpaceText, h.srgbChunk, h.fileGamma);
 }
 
 template <typename T>

@@ -41,6 +41,18 @@ Handle uploadTexture(const Image& image, bool mipmaps, GLenum internalFormat) {
     if (image.channels < 1 || image.channels > 4 || image.width <= 0 || image.height <= 0)
         throw Error("cannot upload an image of " + std::to_string(image.width) + "x" +
                     std::to_string(image.height) + "x" + std::to_string(image.channels));
+    if (kWebGl2 && image.channels == 3 && mipmaps && !internalFormat) {
+        // WebGL 2 cannot render into RGB32F, so it builds no mipmaps of it: RGBA32F instead
+        // (alpha 1; the shaders read .rgb).
+        Image rgba;
+        rgba.width = image.width;
+        rgba.height = image.height;
+        rgba.channels = 4;
+        rgba.pixels.resize(size_t(image.width) * size_t(image.height) * 4, 1.0f);
+        for (size_t i = 0; i < size_t(image.width) * size_t(image.height); ++i)
+            for (size_t c = 0; c < 3; ++c) rgba.pixels[4 * i + c] = image.pixels[3 * i + c];
+        return uploadTexture(rgba, mipmaps, internalFormat);
+    }
     Handle texture = makeTexture();
     BindTexture(GL_TEXTURE_2D, texture.id());
     PixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -191,6 +203,14 @@ int FullscreenTriangle::draw() const {
     Scissor(scissorBox[0], scissorBox[1], scissorBox[2], scissorBox[3]);
     if (!scissorWas) Disable(GL_SCISSOR_TEST);
     return draws;
+}
+
+void setSeamlessCubeFiltering(bool on) {
+    if (kWebGl2) return;
+    if (on)
+        Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    else
+        Disable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
 }
 
 }  // namespace pbrlab::gl

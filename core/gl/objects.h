@@ -87,6 +87,17 @@ private:
 // finished before the next, sized from the band before to take about `ms`: another context
 // waits about one band. The pixels are the same (each is shaded once, by the same program).
 void setDrawBudgetOnThisThread(double ms);
+
+// This build's GL is a page's WebGL 2 (OpenGL ES 3.0: GLSL ES 3.00, cube maps always seamless).
+#ifdef __EMSCRIPTEN__
+constexpr bool kWebGl2 = true;
+#else
+constexpr bool kWebGl2 = false;
+#endif
+
+// Whether cube maps are filtered across face edges. WebGL 2's always are (it has no switch):
+// there this does nothing, and RendererOptions::seamlessCubesAlways says so to the renderer.
+void setSeamlessCubeFiltering(bool on);
 // The rows of the next band after one of `rows` took `ms`: as many as fit the budget at that
 // cost, even, at least 2, growing at most 1.5 times (or by 2 rows, from 2 or 4): a view's cost
 // per row varies across the picture (brdf_lut's at 1024 samples: 0.5-2.5 ms a row), and a band

@@ -118,11 +118,14 @@ gl::Handle makeLutTexture(int width, int height) {
 }
 
 // A LUT texture holding an image read back from one (RGBA: its red and green are the texture's).
-gl::Handle uploadLut(const Image& rg) {
-    gl::Handle lut = makeLutTexture(rg.width, rg.height);
+// Uploaded as red and green only: OpenGL ES (WebGL 2) takes no RGBA data into an RG texture.
+gl::Handle uploadLut(const Image& rgba) {
+    gl::Handle lut = makeLutTexture(rgba.width, rgba.height);
+    std::vector<float> rg(size_t(rgba.width) * size_t(rgba.height) * 2);
+    for (size_t i = 0; i < rg.size() / 2; ++i)
+        for (size_t c = 0; c < 2; ++c) rg[2 * i + c] = rgba.pixels[i * size_t(rgba.channels) + c];
     gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    gl::TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, rg.width, rg.height, GL_RGBA, GL_FLOAT,
-                      rg.pixels.data());
+    gl::TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, rgba.width, rgba.height, GL_RG, GL_FLOAT, rg.data());
     gl::checkError("uploading the LUT");
     return lut;
 }
@@ -266,7 +269,7 @@ void IblPrecompute::buildDerived(IblMaps& maps, const Image& equirect, const Ibl
     maps.derived = true;
     const IblSettings& s = maps.settings;
     gl::Disable(GL_DEPTH_TEST);
-    gl::Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);  // precomputed maps never depend on the caller
+    gl::setSeamlessCubeFiltering(true);  // precomputed maps never depend on the caller
     maps.prefilterMaxLod = float(s.prefilterMips - 1);
 
     const fs::path mapsDir = cache ? cache->root_ / "ibl" / mapsKey(equirect, s) : fs::path();
@@ -512,7 +515,7 @@ std::vector<glm::dvec3> IblPrecompute::sampleCube(GLuint cube, float lod,
     gl::Handle source = gl::uploadTexture(packed, false);
     gl::RenderTarget target(packed.width, 1, 1, false);
     target.bind();
-    gl::Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    gl::setSeamlessCubeFiltering(true);
     auto p = hostProgram("probe_cube", nullptr);
     p->use();
     gl::ActiveTexture(GL_TEXTURE0);

@@ -208,10 +208,7 @@ double LabRenderer::runView(const RenderRequest& request, const Scene& scene, bo
         }
     }
     if (request.extraUniforms) request.extraUniforms(*program);
-    if (request.seamlessCubes || options_.seamlessCubesAlways)
-        gl::Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-    else
-        gl::Disable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    gl::setSeamlessCubeFiltering(request.seamlessCubes || options_.seamlessCubesAlways);
     gl::Finish();
     auto start = std::chrono::steady_clock::now();
     fullscreen_.draw();

@@ -114,11 +114,11 @@ struct RendererOptions {
     // Told as each precompute pass starts, for progress output.
     std::function<void(const std::string&)> onPrecomputePass;
     // The GLSL every program is written in (Es300: WebGL 2's, ShaderPreprocessor).
-    GlslDialect dialect = GlslDialect::Desktop450;
+    GlslDialect dialect = gl::kWebGl2 ? GlslDialect::Es300 : GlslDialect::Desktop450;
     // Cube maps always filtered across face edges, whatever RenderRequest::seamlessCubes asks:
     // WebGL 2 cannot turn seamless filtering off (its cube maps are always seamless), so this
     // is the browser's renderer, on the desktop (tests/test_glsl_es.cpp grades with it).
-    bool seamlessCubesAlways = false;
+    bool seamlessCubesAlways = gl::kWebGl2;
 };
 
 class LabRenderer {

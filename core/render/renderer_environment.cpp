@@ -130,7 +130,10 @@ const IblInputs& LabRenderer::environmentInputs(const Scene& scene, const IblSet
         std::vector<std::vector<Image>> mips = IblPrecompute::readCube(texture, size, levels);
         for (const auto& faces : mips)
             for (const Image& face : faces) add(digest, face);
-        return CubeSampler(std::move(mips));
+        // The references read the maps as this renderer's views do: across face edges when
+        // it cannot turn that off (WebGL 2), which then enters the maps' digest.
+        if (options_.seamlessCubesAlways) digest.add(std::string("seamless"));
+        return CubeSampler(std::move(mips), options_.seamlessCubesAlways);
     };
     if (!env.cpu) {
         env.cpu = std::make_unique<IblInputs>();

@@ -97,13 +97,7 @@ ModuleRegistry::ModuleRegistry(const std::vector<fs::path>& moduleDirs, const st
                     reason = "id '" + id + "' already loaded from " + dup->library.string();
             }
             if (reason.empty()) {
-                auto owned = std::make_unique<ModuleDesc>(*desc);
-                owned->id = step->id;
-                owned->step = step->step;
-                owned->lab = step->lab;
-                owned->function = step->function;
-                modules_.push_back({owned.get(), lib, step->folder});
-                descs_.push_back(std::move(owned));
+                adopt(*desc, *step, lib);
                 handles_.push_back(handle);
                 continue;
             }
@@ -111,9 +105,38 @@ ModuleRegistry::ModuleRegistry(const std::vector<fs::path>& moduleDirs, const st
         failures_.push_back({lib, reason});
         dlclose(handle);
     }
+    // The steps linked into the program (the browser's build): taken as libraries are, named
+    // "(linked in)" where a library's path would be.
+    for (const StaticModule& linked : staticModules()) {
+        if (!onlyId.empty() && linked.id != onlyId) continue;
+        const fs::path lib = std::string("(linked in) ") + linked.id;
+        const ContractStep* step = findContractStep(linked.id);
+        const ModuleDesc* desc = linked.get();
+        std::string reason = !step ? "no step folder declares '" + std::string(linked.id) + "'"
+                                   : validate(*desc, *step);
+        if (reason.empty() && std::any_of(modules_.begin(), modules_.end(),
+                                          [&](const auto& m) { return m.desc->id == linked.id; }))
+            reason = "id '" + std::string(linked.id) + "' is also loaded from a library";
+        if (!reason.empty()) {
+            failures_.push_back({lib, reason});
+            continue;
+        }
+        adopt(*desc, *step, lib);
+    }
     std::sort(modules_.begin(), modules_.end(), [](const LoadedModule& a, const LoadedModule& b) {
         return a.desc->step < b.desc->step;
     });
+}
+
+void ModuleRegistry::adopt(const ModuleDesc& desc, const ContractStep& step,
+                           const fs::path& library) {
+    auto owned = std::make_unique<ModuleDesc>(desc);
+    owned->id = step.id;
+    owned->step = step.step;
+    owned->lab = step.lab;
+    owned->function = step.function;
+    modules_.push_back({owned.get(), library, step.folder});
+    descs_.push_back(std::move(owned));
 }
 
 ModuleRegistry::~ModuleRegistry() {

@@ -13,6 +13,8 @@
 
 namespace pbrlab {
 
+struct ContractStep;
+
 struct LoadedModule {
     const ModuleDesc* desc = nullptr;
     std::filesystem::path library;
@@ -44,6 +46,10 @@ public:
     const LoadedModule& find(const std::string& id) const;
 
 private:
+    // Keeps a copy of the descriptor with its identity from step.json (the library's own, or
+    // the linked-in step's, stays untouched).
+    void adopt(const ModuleDesc& desc, const ContractStep& step,
+               const std::filesystem::path& library);
     std::vector<LoadedModule> modules_;
     std::vector<ModuleLoadFailure> failures_;
     std::vector<void*> handles_;

@@ -1,8 +1,9 @@
 // CPU copies of the GPU's cube maps and LUT, sampled as OpenGL samples them (face selection
-// by major axis, bilinear between texel centres clamped at face edges, linear between mips),
-// so a module's CPU reference can read exactly the precomputed data its shader reads.
-// (The GPU filters across face edges, GL_TEXTURE_CUBE_MAP_SEAMLESS; this does not: texels
-// on a face border may differ by a fraction of a texel's contrast.)
+// by major axis, bilinear between texel centres, linear between mips), so a module's CPU
+// reference can read exactly the precomputed data its shader reads. Bilinear taps that fall
+// off a face are clamped to its edge, as the GPU does with GL_TEXTURE_CUBE_MAP_SEAMLESS off
+// (how the desktop grades), or taken from the neighbouring face, as it does with it on
+// (WebGL 2, where it cannot be turned off: the page's evaluation).
 #pragma once
 
 #include <vector>
@@ -29,7 +30,12 @@ class CubeSampler {
 public:
     CubeSampler() = default;
     // mips[level][face]: square RGBA images, face order +x -x +y -y +z -z, row 0 = t = 0.
-    explicit CubeSampler(std::vector<std::vector<Image>> mips) : mips_(std::move(mips)) {}
+    // seamless: filter across face edges (OpenGL 4.5 section 8.14.2: a tap beyond an edge
+    // reads the neighbouring face's texel there; a tap beyond a corner, where three faces
+    // meet, the mean of those three texels).
+    explicit CubeSampler(std::vector<std::vector<Image>> mips, bool seamless = false)
+        : mips_(std::move(mips)), seamless_(seamless) {}
+    bool seamless() const { return seamless_; }
     bool empty() const { return mips_.empty(); }
     int levels() const { return int(mips_.size()); }
     int size() const { return mips_.empty() ? 0 : mips_[0][0].width; }
@@ -37,7 +43,10 @@ public:
 
 private:
     glm::dvec3 sampleLevel(const glm::dvec3& dir, int level) const;
+    // Texel (x, y) of a face, or beyond its edges, the neighbouring faces' (seamless).
+    glm::dvec4 texelAcrossEdges(int level, int face, int x, int y) const;
     std::vector<std::vector<Image>> mips_;
+    bool seamless_ = false;
 };
 
 // Bilinear lookup of a 2D texture at uv in [0, 1] (clamp to edge), row 0 = t = 0.

@@ -423,7 +423,22 @@ struct ModuleDesc {
 
 }  // namespace pbrlab
 
+namespace pbrlab {
+
+// A step linked into the program instead of loaded from a library (the browser has no dlopen):
+// its id and descriptor, registered before main() by PBRLAB_MODULE when the build defines
+// PBRLAB_STATIC_STEP as the step's id. ModuleRegistry takes them as it takes libraries.
+struct StaticModule {
+    const char* id;
+    const ModuleDesc* (*get)();
+};
+bool registerStaticModule(StaticModule module);
+const std::vector<StaticModule>& staticModules();
+
+}  // namespace pbrlab
+
 // Exports the module from its shared library. `makeDesc` is a function returning ModuleDesc.
+#ifndef PBRLAB_STATIC_STEP
 #define PBRLAB_MODULE(makeDesc)                            \
     extern "C" int pbrlab_module_abi() {                   \
         return pbrlab::kModuleAbiVersion;                  \
@@ -432,3 +447,14 @@ struct ModuleDesc {
         static const pbrlab::ModuleDesc desc = makeDesc(); \
         return &desc;                                      \
     }
+#else
+#define PBRLAB_MODULE(makeDesc)                                                \
+    namespace {                                                                \
+    const pbrlab::ModuleDesc* staticModuleDesc() {                             \
+        static const pbrlab::ModuleDesc desc = makeDesc();                     \
+        return &desc;                                                          \
+    }                                                                          \
+    const bool staticModuleRegistered =                                        \
+        pbrlab::registerStaticModule({PBRLAB_STATIC_STEP, &staticModuleDesc}); \
+    }
+#endif

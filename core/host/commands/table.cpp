@@ -11,6 +11,9 @@ namespace pbrlab {
 
 Commands shellCommands() {
     Commands c;
+#ifdef __EMSCRIPTEN__
+    return c;  // a page starts no processes: its console has the GUI's own commands only
+#endif
     c.push_back(listCommand());
     c.push_back(renderCommand());
     c.push_back(checkCommand());

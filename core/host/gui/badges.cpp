@@ -27,6 +27,8 @@ const char* badgeText(Status s) {
             return "passes";
         case Status::Fails:
             return "fails";
+        case Status::NotGradedHere:
+            return "not graded in the page";
         default:
             return "...";
     }
@@ -86,11 +88,15 @@ std::string Badges::update(const ModuleRegistry& registry) {
 bool Badges::upToDate(const std::string& id) const {
     if (job_.pid > 0 && job_.id == id) return false;
     const Badge& badge = of(id);
-    if (badge.status == Status::Missing) return true;
+    if (badge.status == Status::Missing || badge.status == Status::NotGradedHere) return true;
     return badge.status != Status::Unknown && !badge.watch.stale(submission_ / (id + ".glsl"));
 }
 
 void Badges::start(const std::string& id) {
+#ifdef __EMSCRIPTEN__
+    badges_[id].status = Status::NotGradedHere;  // a page starts no processes
+    return;
+#endif
     job_.id = id;
     job_.json = fs::temp_directory_path() /
                 ("pbrlab-badge-" + std::to_string(getpid()) + "-" + id + ".json");

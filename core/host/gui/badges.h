@@ -16,7 +16,9 @@ namespace pbrlab {
 
 class ModuleRegistry;
 
-enum class Status { Unknown, Missing, CompileError, Passes, Fails };
+// NotGradedHere: the page does not grade yet (it starts no `pbrlab check`); `pbrlab grade`
+// gives the grade (docs/web.md).
+enum class Status { Unknown, Missing, CompileError, Passes, Fails, NotGradedHere };
 
 struct Badge {
     Status status = Status::Unknown;

@@ -31,16 +31,29 @@ private:
     std::unique_ptr<GlContext> context_;
 };
 
+class WindowsOwnContext final : public WorkerContext {
+public:
+    void makeCurrent() override {}
+    void release() override {}
+};
+
 }  // namespace
 
 std::unique_ptr<WorkerContext> headlessWorkerContext() {
     return std::make_unique<HeadlessWorkerContext>();
 }
 
+std::unique_ptr<WorkerContext> windowsOwnContext() {
+    return std::make_unique<WindowsOwnContext>();
+}
+
 EvaluationWorker::EvaluationWorker(DataPaths paths, std::unique_ptr<WorkerContext> context)
-    : paths_(std::move(paths)), context_(std::move(context)), thread_([this] { loop(); }) {}
+    : paths_(std::move(paths)), context_(std::move(context)) {
+    if (kEvaluationThread) thread_ = std::thread([this] { loop(); });
+}
 
 EvaluationWorker::~EvaluationWorker() {
+    if (!kEvaluationThread) return;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         stop_ = true;
@@ -72,6 +85,7 @@ void EvaluationWorker::cancel() {
 }
 
 std::optional<EvaluationResult> EvaluationWorker::take() {
+    if (!kEvaluationThread) runPendingHere();
     std::lock_guard<std::mutex> lock(mutex_);
     if (!result_ || result_->generation != latest_.load()) return std::nullopt;
     std::optional<EvaluationResult> r = std::move(result_);
@@ -81,6 +95,10 @@ std::optional<EvaluationResult> EvaluationWorker::take() {
 }
 
 EvaluationResult EvaluationWorker::wait() {
+    if (!kEvaluationThread) {
+        pendingSeen_ = true;
+        runPendingHere();
+    }
     std::unique_lock<std::mutex> lock(mutex_);
     changed_.wait(lock, [&] { return result_ && result_->generation == latest_.load(); });
     EvaluationResult r = std::move(*result_);
@@ -133,24 +151,50 @@ void EvaluationWorker::loop() {
             progress_ = {true, 0, 0, "", 0};
             started_ = std::chrono::steady_clock::now();
         }
-        std::optional<EvaluationResult> result;
-        try {
-            if (!renderer) throw Error(startError);
-            result = run(*renderer, job, generation);
-        } catch (const std::exception& e) {  // not the student's: the host's (says what)
-            result.emplace();
-            result->generation = generation;
-            result->renderError = e.what();
-        }
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            progress_.running = false;
-            if (result && !superseded(generation)) result_ = std::move(result);
-        }
-        changed_.notify_all();
+        runJob(renderer.get(), startError, job, generation);
     }
     renderer.reset();
     context_->release();
+}
+
+void EvaluationWorker::runJob(LabRenderer* renderer, const std::string& startError,
+                              const EvaluationJob& job, unsigned generation) {
+    std::optional<EvaluationResult> result;
+    try {
+        if (!renderer) throw Error(startError);
+        result = run(*renderer, job, generation);
+    } catch (const std::exception& e) {  // not the student's: the host's (says what)
+        result.emplace();
+        result->generation = generation;
+        result->renderError = e.what();
+    }
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        progress_.running = false;
+        if (result && !superseded(generation)) result_ = std::move(result);
+    }
+    changed_.notify_all();
+}
+
+void EvaluationWorker::runPendingHere() {
+    if (!pending_) return;
+    if (!pendingSeen_) {  // let the frame that noticed it draw the progress line first
+        pendingSeen_ = true;
+        return;
+    }
+    pendingSeen_ = false;
+    EvaluationJob job = std::move(*pending_);
+    pending_.reset();
+    const unsigned generation = latest_.load();
+    progress_ = {true, 0, 0, "", 0};
+    started_ = std::chrono::steady_clock::now();
+    std::string startError;
+    try {
+        if (!hereRenderer_) hereRenderer_ = std::make_unique<LabRenderer>(paths_);
+    } catch (const std::exception& e) {
+        startError = std::string("the evaluation has no OpenGL: ") + e.what();
+    }
+    runJob(hereRenderer_.get(), startError, job, generation);
 }
 
 // The stages Lab::render ran in the frame before: the solution's picture, evaluated against

@@ -124,6 +124,18 @@ struct EvaluationProgress {
     double seconds = 0;         // since the job started
 };
 
+// Whether the evaluation runs on a thread of its own. A page without shared memory has one
+// thread: there the worker runs each job in the window's context, inside the frame after the
+// one that posted it (which draws the progress line), and the window waits for it.
+#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
+constexpr bool kEvaluationThread = false;
+#else
+constexpr bool kEvaluationThread = true;
+#endif
+
+// The evaluation's context in a page: the window's own, already current.
+std::unique_ptr<WorkerContext> windowsOwnContext();
+
 class EvaluationWorker {
 public:
     EvaluationWorker(DataPaths paths, std::unique_ptr<WorkerContext> context);
@@ -146,6 +158,12 @@ public:
 
 private:
     void loop();
+    // The job, run: its result kept unless superseded, or the host's error (`renderer` null:
+    // startError says why).
+    void runJob(LabRenderer* renderer, const std::string& startError, const EvaluationJob& job,
+                unsigned generation);
+    // Without a thread: the pending job, run now when it was posted before the last take().
+    void runPendingHere();
     // The job's stages; empty when a newer generation superseded it between two.
     std::optional<EvaluationResult> run(LabRenderer& renderer, const EvaluationJob& job,
                                         unsigned generation);
@@ -167,7 +185,11 @@ private:
     std::chrono::steady_clock::time_point started_;
     // The worker's own: choices already made, kept when the job that made one was superseded.
     std::map<std::pair<std::string, double>, BudgetChoice> budgetChoices_;
-    std::thread thread_;  // last: started once the members above exist
+    // Without a thread: the renderer (made at the first job), and whether take() has seen
+    // the pending job once (the frame that saw it drew the progress line).
+    std::unique_ptr<LabRenderer> hereRenderer_;
+    bool pendingSeen_ = false;
+    std::thread thread_;  // last: started once the members above exist (kEvaluationThread)
 };
 
 }  // namespace pbrlab

@@ -9,18 +9,24 @@
 #include <dirent.h>
 #include <imgui.h>
 #include <sys/resource.h>
+#ifdef __EMSCRIPTEN__
+#include <emscripten.h>
+#endif
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <thread>
 
 #include "gl/context.h"
 #include "lab.h"
 #include "panels.h"
+#include "render/display.h"
 #include "util/error.h"
+#include "view_status.h"
 
 namespace fs = std::filesystem;
 
@@ -68,9 +74,9 @@ void loadFont(std::string& messages) {
     messages += std::string("font ") + file + " not found: Greek letters show as '?'\n";
 }
 
-// The evaluation thread's context (evaluation_worker.h): a hidden window's, made here on the
-// main thread (GLFW creates windows on it only; creating one leaves the current context as it
-// was), current on the worker. Not shared with the window's: the worker returns images in
+// The evaluation thread's context (evaluation_worker.h), on the desktop: a hidden window's, made
+// here on the main thread (GLFW creates windows on it only; creating one leaves the current context
+// as it was), current on the worker. Not shared with the window's: the worker returns images in
 // memory, and no GL object crosses threads.
 class GlfwWorkerContext final : public WorkerContext {
 public:
@@ -110,6 +116,11 @@ private:
     }
     GLFWwindow* window_ = nullptr;
 };
+
+std::unique_ptr<WorkerContext> evaluationContext() {
+    if (!kEvaluationThread) return windowsOwnContext();  // a page: one thread, one context
+    return std::make_unique<GlfwWorkerContext>();
+}
 
 // The windows' background.
 const ImVec4 kBackground(0.11f, 0.115f, 0.13f, 1);
@@ -155,12 +166,15 @@ void saveScreenshot(const fs::path& file, int w, int h, std::string& messages) {
     }
 }
 
+class GuiApp;
+GuiApp* runningApp = nullptr;  // for the page's hooks (gui.h)
+
 class GuiApp {
 public:
     explicit GuiApp(const GuiOptions& options)
         : options_(options),
           context_(createWindowContext(options.width, options.height, "pbrlab")),
-          lab_(options, state_, std::make_unique<GlfwWorkerContext>()),
+          lab_(options, state_, evaluationContext()),
           console_(options.globalArguments, options.frames > 0) {
         for (const std::string& line : options.commands) console_.submit(line);
         if (!options.commands.empty() && options.tab.empty()) state_.openTab = "console";
@@ -170,10 +184,38 @@ public:
         loadFont(lab_.shown().messages);
         styleUi();
         ImGui_ImplGlfw_InitForOpenGL(context_->window(), true);
-        ImGui_ImplOpenGL3_Init("#version 450 core");
+        ImGui_ImplOpenGL3_Init(gl::kWebGl2 ? "#version 300 es" : "#version 450 core");
+        runningApp = this;
     }
 
+    std::string stepOnScreen() const { return lab_.module(state_).id; }
+    void resize(int width, int height) { glfwSetWindowSize(context_->window(), width, height); }
+    std::string statusJson() const {
+        const ViewStatus status = viewStatus(lab_, state_);
+        nlohmann::json rows = nlohmann::json::array();
+        for (const ViewStatus::Row& row : status.rows)
+            rows.push_back({{"text", row.text}, {"ok", row.ok}});
+        const std::string id = lab_.module(state_).id;
+        return nlohmann::json{{"step", id},
+                              {"settled", lab_.settled(state_)},
+                              {"error", status.error},
+                              {"errorLog", status.errorLog},
+                              {"notice", status.notice},
+                              {"renderError", lab_.shown().renderError},
+                              {"sceneError", lab_.shown().sceneError},
+                              {"rows", rows},
+                              {"badge", badgeText(lab_.badges().of(id).status)}}
+            .dump();
+    }
+    void saveSolutionPicture(const fs::path& file) const {
+        const ModuleDesc& m = lab_.module(state_);
+        writeImage(file, displayImage(lab_.shown().solutionValue, m.display, m.components),
+                   FileDepth::Uint8, true);
+    }
+    void submit(const std::string& line) { console_.submit(line); }
+
     ~GuiApp() {
+        runningApp = nullptr;
         saveState(lab_.registry(), state_);
         ImGui_ImplOpenGL3_Shutdown();
         ImGui_ImplGlfw_Shutdown();
@@ -181,69 +223,91 @@ public:
     }
 
     int run() {
-        GLFWwindow* window = context_->window();
-        int frame = 0;
-        std::vector<double> frameTimes, renderTimes;
-        // Per frame, the evaluation against the CPU reference it overlapped or ran (the number
-        // finished before it), or -1.
-        std::vector<int> whileEvaluating;
-        int w = 0, h = 0;
-        while (!glfwWindowShouldClose(window)) {
-            glfwPollEvents();
-            auto start = std::chrono::steady_clock::now();
-            const bool evaluatingBefore = lab_.evaluating();
-            const int evaluationsBefore = lab_.evaluationsDone();
-            if (options_.orbit) {  // a step of a mouse drag
-                state_.camera.yaw += 0.02;
-                requests_.moved = true;
-            }
-            console_.poll({&lab_, &state_, &requests_});
-            lab_.update(state_, requests_);
-            ImGui_ImplOpenGL3_NewFrame();
-            ImGui_ImplGlfw_NewFrame();
-            ImGui::NewFrame();
-            drawWindows();
-            ImGui::Render();
-            glfwGetFramebufferSize(window, &w, &h);
-            gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
-            gl::Viewport(0, 0, w, h);
-            gl::ClearColor(kBackground.x, kBackground.y, kBackground.z, 1);
-            gl::Clear(GL_COLOR_BUFFER_BIT);
-            ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-            ++frame;
-            // Scripted: the frames asked for, the console's lines and the evaluation have
-            // finished, the evaluation before this frame (ImGui hides a window, such as the
-            // pixel inspector's tooltip, on the first frame it appears in).
-            bool last = options_.frames > 0 && frame >= options_.frames && console_.idle() &&
-                        !evaluatingBefore && !lab_.evaluating();
-            if (requests_.screenshot) {  // the button, or the console's `screenshot`
-                saveScreenshot(requests_.screenshotFile.empty() ? fs::path("pbrlab-screenshot.png")
-                                                                : requests_.screenshotFile,
-                               w, h, lab_.shown().messages);
-                requests_.screenshot = false;
-                requests_.screenshotFile.clear();
-            }
-            if (last && !options_.screenshot.empty())
-                saveScreenshot(options_.screenshot, w, h, lab_.shown().messages);
-            glfwSwapBuffers(window);
-            lab_.shown().frameMs = millisecondsSince(start);
-            frameTimes.push_back(lab_.shown().frameMs);
-            renderTimes.push_back(lab_.shown().renderMs);
-            const bool evaluated = evaluatingBefore || lab_.evaluating() ||
-                                   lab_.evaluationsDone() != evaluationsBefore;
-            whileEvaluating.push_back(evaluated ? evaluationsBefore : -1);
-            // While the evaluation thread works, 60 frames a second are enough: the rest of
-            // the time is its (without vsync, as under Xvfb, the loop would draw hundreds).
-            if (lab_.evaluating())
-                std::this_thread::sleep_until(start + std::chrono::microseconds(16667));
-            if (last) break;
-        }
-        if (options_.orbit) printOrbitReport(frameTimes, renderTimes, w, h);
-        if (options_.frameTimes) printEvaluationFrames(frameTimes, whileEvaluating);
+#ifdef __EMSCRIPTEN__
+        // The browser calls each frame (requestAnimationFrame); run() returns at once and
+        // the page keeps the app.
+        // An error escaping a frame would stop the page's loop: it is reported and the next
+        // frame is drawn (on the desktop it ends the program with the message).
+        emscripten_set_main_loop_arg(
+            [](void* app) {
+                try {
+                    static_cast<GuiApp*>(app)->frame();
+                } catch (const std::exception& e) {
+                    std::fprintf(stderr, "pbrlab: %s\n", e.what());
+                    static_cast<GuiApp*>(app)->lab_.shown().messages +=
+                        std::string(e.what()) + "\n";
+                }
+            },
+            this, 0, false);
         return 0;
+#else
+        while (!glfwWindowShouldClose(context_->window()) && frame()) {
+        }
+        if (options_.orbit) printOrbitReport(frameTimes_, renderTimes_, width_, height_);
+        if (options_.frameTimes) printEvaluationFrames(frameTimes_, whileEvaluating_);
+        return 0;
+#endif
     }
 
 private:
+    // One frame; false once a scripted run (--frames) is done.
+    bool frame() {
+        GLFWwindow* window = context_->window();
+        int& w = width_;
+        int& h = height_;
+        glfwPollEvents();
+        auto start = std::chrono::steady_clock::now();
+        const bool evaluatingBefore = lab_.evaluating();
+        const int evaluationsBefore = lab_.evaluationsDone();
+        if (options_.orbit) {  // a step of a mouse drag
+            state_.camera.yaw += 0.02;
+            requests_.moved = true;
+        }
+        console_.poll({&lab_, &state_, &requests_});
+        lab_.update(state_, requests_);
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        // GLFW's clock may not advance between two frames (a page's timer is coarse), and
+        // ImGui needs time to pass.
+        ImGui::GetIO().DeltaTime = std::max(ImGui::GetIO().DeltaTime, 1e-4f);
+        ImGui::NewFrame();
+        drawWindows();
+        ImGui::Render();
+        glfwGetFramebufferSize(window, &w, &h);
+        gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
+        gl::Viewport(0, 0, w, h);
+        gl::ClearColor(kBackground.x, kBackground.y, kBackground.z, 1);
+        gl::Clear(GL_COLOR_BUFFER_BIT);
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        ++frameCount_;
+        // Scripted: the frames asked for, the console's lines and the evaluation have
+        // finished, the evaluation before this frame (ImGui hides a window, such as the
+        // pixel inspector's tooltip, on the first frame it appears in).
+        bool last = options_.frames > 0 && frameCount_ >= options_.frames && console_.idle() &&
+                    !evaluatingBefore && !lab_.evaluating();
+        if (requests_.screenshot) {  // the button, or the console's `screenshot`
+            saveScreenshot(requests_.screenshotFile.empty() ? fs::path("pbrlab-screenshot.png")
+                                                            : requests_.screenshotFile,
+                           w, h, lab_.shown().messages);
+            requests_.screenshot = false;
+            requests_.screenshotFile.clear();
+        }
+        if (last && !options_.screenshot.empty())
+            saveScreenshot(options_.screenshot, w, h, lab_.shown().messages);
+        glfwSwapBuffers(window);
+        lab_.shown().frameMs = millisecondsSince(start);
+        frameTimes_.push_back(lab_.shown().frameMs);
+        renderTimes_.push_back(lab_.shown().renderMs);
+        const bool evaluated =
+            evaluatingBefore || lab_.evaluating() || lab_.evaluationsDone() != evaluationsBefore;
+        whileEvaluating_.push_back(evaluated ? evaluationsBefore : -1);
+        // While the evaluation thread works, 60 frames a second are enough: the rest of
+        // the time is its (without vsync, as under Xvfb, the loop would draw hundreds).
+        if (lab_.evaluating() && kEvaluationThread)
+            std::this_thread::sleep_until(start + std::chrono::microseconds(16667));
+        return !last;
+    }
+
     // --frame-times: every frame's times, then, for each evaluation against the CPU reference,
     // the frames drawn while it ran (or the frame that ran it, when it runs in the frame).
     void printEvaluationFrames(std::vector<double> frameTimes,
@@ -300,7 +364,10 @@ private:
     // Steps | picture | module, side by side, filling the window.
     void drawWindows() {
         ImVec2 size = ImGui::GetIO().DisplaySize;
-        const float left = state_.layout.stepsWidth, right = state_.layout.moduleWidth;
+        // Narrower than the layout's widths need (a page beside its editor, a small window),
+        // the side windows give up width first, down to what their controls need.
+        const float left = std::min(state_.layout.stepsWidth, std::max(205.0f, 0.2f * size.x));
+        const float right = std::min(state_.layout.moduleWidth, std::max(300.0f, 0.34f * size.x));
         const ImGuiWindowFlags fixed =
             ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse;
         ImGui::SetNextWindowPos(ImVec2(0, 0));
@@ -333,13 +400,44 @@ private:
     Requests requests_;
     SideTabsMemory tabs_;
     Console console_;
+    int frameCount_ = 0, width_ = 0, height_ = 0;
+    std::vector<double> frameTimes_, renderTimes_;
+    // Per frame, the evaluation against the CPU reference it overlapped or ran (the number
+    // finished before it), or -1.
+    std::vector<int> whileEvaluating_;
 };
 
 }  // namespace
 
+std::string guiStepOnScreen() {
+    return runningApp ? runningApp->stepOnScreen() : std::string();
+}
+
+void guiSubmitConsoleLine(const std::string& line) {
+    if (runningApp) runningApp->submit(line);
+}
+
+std::string guiStatusJson() {
+    return runningApp ? runningApp->statusJson() : "{}";
+}
+
+void guiResize(int width, int height) {
+    if (runningApp) runningApp->resize(width, height);
+}
+
+void guiSaveSolutionPicture(const fs::path& file) {
+    if (!runningApp) throw Error("the GUI is not running");
+    runningApp->saveSolutionPicture(file);
+}
+
 int runGui(const GuiOptions& options) {
+#ifdef __EMSCRIPTEN__
+    static GuiApp* app = new GuiApp(options);  // the page's, for as long as it is open
+    return app->run();
+#else
     GuiApp app(options);
     return app.run();
+#endif
 }
 
 }  // namespace pbrlab

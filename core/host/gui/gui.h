@@ -35,4 +35,18 @@ struct GuiOptions {
 
 int runGui(const GuiOptions& options);
 
+// For the page around the GUI (core/host/web_main.cpp): the id of the step the running GUI
+// shows (empty before it starts), and a line for its console, run from the next frame.
+std::string guiStepOnScreen();
+void guiSubmitConsoleLine(const std::string& line);
+// What the status lines under the picture say, as JSON: {"step", "settled", "error",
+// "errorLog", "notice", "renderError", "sceneError", "rows": [{"text", "ok"}], "badge"} (the
+// page's tests read it).
+std::string guiStatusJson();
+// The step's settled solution picture, display-encoded as `pbrlab render --out x.png` writes
+// it, saved to `file` (the page's tests compare it with the desktop's).
+void guiSaveSolutionPicture(const std::filesystem::path& file);
+// The page's canvas has a new size.
+void guiResize(int width, int height);
+
 }  // namespace pbrlab

@@ -1,0 +1,68 @@
+// gl/context.h in the browser: the page's canvas as a WebGL 2 context, through Emscripten's
+// GLFW. WebGL 2 is OpenGL ES 3.0: the renderer writes its programs as GLSL ES 3.00
+// (GlslDialect::Es300) and every entry point gl/gl.h names exists there.
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <emscripten/html5.h>
+
+#include "gl/context.h"
+#include "gl/gl.h"
+#include "util/error.h"
+
+namespace pbrlab {
+namespace {
+
+void* getProc(const char* name) {
+    return reinterpret_cast<void*>(glfwGetProcAddress(name));
+}
+
+class WebGlContext final : public GlContext {
+public:
+    WebGlContext(int width, int height, const std::string& title) {
+        if (!glfwInit()) throw Error("cannot start GLFW in the page");
+        glfwWindowHint(GLFW_CLIENT_API, GLFW_OPENGL_ES_API);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 0);
+        window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+        if (!window_) {
+            glfwTerminate();
+            throw Error("this browser gives no WebGL 2 context");
+        }
+        glfwMakeContextCurrent(window_);
+        // Float colour targets (the G-buffer, the precomputed maps, read-back of values) are
+        // an extension in WebGL 2; without it no step can be evaluated.
+        const EMSCRIPTEN_WEBGL_CONTEXT_HANDLE context = emscripten_webgl_get_current_context();
+        if (!emscripten_webgl_enable_extension(context, "EXT_color_buffer_float"))
+            throw Error(
+                "this browser's WebGL 2 cannot render to float textures "
+                "(EXT_color_buffer_float)");
+        emscripten_webgl_enable_extension(context, "OES_texture_float_linear");
+        gl::loadFunctions(getProc);
+    }
+    ~WebGlContext() override {
+        glfwDestroyWindow(window_);
+        glfwTerminate();
+    }
+    std::string description() const override {
+        return std::string("WebGL: ") + reinterpret_cast<const char*>(gl::GetString(GL_VERSION)) +
+               ", " + reinterpret_cast<const char*>(gl::GetString(GL_RENDERER));
+    }
+    GLFWwindow* window() const override { return window_; }
+
+private:
+    GLFWwindow* window_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<GlContext> createWindowContext(int width, int height, const std::string& title) {
+    return std::make_unique<WebGlContext>(width, height, title);
+}
+
+std::unique_ptr<GlContext> createHeadlessContext() {
+    throw Error("a page has no headless OpenGL context (OSMesa is the desktop's)");
+}
+
+void preloadHeadlessLibrary() {}
+
+}  // namespace pbrlab

@@ -1,0 +1,197 @@
+// The site in a real browser (docs/web.md): headless Chromium loads the built site and
+//   1. renders every step's default view, settled, and compares the solution's picture with
+//      the desktop's `pbrlab render` of the same step (both display-encoded 8-bit PNGs);
+//   2. types a correct and a wrong ndf into the page's editor and reads the status under the
+//      picture (the student's picture against the CPU reference's band), then a file that
+//      does not compile (the error shown, the last good picture kept);
+//   3. reloads the page and finds the student's file kept (IndexedDB);
+//   4. measures the time to the first picture, the frame time while orbiting, the download
+//      size; writes screenshots and figures.json to --out.
+//
+// node --experimental-websocket web/test/site_test.mjs --site build-web/site \
+//      --pbrlab build/pbrlab --out DIR [--steps ndf,brdf]
+import {execFileSync} from 'node:child_process';
+import fs from 'node:fs';
+import path from 'node:path';
+import zlib from 'node:zlib';
+
+import {Chromium, serve} from './chromium.mjs';
+import {comparePictures, decodePng} from './png.mjs';
+
+const args = Object.fromEntries(process.argv.slice(2).reduce((pairs, word, i, all) => {
+  if (word.startsWith('--')) pairs.push([word.slice(2), all[i + 1]]);
+  return pairs;
+}, []));
+for (const required of ['site', 'pbrlab', 'out'])
+  if (!args[required]) throw new Error(`--${required} is required (see the file's comment)`);
+const root = path.resolve(path.dirname(new URL(import.meta.url).pathname), '../..');
+const out = path.resolve(args.out);
+fs.rmSync(out, {recursive: true, force: true});
+fs.mkdirSync(path.join(out, 'web'), {recursive: true});
+fs.mkdirSync(path.join(out, 'native'), {recursive: true});
+
+const steps = args.steps ? args.steps.split(',') : fs.readdirSync(path.join(root, 'labs'))
+    .filter((d) => fs.existsSync(path.join(root, 'labs', d, 'step.json')))
+    .map((d) => ({id: d, step: JSON.parse(fs.readFileSync(path.join(root, 'labs', d, 'step.json'))).step}))
+    .sort((a, b) => a.step - b.step).map((s) => s.id);
+
+// The steps whose reference solution the page's own evaluation puts outside the CPU
+// reference's band (measured: prefilter worst 100x the tolerance on 2639 of 262144 points,
+// mc_specular 89x on 847). Both are GPU estimators that read the environment's mips with
+// textureLod at fractional levels; with the CPU reference reading the maps across face edges
+// as WebGL 2 does (CubeSampler's seamless mode), split_sum agrees and these two do not:
+// docs/web.md says what is known. Pinned, so that the test fails when the set changes.
+const kOutsideTheBandInThePage = new Set(['prefilter', 'mc_specular']);
+
+const failures = [];
+const figures = {};
+function check(ok, what) {
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
+  if (!ok) failures.push(what);
+}
+
+const server = await serve(path.resolve(args.site));
+const base = `http://127.0.0.1:${server.address().port}/index.html`;
+const browser = await Chromium.launch(path.join(out, 'profile'));
+const page = await browser.newPage();
+const status = async () => JSON.parse(await page.evaluate(
+    `typeof pbrlabPage === 'object' && pbrlabPage.running ? pbrlabPage.status() : '{}'`));
+const settledOn = async (id) => {
+  const s = await status();
+  return s.step === id && s.settled ? s : null;
+};
+
+try {
+  // 1. The first picture, then every step's default view against the desktop's.
+  let start = Date.now();
+  await page.navigate(`${base}?step=${steps[0]}&view=solution`);
+  await page.until(async () => (await status()).step, 60000, 'the GUI to start');
+  figures.firstFrameMs = Date.now() - start;
+  await page.until(() => settledOn(steps[0]), 120000, `step ${steps[0]} to settle`);
+  figures.firstSettledMs = Date.now() - start;
+  await page.screenshot(path.join(out, 'first-picture.png'));
+
+  figures.settleMs = {};
+  figures.pictures = {};
+  for (const id of steps) {
+    start = Date.now();
+    await page.evaluate(`pbrlabPage.console('step ${id}')`);
+    const s = await page.until(() => settledOn(id), 240000, `step ${id} to settle`);
+    figures.settleMs[id] = Date.now() - start;
+    const problem = await page.evaluate(`pbrlabPage.saveSolutionPicture('/tmp/${id}.png')`);
+    check(problem === '', `${id}: the page saved its solution picture ${problem}`);
+    if (problem) continue;
+    const bytes = Buffer.from(await page.evaluate(`(() => {
+      const bytes = FS.readFile('/tmp/${id}.png');
+      let text = '';
+      for (let i = 0; i < bytes.length; i += 8192)
+        text += String.fromCharCode.apply(null, bytes.subarray(i, i + 8192));
+      return btoa(text);
+    })()`), 'base64');
+    const webFile = path.join(out, 'web', `${id}.png`);
+    const nativeFile = path.join(out, 'native', `${id}.png`);
+    fs.writeFileSync(webFile, bytes);
+    execFileSync(args.pbrlab, ['render', id, '--out', nativeFile], {stdio: 'ignore'});
+    const c = comparePictures(decodePng(fs.readFileSync(nativeFile)), decodePng(bytes));
+    figures.pictures[id] = c;
+    check(c.passes, `${id}: the page's solution picture matches the desktop's ` +
+          `(${c.describe}; the band's own statistics: ${s.rows.map((r) => r.text).join(' | ')})`);
+    const within = s.rows.length > 0 && s.rows.every((r) => r.ok);
+    if (kOutsideTheBandInThePage.has(id))
+      check(!within, `${id}: the page's solution is outside the CPU reference's band, as ` +
+            `docs/web.md says (${s.rows.map((r) => r.text).join(' | ')})`);
+    else
+      check(within, `${id}: the page's solution is within the CPU reference's band`);
+  }
+
+  // 2. The editor: a correct ndf, a wrong one, one that does not compile.
+  const typeFile = async (text) => {
+    await page.evaluate(`pbrlabPage.focusEditor()`);
+    await page.send('Input.dispatchKeyEvent', {type: 'keyDown', key: 'a', code: 'KeyA',
+                                               modifiers: 2, commands: ['selectAll']});
+    await page.type(text);
+  };
+  const studentRow = async () => {
+    const s = await page.until(async () => {
+      const s = await settledOn('ndf');
+      return s && s.rows.length === 2 ? s : null;  // the student's row, then the solution's
+    }, 120000, 'ndf with a student file to settle');
+    return s;
+  };
+  await page.evaluate(`pbrlabPage.console('step ndf')`);
+  await page.evaluate(`pbrlabPage.console('view student')`);
+  await page.until(() => page.evaluate(`pbrlabPage.step === 'ndf'`), 10000, 'the editor on ndf');
+  const correct = fs.readFileSync(path.join(root, 'labs/ndf/solution.glsl'), 'utf8');
+  const wrong = fs.readFileSync(path.join(root, 'labs/ndf/mistakes/missing_pi.glsl'), 'utf8');
+  start = Date.now();
+  await typeFile(correct);
+  let s = await page.until(async () => {
+    const s = await studentRow();
+    return s.rows[0].ok ? s : null;
+  }, 120000, 'the correct ndf to be within the band');
+  figures.editToStatusMs = Date.now() - start;
+  check(s.rows[0].ok, `a correct ndf typed in the editor is within the band (${s.rows[0].text})`);
+  await page.screenshot(path.join(out, 'ndf-correct.png'));
+  start = Date.now();
+  await typeFile(wrong);
+  s = await page.until(async () => {
+    const s = await studentRow();
+    return !s.rows[0].ok ? s : null;
+  }, 120000, 'the wrong ndf to fall outside the band');
+  check(!s.rows[0].ok, `ndf without its 1/pi is outside the band (${s.rows[0].text})`);
+  await page.screenshot(path.join(out, 'ndf-wrong.png'));
+  await typeFile(correct.replace('return', 'retrun'));
+  s = await page.until(async () => {
+    const s = await settledOn('ndf');
+    return s && s.error ? s : null;
+  }, 120000, 'the compile error to show');
+  check(/ndf\.glsl:\d+/.test(s.errorLog) && s.rows.length === 2,
+        `a file that does not compile shows the error at its line and keeps the last good ` +
+        `picture (${s.error} ${s.errorLog.split('\n')[0]})`);
+  const errorLine = await page.until(
+      `document.getElementById('errors').textContent.includes('ndf.glsl:13') &&
+       document.getElementById('errors').textContent`, 5000, 'the error under the editor');
+  check(errorLine.includes('retrun'), `the editor shows the error under it (${errorLine})`);
+  await page.screenshot(path.join(out, 'ndf-compile-error.png'));
+  await typeFile(wrong);
+  await page.until(async () => !(await status()).error, 60000, 'the error to clear');
+  await page.evaluate(`pbrlabPage.flush()`);
+
+  // 3. A reload keeps the student's file.
+  await page.until(() => page.evaluate(`pbrlabPage.saved`), 10000, 'the file to be saved');
+  await page.reload();
+  await page.until(async () => (await status()).step, 60000, 'the GUI to start again');
+  await page.evaluate(`pbrlabPage.console('step ndf')`);
+  await page.until(() => page.evaluate(`pbrlabPage.step === 'ndf'`), 10000, 'the editor on ndf');
+  const kept = await page.evaluate(`document.getElementById('source').value`);
+  check(kept === wrong, 'after a reload the editor holds the file as last typed');
+  s = await studentRow();
+  check(!s.rows[0].ok, `after a reload the GUI grades the kept file (${s.rows[0].text})`);
+
+  // 4. Orbiting: frames drawn while the mouse drags the picture.
+  await page.evaluate(`pbrlabPage.countFrames(true)`);
+  const view = await page.evaluate(`pbrlabPage.viewCentre()`);
+  start = Date.now();
+  await page.drag(view, {x: view.x + 200, y: view.y + 40}, 60);
+  const frames = await page.evaluate(`pbrlabPage.countFrames(false)`);
+  figures.orbit = {frames, ms: Date.now() - start, fps: frames / ((Date.now() - start) / 1000)};
+  await page.screenshot(path.join(out, 'orbit.png'));
+} catch (e) {
+  check(false, String(e.message ?? e));
+}
+
+// The download: what a first visit fetches, gzipped as a server would send it.
+figures.download = {};
+for (const file of fs.readdirSync(args.site)) {
+  const bytes = fs.readFileSync(path.join(args.site, file));
+  figures.download[file] = {bytes: bytes.length, gzipped: zlib.gzipSync(bytes, {level: 9}).length};
+}
+fs.writeFileSync(path.join(out, 'figures.json'), JSON.stringify(figures, null, 2));
+fs.writeFileSync(path.join(out, 'console.txt'), page.console.join('\n'));
+await browser.close();
+server.close();
+console.log(`figures: ${path.join(out, 'figures.json')}`);
+if (failures.length) {
+  console.log(`${failures.length} check(s) failed`);
+  process.exit(1);
+}
