@@ -21,7 +21,13 @@ export function serve(dir) {
       response.writeHead(404).end();
       return;
     }
-    response.writeHead(200, {'Content-Type': kTypes[path.extname(file)] ?? 'application/octet-stream'});
+    // Last-Modified, as a static server sends it: a reload may take the files from the
+    // browser's cache (what a student's second visit does).
+    response.writeHead(200, {
+      'Content-Type': kTypes[path.extname(file)] ?? 'application/octet-stream',
+      'Last-Modified': fs.statSync(file).mtime.toUTCString(),
+      'Cache-Control': 'max-age=3600',
+    });
     fs.createReadStream(file).pipe(response);
   });
   return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve(server)));

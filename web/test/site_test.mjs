@@ -159,8 +159,10 @@ try {
 
   // 3. A reload keeps the student's file.
   await page.until(() => page.evaluate(`pbrlabPage.saved`), 10000, 'the file to be saved');
+  start = Date.now();
   await page.reload();
   await page.until(async () => (await status()).step, 60000, 'the GUI to start again');
+  figures.reloadFirstFrameMs = Date.now() - start;  // the files from the browser's cache
   await page.evaluate(`pbrlabPage.console('step ndf')`);
   await page.until(() => page.evaluate(`pbrlabPage.step === 'ndf'`), 10000, 'the editor on ndf');
   const kept = await page.evaluate(`document.getElementById('source').value`);
