@@ -152,6 +152,9 @@ try {
       `document.getElementById('errors').textContent.includes('ndf.glsl:13') &&
        document.getElementById('errors').textContent`, 5000, 'the error under the editor');
   check(errorLine.includes('retrun'), `the editor shows the error under it (${errorLine})`);
+  const marked = await page.evaluate(
+      `document.querySelector('#highlight .error')?.textContent ?? ''`);
+  check(marked.includes('retrun'), `the editor marks the line the compiler names (${marked})`);
   await page.screenshot(path.join(out, 'ndf-compile-error.png'));
   await typeFile(wrong);
   await page.until(async () => !(await status()).error, 60000, 'the error to clear');
