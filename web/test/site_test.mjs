@@ -173,6 +173,30 @@ try {
   s = await studentRow();
   check(!s.rows[0].ok, `after a reload the GUI grades the kept file (${s.rows[0].text})`);
 
+  // The kit the page downloads is a folder the desktop's grader takes: ndf is the wrong file.
+  const zip = Buffer.from(await page.evaluate(`(async () => {
+    const bytes = new Uint8Array(await pbrlabPage.kitZip().arrayBuffer());
+    let text = '';
+    for (let i = 0; i < bytes.length; i += 8192)
+      text += String.fromCharCode.apply(null, bytes.subarray(i, i + 8192));
+    return btoa(text);
+  })()`), 'base64');
+  const kit = path.join(out, 'kit');
+  fs.mkdirSync(kit);
+  fs.writeFileSync(path.join(out, 'pbrlab-kit.zip'), zip);
+  execFileSync('unzip', ['-q', path.join(out, 'pbrlab-kit.zip'), '-d', kit]);
+  check(fs.readFileSync(path.join(kit, 'ndf.glsl'), 'utf8') === wrong,
+        'the kit .zip holds ndf.glsl as typed');
+  let graded = '';
+  try {
+    graded = execFileSync(args.pbrlab, ['check', 'ndf', '--submission', kit], {encoding: 'utf8'});
+  } catch (e) {
+    graded = String(e.stdout) + '\nexit ' + e.status;
+  }
+  check(/exit [1-9]/.test(graded) && /\b(pi|PI)\b/.test(graded),
+        `\`pbrlab check ndf\` on the unpacked kit fails it, naming the missing pi ` +
+        `(${graded.split('\n').filter((l) => /\b(pi|PI)\b/.test(l))[0]?.slice(0, 160) ?? graded.slice(-300)})`);
+
   // 4. Orbiting: frames drawn while the mouse drags the picture.
   await page.evaluate(`pbrlabPage.countFrames(true)`);
   const view = await page.evaluate(`pbrlabPage.viewCentre()`);
