@@ -28,7 +28,7 @@ const char* badgeText(Status s) {
         case Status::Fails:
             return "fails";
         case Status::NotGradedHere:
-            return "not graded in the page";
+            return "ungraded";  // in a page (view_status.cpp says why)
         default:
             return "...";
     }

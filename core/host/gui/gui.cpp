@@ -366,7 +366,7 @@ private:
         ImVec2 size = ImGui::GetIO().DisplaySize;
         // Narrower than the layout's widths need (a page beside its editor, a small window),
         // the side windows give up width first, down to what their controls need.
-        const float left = std::min(state_.layout.stepsWidth, std::max(205.0f, 0.2f * size.x));
+        const float left = std::min(state_.layout.stepsWidth, std::max(225.0f, 0.2f * size.x));
         const float right = std::min(state_.layout.moduleWidth, std::max(300.0f, 0.34f * size.x));
         const ImGuiWindowFlags fixed =
             ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse;

@@ -75,6 +75,10 @@ ViewStatus viewStatus(const Lab& lab, const GuiState& state) {
                   shown.compiledAt;
     else if (badge.status == Status::Fails && !badge.gradeMessage.empty())
         s.grade = "grade: " + badge.gradeMessage;
+    else if (badge.status == Status::NotGradedHere)
+        s.grade =
+            "badge: the page does not grade yet; the rows above are its check against "
+            "the CPU reference, and `pbrlab grade` on the kit gives the grade";
     return s;
 }
 
