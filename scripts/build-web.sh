@@ -2,13 +2,30 @@
 # Builds the lab for the browser (docs/web.md) into BUILD_DIR/site (default build-web/site):
 # index.html, index.js, index.wasm and index.data, served as static files.
 #   bash scripts/build-web.sh [BUILD_DIR]
+# For an assignment (docs/assignment.md), a site without the solutions it has not released
+# (written by the desktop's pbrlab: --pbrlab, else the one on PATH), in BUILD_DIR/assignment-site:
+#   bash scripts/build-web.sh [BUILD_DIR] --assignment FILE [--date YYYY-MM-DD] [--pbrlab PATH]
 # Installs Debian's emscripten, dpkg-dev and chromium (web/debian-packages.txt) beside
 # debian-packages.txt's, and a deb-src entry for bookworm so that CMake can fetch Dear ImGui's
 # source package (nothing is vendored).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
-build=${1:-build-web}
+build=build-web
+assignment="" date="" pbrlab=""
+while [ $# -gt 0 ]; do
+    case $1 in
+        --assignment) assignment=$(realpath "$2"); shift 2 ;;
+        --date) date=$2; shift 2 ;;
+        --pbrlab) pbrlab=$(realpath "$2"); shift 2 ;;
+        -*) echo "build-web: unknown option $1" >&2; exit 2 ;;
+        *) build=$1; shift ;;
+    esac
+done
+if [ -z "$assignment" ] && { [ -n "$date" ] || [ -n "$pbrlab" ]; }; then
+    echo "build-web: --date and --pbrlab go with --assignment" >&2
+    exit 2
+fi
 bash scripts/install-deps.sh debian-packages.txt web/debian-packages.txt
 sudo=""
 [ "$(id -u)" -ne 0 ] && sudo="sudo"
@@ -22,6 +39,22 @@ fi
 # its cache is the package's own (frozen), so EM_CACHE must not point elsewhere.
 export NODE_PATH=/usr/share/nodejs
 unset EM_CACHE
-emcmake cmake -S web -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build" -j "$(nproc)"
-echo "build-web: the site is in $build/site (serve it: python3 -m http.server -d $build/site)"
+if [ -z "$assignment" ]; then
+    emcmake cmake -S web -B "$build" -DCMAKE_BUILD_TYPE=Release -DPBRLAB_ASSIGNMENT_STEPS= >/dev/null
+    cmake --build "$build" -j "$(nproc)"
+    echo "build-web: the site is in $build/site (serve it: python3 -m http.server -d $build/site)"
+    exit 0
+fi
+[ -n "$pbrlab" ] || pbrlab=$(command -v pbrlab || true)
+if [ -z "$pbrlab" ]; then
+    echo "build-web: --assignment needs the desktop's pbrlab (--pbrlab PATH, or pbrlab on PATH)" >&2
+    exit 2
+fi
+mkdir -p "$build"
+steps=$(realpath "$build")/assignment-steps
+rm -rf "$steps"
+"$pbrlab" kit --assignment "$assignment" ${date:+--date "$date"} --site-steps --out "$steps"
+emcmake cmake -S web -B "$build" -DCMAKE_BUILD_TYPE=Release \
+    -DPBRLAB_ASSIGNMENT_STEPS="$steps" >/dev/null
+cmake --build "$build" -j "$(nproc)" --target assignment_site
+echo "build-web: the assignment's site is in $build/assignment-site"

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "grading/grade_step.h"
+#include "grading/module_grade.h"
 #include "render/renderer.h"
 #include "shader/student_file.h"
 #include "steps/plugin_host.h"
@@ -30,20 +31,6 @@ struct GradeOptions {
     // Sets a grade's max_score and score (an assignment's points and partial credit,
     // assignment.h); empty: 1 point per step, all or nothing.
     std::function<void(struct ModuleGrade&)> scoring;
-};
-
-struct ModuleGrade {
-    std::string id, title;
-    // passed | failed | compile_error | timeout | missing | crashed
-    std::string status = "missing";
-    double score = 0, maxScore = 1;
-    std::string message;
-    std::string mistake;         // the mistake named from the shape of the error, when recognised
-    std::string namedBy;         // pattern | typical | mutant (see StepResult)
-    std::string mistakeGroup;    // see StepResult: what a class report counts
-    std::string instructorNote;  // see StepResult: not for the student's eyes
-    nlohmann::json checks = nlohmann::json::array();  // every check with what it measured
-    double seconds = 0;
 };
 
 struct GradeReport {
@@ -75,9 +62,6 @@ GradeReport gradeSubmission(const ModuleRegistry& modules, const DataPaths& path
 // A score is a whole number of millionths of a point, held as the double nearest that decimal
 // (which JSON and the text reports print as the decimal); a sum of scores is the sum of those
 // whole numbers, so that a total is exactly the sum of its parts in every report.
-std::int64_t toMicroPoints(double points);  // the nearest whole number of micro-points
-double fromMicroPoints(std::int64_t micro);
-double roundPoints(double points);        // to the nearest micro-point
 double addPoints(double a, double b);     // the exact sum of two rounded scores
 std::string formatPoints(double points);  // "2.025", "3", "0.083333": no trailing zeros
 
@@ -90,8 +74,5 @@ void writeFileAtomically(const std::filesystem::path& file, const std::string& t
 std::string readWholeFile(const std::filesystem::path& file);
 // A report as indented JSON text (any invalid UTF-8 left in it replaced).
 std::string jsonText(const nlohmann::json& report);
-// `text` with every byte sequence that is not UTF-8 replaced by U+FFFD, so that a message
-// quoting a student's file can always be written as JSON.
-std::string validUtf8(const std::string& text);
 
 }  // namespace pbrlab

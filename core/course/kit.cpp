@@ -78,4 +78,47 @@ int writeKit(const ModuleRegistry& modules, const KitOptions& o) {
     return written;
 }
 
+std::vector<std::string> writeSiteSteps(const ModuleRegistry& modules, const KitOptions& o) {
+    std::error_code ec;
+    if (fs::exists(o.out, ec) && !fs::is_empty(o.out, ec) && !o.force)
+        throw Error(o.out.string() + " is not empty; use --force to write into it anyway");
+    const ContractStep* released =
+        o.releaseThrough.empty() ? nullptr : findContractStep(o.releaseThrough);
+    if (!o.releaseThrough.empty() && !released)
+        throw Error("--release-through " + o.releaseThrough + ": not a module id");
+    auto handedOut = [&](const std::string& id) {
+        return o.steps.empty() || std::find(o.steps.begin(), o.steps.end(), id) != o.steps.end();
+    };
+    int last = 0;  // the last step the kit hands out
+    for (const LoadedModule& m : modules.modules())
+        if (handedOut(m.desc->id)) last = std::max(last, m.desc->step);
+    std::vector<std::string> withheld;
+    for (const LoadedModule& m : modules.modules()) {
+        const ModuleDesc& d = *m.desc;
+        if (d.step > last) continue;
+        const bool withhold =
+            handedOut(d.id) && !o.withSolutions && (!released || d.step > released->step);
+        const fs::path folder = o.out / d.id;
+        fs::create_directories(folder);
+        for (const auto& entry : fs::recursive_directory_iterator(m.sourceDir)) {
+            const fs::path relative = fs::relative(entry.path(), m.sourceDir);
+            const std::string first = relative.begin()->string();
+            if (withhold && (first == "solution.glsl" || first == "mistakes" ||
+                             first == "module.cpp" || first == "CMakeLists.txt"))
+                continue;
+            if (entry.is_directory())
+                fs::create_directories(folder / relative);
+            else
+                writeFile(folder / relative, readFile(entry.path()));
+        }
+        if (withhold) {
+            const fs::path solution = m.sourceDir / "solution.glsl";
+            writeFile(folder / "starter.glsl",
+                      stubSolution(readFile(solution), d.function, solution.string()));
+            withheld.push_back(d.id);
+        }
+    }
+    return withheld;
+}
+
 }  // namespace pbrlab

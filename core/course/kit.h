@@ -24,4 +24,12 @@ struct KitOptions {
 // Writes the kit; returns how many module files were written.
 int writeKit(const ModuleRegistry& modules, const KitOptions& options);
 
+// The step folders a browser site built for the kit's assignment carries (`kit --site-steps`,
+// docs/web.md), in options.out/<id>: every step up to the last one the kit hands out, copied.
+// Each step the kit hands out as a starter (`steps`, after `releaseThrough`) is withheld: its
+// solution.glsl, its planted mistakes (each the solution with one error) and its module.cpp
+// (the CPU reference's source; the site has it compiled) are left out, and its starter.glsl,
+// the kit's file, is written in their place. Returns the ids withheld.
+std::vector<std::string> writeSiteSteps(const ModuleRegistry& modules, const KitOptions& options);
+
 }  // namespace pbrlab

@@ -48,6 +48,8 @@ EMSCRIPTEN_KEEPALIVE void pbrlab_start(int width, int height) {
     pbrlab::GuiOptions options;
     options.modulesDirs = {"/pbrlab/modules"};
     options.submission = "/work";
+    // Where an assignment's site withholds a solution, programs take the student's file.
+    pbrlab::setWithheldStepsFolder(options.submission);
     options.module = queryValue("step");
     options.view = queryValue("view");
     options.scene = queryValue("scene");
@@ -69,9 +71,11 @@ EMSCRIPTEN_KEEPALIVE char* pbrlab_starter(const char* id) {
     try {
         const pbrlab::ContractStep* step = pbrlab::findContractStep(id);
         if (!step) throw pbrlab::Error(std::string("no step '") + id + "'");
-        std::ifstream in(step->folder / "solution.glsl");
+        const bool withheld = pbrlab::solutionWithheld(*step);  // an assignment's site
+        std::ifstream in(step->folder / (withheld ? "starter.glsl" : "solution.glsl"));
         std::stringstream text;
         text << in.rdbuf();
+        if (withheld) return strdup(text.str().c_str());
         const std::string stub =
             pbrlab::stubSolution(text.str(), step->function, std::string(id) + ".glsl");
         return strdup(stub.c_str());

@@ -87,7 +87,7 @@ std::vector<fs::path> IblPrecompute::sources(const std::vector<std::string>& hos
         if (const ContractStep* provider = findProvider(sampler)) {
             if (provider->precompute) files.push_back(provider->precompute->shader);
             for (const ContractStep* step : contractClosure(provider->id, {}))
-                files.push_back(step->folder / "solution.glsl");
+                files.push_back(referenceImplementation(*step));
         }
     return files;
 }

@@ -181,13 +181,16 @@ std::shared_ptr<Program> IblPrecompute::program(const std::string& label, const 
     r.label = label;
     r.vertex = {shaders_ / "fullscreen.vert"};
     r.fragment.push_back(shaders_ / "common.glsl");
+    bool studentsFile = false;  // a withheld solution's stand-in, which the student edits
     if (linked)
-        for (const ContractStep* step : contractClosure(linked->id, {}))
-            r.fragment.push_back(step->folder / "solution.glsl");
+        for (const ContractStep* step : contractClosure(linked->id, {})) {
+            r.fragment.push_back(referenceImplementation(*step));
+            studentsFile = studentsFile || solutionWithheld(*step);
+        }
     r.fragment.push_back(fragment);
     r.defines = extra;
     r.defines["PBRLAB_IBL"] = "1";
-    return programs_.get(r);
+    return studentsFile ? programs_.reloadIfChanged(r) : programs_.get(r);
 }
 
 void IblPrecompute::renderCube(GLuint cube, int size, int mip, const Program& program,

@@ -94,14 +94,23 @@ ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentS
         r.fragment.push_back(ShaderPart("<contract: " + step->id + ">", step->function + ";\n"));
         ShaderPart part(step->folder / "solution.glsl");
         part.solutionOf = functionName(step->function);
-        if (!source.dir.empty() && (step->id == d.id || source.cumulative)) {
-            fs::path student = source.dir / (step->id + ".glsl");
+        auto studentPart = [&](const fs::path& folder) {
+            const fs::path student = folder / (step->id + ".glsl");
             std::error_code ec;
-            if (fs::exists(student, ec) || fs::is_symlink(student, ec)) {
-                part = ShaderPart(student);
-                part.studentFolder = source.dir;  // screened; never the reference solutions
-                part.unreachable = unreachableFrom(*step);
-            }
+            if (!fs::exists(student, ec) && !fs::is_symlink(student, ec)) return false;
+            part = ShaderPart(student);
+            part.studentFolder = folder;  // screened; never the reference solutions
+            part.unreachable = unreachableFrom(*step);
+            return true;
+        };
+        bool fromStudent = !source.dir.empty() && (step->id == d.id || source.cumulative) &&
+                           studentPart(source.dir);
+        // A withheld solution (an assignment's site): the student's own file of that step
+        // wherever the solution would be, else its starter.
+        if (!fromStudent && solutionWithheld(*step)) {
+            const fs::path folder = withheldStepsFolder();
+            if (folder.empty() || !studentPart(folder))
+                part = ShaderPart(step->folder / "starter.glsl");
         }
         r.fragment.push_back(part);
     }

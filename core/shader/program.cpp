@@ -52,10 +52,7 @@ std::string partsKey(const std::vector<ShaderPart>& parts) {
 
 Program::Program(gl::Handle handle, std::vector<fs::path> files)
     : handle_(std::move(handle)), files_(std::move(files)) {
-    for (const auto& f : files_) {
-        std::error_code ec;
-        stamps_.push_back(fs::last_write_time(f, ec));
-    }
+    for (const auto& f : files_) stamps_.push_back(FileStamp::of(f));
 }
 
 GLint Program::location(const std::string& name) const {
@@ -92,17 +89,12 @@ void Program::set(const std::string& name, const std::vector<glm::vec3>& v) cons
 }
 
 void Program::refreshStamps() {
-    for (size_t i = 0; i < files_.size(); ++i) {
-        std::error_code ec;
-        stamps_[i] = fs::last_write_time(files_[i], ec);
-    }
+    for (size_t i = 0; i < files_.size(); ++i) stamps_[i] = FileStamp::of(files_[i]);
 }
 
 bool Program::sourcesChanged() const {
-    for (size_t i = 0; i < files_.size(); ++i) {
-        std::error_code ec;
-        if (fs::last_write_time(files_[i], ec) != stamps_[i]) return true;
-    }
+    for (size_t i = 0; i < files_.size(); ++i)
+        if (FileStamp::of(files_[i]) != stamps_[i]) return true;
     return false;
 }
 

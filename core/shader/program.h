@@ -14,6 +14,7 @@
 #include "gl/objects.h"
 #include "shader/preprocess.h"
 #include "util/error.h"
+#include "util/fs.h"
 
 namespace pbrlab {
 
@@ -44,7 +45,7 @@ public:
 private:
     gl::Handle handle_;
     std::vector<std::filesystem::path> files_;
-    std::vector<std::filesystem::file_time_type> stamps_;
+    std::vector<FileStamp> stamps_;
     mutable std::unordered_map<std::string, GLint> locations_;
 };
 

@@ -273,6 +273,38 @@ const ContractStep* findContractStep(const std::string& id) {
     return nullptr;
 }
 
+namespace {
+
+std::mutex withheldMutex;
+fs::path withheldFolder;
+
+}  // namespace
+
+bool solutionWithheld(const ContractStep& step) {
+    std::error_code ec;
+    return !fs::exists(step.folder / "solution.glsl", ec) &&
+           fs::exists(step.folder / "starter.glsl", ec);
+}
+
+void setWithheldStepsFolder(const fs::path& folder) {
+    std::lock_guard lock(withheldMutex);
+    withheldFolder = folder;
+}
+
+fs::path withheldStepsFolder() {
+    std::lock_guard lock(withheldMutex);
+    return withheldFolder;
+}
+
+fs::path referenceImplementation(const ContractStep& step) {
+    if (!solutionWithheld(step)) return step.folder / "solution.glsl";
+    const fs::path folder = withheldStepsFolder();
+    std::error_code ec;
+    if (!folder.empty() && fs::exists(folder / (step.id + ".glsl"), ec))
+        return folder / (step.id + ".glsl");
+    return step.folder / "starter.glsl";
+}
+
 std::vector<const ContractStep*> contractClosure(const std::string& id,
                                                  const std::vector<std::string>& extra) {
     const ContractStep* self = findContractStep(id);

@@ -96,4 +96,16 @@ const ContractStep* findProvider(const std::string& sampler);
 std::vector<const ContractStep*> contractClosure(const std::string& id,
                                                  const std::vector<std::string>& extra);
 
+// A site built for an assignment (docs/web.md) carries no reference solution of a step whose
+// solution is not released: that step's folder holds starter.glsl (the kit's starter file) and
+// no solution.glsl. Where a program would link its solution, it links the student's own file of
+// the step (<id>.glsl in withheldStepsFolder(): the page's workspace), or the starter while the
+// student has none. Installed and source trees withhold nothing.
+bool solutionWithheld(const ContractStep& step);
+void setWithheldStepsFolder(const std::filesystem::path& folder);
+std::filesystem::path withheldStepsFolder();
+// The file that defines `step`'s function in a program that links the reference solutions:
+// its solution.glsl, or for a withheld step the student's file or the starter.
+std::filesystem::path referenceImplementation(const ContractStep& step);
+
 }  // namespace pbrlab

@@ -1,6 +1,9 @@
 #include "util/fs.h"
 
 #include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 namespace fs = std::filesystem;
 
@@ -12,6 +15,20 @@ bool isInside(const fs::path& path, const fs::path& root) {
     if (ec1 || ec2) return false;
     auto [rootEnd, _] = std::mismatch(r.begin(), r.end(), p.begin(), p.end());
     return rootEnd == r.end();
+}
+
+FileStamp FileStamp::of(const fs::path& file) {
+    FileStamp stamp;
+    std::error_code ec;
+    const fs::file_time_type time = fs::last_write_time(file, ec);
+    if (ec) return stamp;
+    stamp.time = time;
+    if (!fs::is_regular_file(file, ec)) return stamp;
+    std::ifstream in(file, std::ios::binary);
+    const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    stamp.size = bytes.size();
+    stamp.hash = std::hash<std::string>{}(bytes);
+    return stamp;
 }
 
 }  // namespace pbrlab

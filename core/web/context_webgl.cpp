@@ -1,8 +1,10 @@
 // gl/context.h in the browser: the page's canvas as a WebGL 2 context, through Emscripten's
-// GLFW. WebGL 2 is OpenGL ES 3.0: the renderer writes its programs as GLSL ES 3.00
-// (GlslDialect::Es300) and every entry point gl/gl.h names exists there.
+// GLFW, and an OffscreenCanvas's as the headless one. WebGL 2 is OpenGL ES 3.0: the renderer writes
+// its programs as GLSL ES 3.00 (GlslDialect::Es300) and every entry point gl/gl.h names exists
+// there.
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
+#include <emscripten/em_asm.h>
 #include <emscripten/html5.h>
 
 #include "gl/context.h"
@@ -53,6 +55,43 @@ private:
     GLFWwindow* window_ = nullptr;
 };
 
+// The headless context of the browser: WebGL 2 on an OffscreenCanvas, which a Web Worker
+// may create (the page's grader, core/host/web_grader.cpp), drawn into framebuffers only.
+class OffscreenWebGlContext final : public GlContext {
+public:
+    OffscreenWebGlContext() {
+        // Emscripten finds a canvas by selector; a worker has no document to look in.
+        EM_ASM({ specialHTMLTargets["#pbrlab-offscreen"] = new OffscreenCanvas(16, 16); });
+        EmscriptenWebGLContextAttributes attributes;
+        emscripten_webgl_init_context_attributes(&attributes);
+        attributes.majorVersion = 2;
+        attributes.minorVersion = 0;
+        attributes.alpha = attributes.depth = attributes.stencil = attributes.antialias = false;
+        context_ = emscripten_webgl_create_context("#pbrlab-offscreen", &attributes);
+        if (context_ <= 0)
+            throw Error("this browser gives no WebGL 2 context on an OffscreenCanvas");
+        emscripten_webgl_make_context_current(context_);
+        if (!emscripten_webgl_enable_extension(context_, "EXT_color_buffer_float"))
+            throw Error(
+                "this browser's WebGL 2 cannot render to float textures "
+                "(EXT_color_buffer_float)");
+        emscripten_webgl_enable_extension(context_, "OES_texture_float_linear");
+        gl::loadFunctions(getOffscreenProc);
+    }
+    ~OffscreenWebGlContext() override { emscripten_webgl_destroy_context(context_); }
+    std::string description() const override {
+        return std::string("WebGL (OffscreenCanvas): ") +
+               reinterpret_cast<const char*>(gl::GetString(GL_VERSION)) + ", " +
+               reinterpret_cast<const char*>(gl::GetString(GL_RENDERER));
+    }
+
+private:
+    static void* getOffscreenProc(const char* name) {
+        return emscripten_webgl_get_proc_address(name);
+    }
+    EMSCRIPTEN_WEBGL_CONTEXT_HANDLE context_ = 0;
+};
+
 }  // namespace
 
 std::unique_ptr<GlContext> createWindowContext(int width, int height, const std::string& title) {
@@ -60,7 +99,7 @@ std::unique_ptr<GlContext> createWindowContext(int width, int height, const std:
 }
 
 std::unique_ptr<GlContext> createHeadlessContext() {
-    throw Error("a page has no headless OpenGL context (OSMesa is the desktop's)");
+    return std::make_unique<OffscreenWebGlContext>();
 }
 
 void preloadHeadlessLibrary() {}

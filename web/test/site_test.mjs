@@ -16,6 +16,7 @@ import path from 'node:path';
 import zlib from 'node:zlib';
 
 import {Chromium, serve} from './chromium.mjs';
+import {labPage} from './lab_page.mjs';
 import {comparePictures, decodePng} from './png.mjs';
 
 const args = Object.fromEntries(process.argv.slice(2).reduce((pairs, word, i, all) => {
@@ -54,12 +55,7 @@ const server = await serve(path.resolve(args.site));
 const base = `http://127.0.0.1:${server.address().port}/index.html`;
 const browser = await Chromium.launch(path.join(out, 'profile'));
 const page = await browser.newPage();
-const status = async () => JSON.parse(await page.evaluate(
-    `typeof pbrlabPage === 'object' && pbrlabPage.running ? pbrlabPage.status() : '{}'`));
-const settledOn = async (id) => {
-  const s = await status();
-  return s.step === id && s.settled ? s : null;
-};
+const {status, settledOn, typeFile, studentRows, readFile} = labPage(page);
 
 try {
   // 1. The first picture, then every step's default view against the desktop's.
@@ -81,13 +77,7 @@ try {
     const problem = await page.evaluate(`pbrlabPage.saveSolutionPicture('/tmp/${id}.png')`);
     check(problem === '', `${id}: the page saved its solution picture ${problem}`);
     if (problem) continue;
-    const bytes = Buffer.from(await page.evaluate(`(() => {
-      const bytes = FS.readFile('/tmp/${id}.png');
-      let text = '';
-      for (let i = 0; i < bytes.length; i += 8192)
-        text += String.fromCharCode.apply(null, bytes.subarray(i, i + 8192));
-      return btoa(text);
-    })()`), 'base64');
+    const bytes = await readFile(`/tmp/${id}.png`);
     const webFile = path.join(out, 'web', `${id}.png`);
     const nativeFile = path.join(out, 'native', `${id}.png`);
     fs.writeFileSync(webFile, bytes);
@@ -105,19 +95,7 @@ try {
   }
 
   // 2. The editor: a correct ndf, a wrong one, one that does not compile.
-  const typeFile = async (text) => {
-    await page.evaluate(`pbrlabPage.focusEditor()`);
-    await page.send('Input.dispatchKeyEvent', {type: 'keyDown', key: 'a', code: 'KeyA',
-                                               modifiers: 2, commands: ['selectAll']});
-    await page.type(text);
-  };
-  const studentRow = async () => {
-    const s = await page.until(async () => {
-      const s = await settledOn('ndf');
-      return s && s.rows.length === 2 ? s : null;  // the student's row, then the solution's
-    }, 120000, 'ndf with a student file to settle');
-    return s;
-  };
+  const studentRow = () => studentRows('ndf');
   await page.evaluate(`pbrlabPage.console('step ndf')`);
   await page.evaluate(`pbrlabPage.console('view student')`);
   await page.until(() => page.evaluate(`pbrlabPage.step === 'ndf'`), 10000, 'the editor on ndf');
@@ -125,12 +103,24 @@ try {
   const wrong = fs.readFileSync(path.join(root, 'labs/ndf/mistakes/missing_pi.glsl'), 'utf8');
   start = Date.now();
   await typeFile(correct);
+  // The status under the picture comes with the evaluation; the step is settled once its
+  // badge is graded too (Lab::settled).
+  await page.until(async () => {
+    const s = await status();
+    return s.step === 'ndf' && s.rows?.length === 2 && s.rows[0].ok;
+  }, 120000, 'the status of the correct ndf');
+  figures.editToStatusMs = Date.now() - start;
   let s = await page.until(async () => {
     const s = await studentRow();
     return s.rows[0].ok ? s : null;
   }, 120000, 'the correct ndf to be within the band');
-  figures.editToStatusMs = Date.now() - start;
   check(s.rows[0].ok, `a correct ndf typed in the editor is within the band (${s.rows[0].text})`);
+  s = await page.until(async () => {
+    const s = await status();
+    return s.step === 'ndf' && s.badge === 'passes' ? s : null;
+  }, 240000, 'the badge of the correct ndf to say passes');
+  figures.editToBadgeMs = Date.now() - start;  // the first grade also starts the grader
+  check(s.badge === 'passes', `the page's grader passes the correct ndf (badge: ${s.badge})`);
   await page.screenshot(path.join(out, 'ndf-correct.png'));
   start = Date.now();
   await typeFile(wrong);
@@ -139,6 +129,13 @@ try {
     return !s.rows[0].ok ? s : null;
   }, 120000, 'the wrong ndf to fall outside the band');
   check(!s.rows[0].ok, `ndf without its 1/pi is outside the band (${s.rows[0].text})`);
+  s = await page.until(async () => {
+    const s = await status();
+    return s.step === 'ndf' && s.badge === 'fails' ? s : null;
+  }, 240000, 'the badge of the wrong ndf to say fails');
+  figures.editToBadgeAgainMs = Date.now() - start;
+  check(/\b(pi|PI)\b/.test(s.gradeMessage),
+        `the page's grader fails ndf without its 1/pi, naming the pi (${s.gradeMessage.slice(0, 200)})`);
   await page.screenshot(path.join(out, 'ndf-wrong.png'));
   await typeFile(correct.replace('return', 'retrun'));
   s = await page.until(async () => {
@@ -197,7 +194,43 @@ try {
         `\`pbrlab check ndf\` on the unpacked kit fails it, naming the missing pi ` +
         `(${graded.split('\n').filter((l) => /\b(pi|PI)\b/.test(l))[0]?.slice(0, 160) ?? graded.slice(-300)})`);
 
-  // 4. Orbiting: frames drawn while the mouse drags the picture.
+  // 4. The page's grader against the desktop's: every planted mistake and written variant of
+  // the steps asked for (--grade-steps, default ndf), graded by both; the verdicts must agree.
+  const gradeSteps = (args['grade-steps'] ?? 'ndf').split(',');
+  figures.grader = {files: 0, ms: []};
+  await page.evaluate(`window.sweeper = new Worker('grader_worker.js'); true`);
+  for (const id of gradeSteps) {
+    const files = [];
+    for (const dir of [path.join(root, 'labs', id, 'mistakes'), path.join(root, 'tests/variants', id)])
+      if (fs.existsSync(dir))
+        for (const f of fs.readdirSync(dir).sort()) files.push(path.join(dir, f));
+    for (const file of files) {
+      const text = fs.readFileSync(file, 'utf8');
+      const pageGrade = await page.evaluate(`new Promise((resolve) => {
+        sweeper.onmessage = (e) => resolve(e.data);
+        sweeper.postMessage({step: ${JSON.stringify(id)}, files: {${JSON.stringify(id + '.glsl')}: ${JSON.stringify(text)}}});
+      })`);
+      const web = JSON.parse(pageGrade.report).modules[0];
+      const dir = fs.mkdtempSync(path.join(out, 'grade-'));
+      fs.writeFileSync(path.join(dir, `${id}.glsl`), text);
+      try {
+        execFileSync(args.pbrlab, ['check', id, '--submission', dir, '--json', path.join(dir, 'r.json')],
+                     {stdio: 'ignore'});
+      } catch {}  // exit 1: it failed, which the report says
+      const native = JSON.parse(fs.readFileSync(path.join(dir, 'r.json'), 'utf8')).modules[0];
+      figures.grader.files += 1;
+      figures.grader.ms.push(Math.round(pageGrade.ms));
+      check(web.status === native.status && web.mistake === native.mistake,
+            `${id} ${path.relative(root, file)}: the page's grade is the desktop's ` +
+            `(${web.status}${web.mistake ? ', ' + web.mistake : ''}; desktop ${native.status}` +
+            `${native.mistake ? ', ' + native.mistake : ''}; ${Math.round(pageGrade.ms)} ms)`);
+      if (web.status !== native.status)
+        console.log(`     page: ${web.message.slice(0, 300)}\n     desktop: ${native.message.slice(0, 300)}`);
+    }
+  }
+  await page.evaluate(`sweeper.terminate(); true`);
+
+  // 5. Orbiting: frames drawn while the mouse drags the picture.
   await page.evaluate(`pbrlabPage.countFrames(true)`);
   const view = await page.evaluate(`pbrlabPage.viewCentre()`);
   start = Date.now();

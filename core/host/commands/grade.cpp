@@ -177,6 +177,9 @@ public:
         cmd.add_option("--assignment", assignment_,
                        "Only the assignment's steps released by --date (docs/assignment.md)");
         cmd.add_option("--date", date_, "With --assignment: YYYY-MM-DD (default: today, UTC)");
+        cmd.add_flag("--site-steps", siteSteps_,
+                     "Write the step folders of the browser site for these steps instead, "
+                     "without the solutions the kit does not give (web/, docs/web.md)");
     }
     int run(const GlobalOptions& global) override {
         Session session(global, false);
@@ -185,6 +188,14 @@ public:
                             date_.empty() ? todayUtc() : date_, kit_);
         else if (!date_.empty())
             throw Error("kit: --date goes with --assignment");
+        if (siteSteps_) {
+            const std::vector<std::string> withheld = writeSiteSteps(*session.modules, kit_);
+            std::string ids;
+            for (const std::string& id : withheld) ids += (ids.empty() ? "" : ", ") + id;
+            std::cout << "wrote the site's step folders to " << kit_.out.string()
+                      << "; solutions withheld: " << (ids.empty() ? "none" : ids) << "\n";
+            return 0;
+        }
         int n = writeKit(*session.modules, kit_);
         std::cout << "wrote " << n << " module files and handouts to " << kit_.out.string() << "\n";
         return 0;
@@ -193,6 +204,7 @@ public:
 private:
     KitOptions kit_;
     std::string assignment_, date_;
+    bool siteSteps_ = false;
 };
 
 class AutograderCommand : public Command {

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "render/display.h"
+#include "steps/contract.h"
 #include "util/error.h"
 #include "util/log.h"
 
@@ -62,6 +63,9 @@ ParamValues parseSets(const ModuleDesc& m, const std::vector<std::string>& sets)
 
 StudentSource studentSource(const std::string& dir, bool cumulative, const std::string& id) {
     StudentSource s{dir, cumulative};
+    // Over an assignment site's step folders (PBRLAB_DATA), the withheld steps' functions come
+    // from the submission, as the page takes them from its workspace (contract.h).
+    if (!dir.empty()) setWithheldStepsFolder(dir);
     if (!dir.empty()) {
         if (!fs::is_directory(dir)) throw Error("--submission " + dir + ": not a directory");
         if (!fs::exists(fs::path(dir) / (id + ".glsl")))

@@ -7,8 +7,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+
+#ifdef __EMSCRIPTEN__
+#include <emscripten.h>
+#endif
 
 #include "evaluation_worker.h"
 #include "steps/plugin_host.h"
@@ -34,7 +41,47 @@ const char* badgeText(Status s) {
     }
 }
 
+namespace {
+
+// The badge of a grade report, as `pbrlab check --json` writes it (empty: it never came).
+void takeReport(Badge& badge, const std::string& text) {
+    try {
+        const nlohmann::json report = nlohmann::json::parse(text);
+        const nlohmann::json& g = report.at("modules").at(0);
+        const std::string result = g.at("status");
+        badge.status = result == "passed"          ? Status::Passes
+                       : result == "compile_error" ? Status::CompileError
+                                                   : Status::Fails;
+        badge.gradeMessage = g.value("message", "");
+    } catch (const std::exception&) {
+        badge.status = Status::Fails;
+        badge.gradeMessage = "the grade did not finish";
+    }
+}
+
+#ifdef __EMSCRIPTEN__
+// The page's grader (shell.html, web/grader_worker.js): the report of step `id` once it has
+// arrived, else empty.
+std::optional<std::string> pageGradeResult(const std::string& id) {
+    char* text = reinterpret_cast<char*>(EM_ASM_INT(
+        {
+            const report = pbrlabPage.gradeResult(UTF8ToString($0));
+            return report ? allocateUTF8(report) : 0;
+        },
+        id.c_str()));
+    if (!text) return std::nullopt;
+    std::string report(text);
+    free(text);
+    return report;
+}
+#endif
+
+}  // namespace
+
 Badges::~Badges() {
+#ifdef __EMSCRIPTEN__
+    return;  // the page's grader finishes its step and is asked nothing more
+#endif
     if (job_.pid > 0) {
         kill(job_.pid, SIGKILL);
         waitpid(job_.pid, nullptr, 0);
@@ -45,27 +92,27 @@ Badges::~Badges() {
 
 std::string Badges::update(const ModuleRegistry& registry) {
     std::string arrived;
+#ifdef __EMSCRIPTEN__
+    if (job_.pid > 0) {
+        const std::optional<std::string> report = pageGradeResult(job_.id);
+        if (!report) return {};  // still grading
+        takeReport(badges_[job_.id], *report);
+        arrived = job_.id;
+        job_ = {};
+    }
+#else
     if (job_.pid > 0) {
         int status = 0;
         if (waitpid(job_.pid, &status, WNOHANG) == 0) return {};  // still grading
-        Badge& badge = badges_[job_.id];
-        try {
-            const nlohmann::json report = nlohmann::json::parse(std::ifstream(job_.json));
-            const nlohmann::json& g = report.at("modules").at(0);
-            const std::string result = g.at("status");
-            badge.status = result == "passed"          ? Status::Passes
-                           : result == "compile_error" ? Status::CompileError
-                                                       : Status::Fails;
-            badge.gradeMessage = g.value("message", "");
-        } catch (const std::exception&) {
-            badge.status = Status::Fails;
-            badge.gradeMessage = "the grade did not finish";
-        }
+        std::ostringstream text;
+        text << std::ifstream(job_.json).rdbuf();
+        takeReport(badges_[job_.id], text.str());
         std::error_code ec;
         fs::remove(job_.json, ec);
         arrived = job_.id;
         job_ = {};
     }
+#endif
     const auto& ms = registry.modules();
     for (size_t k = 0; k < ms.size(); ++k) {
         cursor_ = (cursor_ + 1) % ms.size();
@@ -94,7 +141,14 @@ bool Badges::upToDate(const std::string& id) const {
 
 void Badges::start(const std::string& id) {
 #ifdef __EMSCRIPTEN__
-    badges_[id].status = Status::NotGradedHere;  // a page starts no processes
+    // A page starts no processes: its grader is a Web Worker (shell.html), given the
+    // workspace's files; without one (no OffscreenCanvas) the badge says "ungraded".
+    if (!EM_ASM_INT({ return pbrlabPage.grade(UTF8ToString($0)) ? 1 : 0; }, id.c_str())) {
+        badges_[id].status = Status::NotGradedHere;
+        return;
+    }
+    job_.id = id;
+    job_.pid = 1;  // a grade is running (in the worker)
     return;
 #endif
     job_.id = id;

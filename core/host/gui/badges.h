@@ -1,6 +1,7 @@
 // The steps' badges: each step's grade, `pbrlab check ID --json` run in a process of its own
 // (a step takes up to seconds to grade), one at a time, again whenever the student's file or
-// a file it includes changes. The window polls it each frame and stays responsive.
+// a file it includes changes. The window polls it each frame and stays responsive. In a page
+// the same grade runs in a Web Worker, the page's grader (core/host/web_grader.cpp).
 #pragma once
 
 #include <sys/types.h>
@@ -16,8 +17,8 @@ namespace pbrlab {
 
 class ModuleRegistry;
 
-// NotGradedHere: the page does not grade yet (it starts no `pbrlab check`); `pbrlab grade`
-// gives the grade (docs/web.md).
+// NotGradedHere: a page whose browser cannot run the grader (a Web Worker with WebGL 2 on an
+// OffscreenCanvas, docs/web.md); `pbrlab grade` gives the grade.
 enum class Status { Unknown, Missing, CompileError, Passes, Fails, NotGradedHere };
 
 struct Badge {
@@ -57,7 +58,7 @@ private:
     std::map<std::string, Badge> badges_;
     size_t cursor_ = 0;  // the step checked last, so every step gets its turn
     struct Job {
-        pid_t pid = -1;
+        pid_t pid = -1;  // in a page: 1 while its grader (a Web Worker) grades
         std::string id;
         std::filesystem::path json;
     } job_;  // the badge being graded (a `pbrlab check` process)

@@ -10,6 +10,7 @@
 #include "ibl/map_error.h"
 #include "render/converge.h"
 #include "render/evaluate.h"
+#include "steps/contract.h"
 #include "util/error.h"
 #include "util/log.h"
 
@@ -197,6 +198,28 @@ void EvaluationWorker::runPendingHere() {
     runJob(hereRenderer_.get(), startError, job, generation);
 }
 
+namespace {
+
+// The CPU reference at each of these surfaces, as a picture (surface i at pixel i, as the GPU
+// writes the probe).
+Image referencePicture(LabRenderer& renderer, const EvaluationJob& job, const IblSettings& ibl,
+                       const std::vector<Surface>& surfaces, int width, int height) {
+    const ModuleDesc& d = *job.module->desc;
+    const Scene scene = applyParamBindings(job.scene, d, job.params);
+    const ReferenceContext context = referenceContext(renderer, d, scene, job.params, ibl);
+    Image picture;
+    picture.width = width;
+    picture.height = height;
+    picture.pixels.assign(size_t(width) * size_t(height) * 4, 1.0f);
+    for (size_t i = 0; i < surfaces.size() && i < size_t(width) * size_t(height); ++i) {
+        const glm::dvec3 v = d.reference(surfaces[i], context);
+        for (int c = 0; c < 3; ++c) picture.pixels[i * 4 + size_t(c)] = float(v[c]);
+    }
+    return picture;
+}
+
+}  // namespace
+
 // The stages Lab::render ran in the frame before: the solution's picture, evaluated against
 // the CPU reference; its probe; then the student's picture, compared with the same band, and
 // its probe. Views read cube maps as the CPU reference does (seamlessCubes off), so the
@@ -238,14 +261,24 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
         for (size_t i = 0; i < band.expected.size(); ++i)
             for (int c = 0; c < 3; ++c)
                 r.referenceValue.pixels[i * 4 + size_t(c)] = float(band.expected[i][c]);
+        // Without the solution's GLSL the picture above was the student's file (or the
+        // starter) in its place: what is shown as the solution is the CPU reference.
+        const ContractStep* step = findContractStep(d.id);
+        r.solutionWithheld = step && solutionWithheld(*step);
+        if (r.solutionWithheld) r.solutionValue = r.referenceValue;
         if (superseded(generation)) return std::nullopt;
         enter(++stage, stages, "the solution's probe");
         const std::vector<Surface> probe = probeSurfaces(d.probe);
-        RenderRequest probeRequest{&m,     &job.params,   &job.scene,    {},
-                                   &probe, d.probe.width, d.probe.height};
-        probeRequest.seamlessCubes = false;
-        probeRequest.ibl = ibl;
-        r.probeSolution = renderer.render(probeRequest).value;
+        if (r.solutionWithheld) {
+            r.probeSolution =
+                referencePicture(renderer, job, ibl, probe, d.probe.width, d.probe.height);
+        } else {
+            RenderRequest probeRequest{&m,     &job.params,   &job.scene,    {},
+                                       &probe, d.probe.width, d.probe.height};
+            probeRequest.seamlessCubes = false;
+            probeRequest.ibl = ibl;
+            r.probeSolution = renderer.render(probeRequest).value;
+        }
     } catch (const Cancelled&) {
         return std::nullopt;
     } catch (const Error& e) {

@@ -98,6 +98,9 @@ struct EvaluationResult {
     std::optional<BudgetChoice> budgetChoice;  // EvaluationJob::errorBudget's
     std::string renderError;  // the solution's evaluation failed (its fields are empty)
     Image solutionValue, referenceValue, probeSolution;
+    // The site withholds the step's solution (an assignment's page, contract.h): the solution's
+    // picture and probe are the CPU reference's, and solutionStats are the student's file's.
+    bool solutionWithheld = false;
     std::vector<Surface> surfaces;  // the G-buffer's inputs, one per pixel
     Comparison solutionStats;
     double solutionMs = 0;  // the solution's view pass at full size (LiveSize::fullSizeTook)

@@ -6,6 +6,7 @@
 #include "lab.h"
 #include "render/display.h"
 #include "shader/student_file.h"
+#include "steps/contract.h"
 #include "term_views.h"
 #include "util/log.h"
 
@@ -130,7 +131,14 @@ void Lab::update(GuiState& state, Requests& requests) {
     }
     if (std::optional<EvaluationResult> result = worker_->take())
         showEvaluation(std::move(*result), state);
-    const std::string graded = badges_->update(*registry_);
+#ifdef __EMSCRIPTEN__
+    // A page cannot lower a worker's priority: a grade would share the cores with the
+    // evaluation of the picture the student is waiting for, so the picture goes first.
+    const bool grade = !dirty_ && !evaluating();
+#else
+    const bool grade = true;  // the grading process runs niced
+#endif
+    const std::string graded = grade ? badges_->update(*registry_) : std::string();
     dirty_ = dirty_ || graded == m.id;
 }
 
@@ -210,7 +218,9 @@ bool Lab::drawLive(const GuiState& state) {
         const RenderResult r = renderer_->render(request);
         shown_.liveTexture =
             displayPass_->run(r.valueTexture, live_.side(), live_.side(), m.display, m.components);
-        shown_.liveWho = student ? "your" : "the solution's";
+        // (A withheld solution's program holds the student's file in its place: contract.h.)
+        const ContractStep* step = findContractStep(m.id);
+        shown_.liveWho = student || (step && solutionWithheld(*step)) ? "your" : "the solution's";
     } catch (const Error& e) {
         // The student's file, saved while the input moves, does not compile (or may not be
         // read): the error stays, and the evaluation shows the last version that compiled.
@@ -299,6 +309,7 @@ void Lab::showEvaluation(EvaluationResult r, const GuiState& state) {
         live_.fullSizeTook(r.solutionMs);
         shown_.surfaces = std::move(r.surfaces);
         shown_.solutionStats = r.solutionStats;
+        shown_.solutionWithheld = r.solutionWithheld;
         shown_.referenceValue = std::move(r.referenceValue);
         shown_.probeSolution = std::move(r.probeSolution);
         shown_.renderError.clear();

@@ -204,7 +204,8 @@ public:
                               {"renderError", lab_.shown().renderError},
                               {"sceneError", lab_.shown().sceneError},
                               {"rows", rows},
-                              {"badge", badgeText(lab_.badges().of(id).status)}}
+                              {"badge", badgeText(lab_.badges().of(id).status)},
+                              {"gradeMessage", lab_.badges().of(id).gradeMessage}}
             .dump();
     }
     void saveSolutionPicture(const fs::path& file) const {

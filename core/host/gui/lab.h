@@ -72,6 +72,9 @@ struct Shown {
     Image studentValue, solutionValue, referenceValue, probeSolution, probeStudent;
     std::vector<Surface> surfaces;  // the G-buffer's inputs, one per pixel of the picture
     Comparison studentStats, solutionStats;
+    // The site has no solution GLSL of this step (EvaluationResult::solutionWithheld): the
+    // solution's picture and probe are the CPU reference's.
+    bool solutionWithheld = false;
     gl::Handle imageTexture;  // the composed view
     int imageWidth = 1, imageHeight = 1, nanCount = 0, infCount = 0;
     GLuint liveTexture = 0;    // while the input moves: the live picture (0: the settled image)

@@ -7,17 +7,6 @@ namespace fs = std::filesystem;
 
 namespace pbrlab {
 
-namespace {
-
-// A missing file has the smallest time: its appearance is a change too.
-fs::file_time_type stampOf(const fs::path& file) {
-    std::error_code ec;
-    const fs::file_time_type stamp = fs::last_write_time(file, ec);
-    return ec ? fs::file_time_type::min() : stamp;
-}
-
-}  // namespace
-
 void SourceWatch::scan(const fs::path& file, const fs::path& folder) {
     std::vector<fs::path> files;
     try {
@@ -30,18 +19,18 @@ void SourceWatch::scan(const fs::path& file, const fs::path& folder) {
         files = {file, folder};
     }
     stamps_.clear();
-    for (const fs::path& f : files) stamps_.emplace_back(f, stampOf(f));
+    for (const fs::path& f : files) stamps_.emplace_back(f, FileStamp::of(f));
 }
 
 bool SourceWatch::stale(const fs::path& file) const {
     bool changed = file != file_ || stamps_.empty();
-    for (const auto& [f, stamp] : stamps_) changed = changed || stampOf(f) != stamp;
+    for (const auto& [f, stamp] : stamps_) changed = changed || FileStamp::of(f) != stamp;
     return changed;
 }
 
 SourceWatch::Stamps SourceWatch::current() const {
     Stamps now;
-    for (const auto& [f, stamp] : stamps_) now.emplace_back(f, stampOf(f));
+    for (const auto& [f, stamp] : stamps_) now.emplace_back(f, FileStamp::of(f));
     return now;
 }
 

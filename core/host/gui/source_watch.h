@@ -1,10 +1,12 @@
 // Hot reload: the files a student's step file is made of (the file and every file it
-// #includes, as the shader preprocessor reads them) and their modification times.
+// #includes, as the shader preprocessor reads them) and their stamps (util/fs.h, FileStamp).
 #pragma once
 
 #include <filesystem>
 #include <utility>
 #include <vector>
+
+#include "util/fs.h"
 
 namespace pbrlab {
 
@@ -18,8 +20,8 @@ public:
     // What changed() would say now, without rescanning: for a caller that only asks.
     bool stale(const std::filesystem::path& file) const;
 
-    using Stamps = std::vector<std::pair<std::filesystem::path, std::filesystem::file_time_type>>;
-    // The watched files' modification times on disk now (the files of the last scan).
+    using Stamps = std::vector<std::pair<std::filesystem::path, FileStamp>>;
+    // The watched files' stamps on disk now (the files of the last scan).
     Stamps current() const;
 
 private:

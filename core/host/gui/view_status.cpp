@@ -67,7 +67,10 @@ ViewStatus viewStatus(const Lab& lab, const GuiState& state) {
                  : "vs the CPU reference's band on this picture (the badge is the grade):";
     if (!shown.studentValue.pixels.empty())
         s.rows.push_back(statsRow(lastGood ? "last good" : "student", shown.studentStats, d));
-    s.rows.push_back(statsRow("solution", shown.solutionStats, d));
+    if (shown.solutionWithheld)
+        s.rows.push_back({"solution  not in this site: views show the CPU reference", true});
+    else
+        s.rows.push_back(statsRow("solution", shown.solutionStats, d));
     const Badge& badge = lab.badges().of(d.id);
     if (badge.status == Status::CompileError && lastGood)
         s.grade = "badge: compile error, the grade of " + file +
@@ -77,8 +80,8 @@ ViewStatus viewStatus(const Lab& lab, const GuiState& state) {
         s.grade = "grade: " + badge.gradeMessage;
     else if (badge.status == Status::NotGradedHere)
         s.grade =
-            "badge: the page does not grade yet; the rows above are its check against "
-            "the CPU reference, and `pbrlab grade` on the kit gives the grade";
+            "badge: this browser cannot grade (no WebGL 2 in a worker); the rows above are the "
+            "check against the CPU reference, and `pbrlab grade` on the kit gives the grade";
     return s;
 }
 
