@@ -14,11 +14,9 @@ namespace {
 std::string compileHints(const std::string& log) {
     std::string hints;
     std::vector<std::pair<std::string, const ContractStep*>> names;
-    for (const ContractStep& s : contractSteps())
-        names.push_back({s.function.substr(s.function.find(' ') + 1,
-                                           s.function.find('(') - s.function.find(' ') - 1),
-                         &s});
-    names.push_back({"fresnelSchlickRoughness", nullptr});
+    for (const ContractStep& s : contractSteps()) names.push_back({functionName(s.function), &s});
+    for (const ContractHelper& h : contractHelpers())
+        names.push_back({functionName(h.function), nullptr});
     for (const auto& [name, step] : names) {
         if (log.find("`" + name + "' redefined") == std::string::npos) continue;
         hints += "\nhint: " + name + " is a contract function that pbrlab provides" +

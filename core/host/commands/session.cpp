@@ -63,10 +63,10 @@ ParamValues parseSets(const ModuleDesc& m, const std::vector<std::string>& sets)
 
 StudentSource studentSource(const std::string& dir, bool cumulative, const std::string& id) {
     StudentSource s{dir, cumulative};
-    // Over an assignment site's step folders (PBRLAB_DATA), the withheld steps' functions come
-    // from the submission, as the page takes them from its workspace (contract.h).
-    if (!dir.empty()) setWithheldStepsFolder(dir);
     if (!dir.empty()) {
+        // Over an assignment site's step folders (PBRLAB_DATA), the withheld steps' functions
+        // come from the submission, as the page takes them from its workspace (contract.h).
+        setWithheldStepsFolder(dir);
         if (!fs::is_directory(dir)) throw Error("--submission " + dir + ": not a directory");
         if (!fs::exists(fs::path(dir) / (id + ".glsl")))
             std::cerr << "note: " << (fs::path(dir) / (id + ".glsl")).string()
