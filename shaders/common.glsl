@@ -6,8 +6,15 @@ const float PI = 3.14159265358979;
 #ifndef NUM_LIGHTS
 #define NUM_LIGHTS 1
 #endif
-uniform vec3 uLightPositions[NUM_LIGHTS];
-uniform vec3 uLightColors[NUM_LIGHTS];
+// The arrays hold more slots than NUM_LIGHTS (the renderer sets PBRLAB_LIGHT_SLOTS), those past
+// it black lights at the last light's position: GLSL leaves a read past an array's end
+// undefined (Mesa reads zeros, WebGL reads the last element), and a loop with a hard-coded
+// count reads there, so it reads the same on every GPU and its grade does not depend on one.
+#ifndef PBRLAB_LIGHT_SLOTS
+#define PBRLAB_LIGHT_SLOTS NUM_LIGHTS
+#endif
+uniform vec3 uLightPositions[PBRLAB_LIGHT_SLOTS];
+uniform vec3 uLightColors[PBRLAB_LIGHT_SLOTS];
 
 #ifdef PBRLAB_IBL
 // Image-based lighting inputs (contract names), declared only in programs that use them.

@@ -320,3 +320,33 @@ TEST(Headless, ASceneAtTheLightLimitRenders) {
         EXPECT_GT(brightest, 0.0f) << id;
     }
 }
+
+// What GLSL leaves undefined and a student's code reaches is defined in every program, so that
+// a grade does not depend on the GPU: a light read past NUM_LIGHTS is a black light at the
+// last light's position (Mesa read zeros there, WebGL the last light), and pow of a negative
+// base is NaN (Mesa's answer; SwiftShader, the browser's, gave a number).
+TEST(Headless, WhatGlslLeavesUndefinedReadsTheSameOnEveryGpu) {
+    Headless h;
+    test::TempDir dir;
+    const Scene scene = loadScene(
+        dir.write("lights.json", R"({"lights": [{"position": [1, 3, 5], "color": [0.5, 0.5, 0.5]},
+                                      {"position": [-2, 4, 6], "color": [1, 1, 1]}],
+                           "objects": [{"material": {"albedo": [0.5, 0.5, 0.5]}}]})"));
+    const LoadedModule& m = h.modules.find("ndotl");
+    auto centre = [&](const std::string& body) {
+        test::TempDir kit;
+        kit.write("ndotl.glsl", "float lambertCosine(vec3 N, vec3 L)\n{\n" + body + "\n}\n");
+        const RenderResult r =
+            h.renderer.renderScene(m, ParamValues(m.desc->params), scene, {kit.path}, 8, 8, false);
+        return r.value.pixels[(4 * 8 + 4) * size_t(r.value.channels)];
+    };
+    // A loop with a hard-coded count: the index is not a constant, as in a loop.
+    const std::string past = "    int i = NUM_LIGHTS + 5 + int(0.0 * N.x);\n";
+    EXPECT_EQ(centre(past + "    return length(uLightColors[i]);"), 0.0f);
+    EXPECT_EQ(centre(past + "    return distance(uLightPositions[i], vec3(-2, 4, 6));"), 0.0f);
+    EXPECT_EQ(centre("    return length(uLightColors[1]);"), float(std::sqrt(3.0)));
+    EXPECT_TRUE(std::isnan(centre("    return pow(-0.5 + 0.0 * N.x, 2.0);")));
+    EXPECT_TRUE(
+        std::isnan(centre("    return pow(vec3(1.0, -0.5 + 0.0 * N.x, 1.0), vec3(2.0)).y;")));
+    EXPECT_EQ(centre("    return pow(0.5 + 0.0 * N.x, 2.0);"), 0.25f);
+}

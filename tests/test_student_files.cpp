@@ -161,6 +161,11 @@ TEST(StudentFiles, CompileErrorsCausedByTheStudentsFilePointIntoIt) {
               "float g(float x) { return x > 0.0 ? f(x - 1.0) : 0.0; }\n",
               " + f(0.0)", ""),
          "ndotl.glsl:", "recursion", "cycle of calls", "contract function"},
+        // pow reaches the program as pbrlab_definedPow (preprocess.cpp): messages say pow.
+        {"pow misused", with("", " + pow(1.0)", ""), "ndotl.glsl:3:", "pow(float)", "",
+         "pbrlab_definedPow"},
+        {"pow redefined", with("#define pow(x, y) x\n", "", ""),
+         "ndotl.glsl:1:", "#define pow: pow is a macro of the host's", "", "pbrlab_definedPow"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.name);

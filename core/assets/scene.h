@@ -80,14 +80,15 @@ struct Scene {
     std::string environment = "sky";
 };
 
-// The most point lights a scene has. Every view program declares uLightPositions[NUM_LIGHTS]
-// and uLightColors[NUM_LIGHTS] (shaders/common.glsl) in its fragment shader, a vec4 slot per
-// vec3: 64 lights take 2 * 64 * 4 = 512 of the 1024 uniform components OpenGL guarantees a
-// fragment shader (MAX_FRAGMENT_UNIFORM_COMPONENTS' minimum), so a scene at the limit compiles
-// on any driver the GUI may meet, with the other half left to the contract's own uniforms.
-// Measured: OSMesa's llvmpipe (Mesa 22.3) holds 16384 components; the two arrays alone link up
-// to 2049 lights and fail at 4096 ("Too many fragment shader default uniform block
-// components"), 100000 with "count of uniform locations > MAX_UNIFORM_LOCATIONS".
+// The most point lights a scene has. Every view program declares uLightPositions and
+// uLightColors with this many slots whatever the scene's count (PBRLAB_LIGHT_SLOTS,
+// shaders/common.glsl) in its fragment shader, a vec4 slot per vec3: 64 lights take 2 * 64 * 4 =
+// 512 of the 1024 uniform components OpenGL guarantees a fragment shader
+// (MAX_FRAGMENT_UNIFORM_COMPONENTS' minimum), so a scene at the limit compiles on any driver the
+// GUI may meet, with the other half left to the contract's own uniforms. Measured: OSMesa's
+// llvmpipe (Mesa 22.3) holds 16384 components; the two arrays alone link up to 2049 lights and fail
+// at 4096 ("Too many fragment shader default uniform block components"), 100000 with "count of
+// uniform locations > MAX_UNIFORM_LOCATIONS".
 inline constexpr size_t kMaxSceneLights = 64;
 
 // Throws pbrlab::Error "FILE: field 'objects[3].material': ..." on any problem, including

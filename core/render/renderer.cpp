@@ -59,6 +59,16 @@ std::string parameterUniforms(const ModuleDesc& d) {
     return text;
 }
 
+namespace {
+
+// The light arrays' length (PBRLAB_LIGHT_SLOTS, common.glsl): a loop a student hard-codes to
+// any count up to the most lights a scene has reads defined values.
+size_t lightSlots(size_t lights) {
+    return std::max(kMaxSceneLights, lights);
+}
+
+}  // namespace
+
 ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentSource& source,
                                       bool probe, int lightCount, const std::string& view) const {
     ProgramRecipe r;
@@ -121,6 +131,7 @@ ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentS
     r.fragment.push_back(module.sourceDir / (view.empty() ? "view.glsl" : view + ".glsl"));
     r.fragment.push_back(paths_.shaders() / "view_main.frag");
     r.defines["NUM_LIGHTS"] = std::to_string(std::max(lightCount, 1));
+    r.defines["PBRLAB_LIGHT_SLOTS"] = std::to_string(lightSlots(size_t(std::max(lightCount, 1))));
     if (probe) r.defines["PBRLAB_PROBE"] = "1";
     // Every program declares the IBL samplers (contract names any step may call through the
     // IBL functions); only what the step may read is bound (see runView).
@@ -177,11 +188,16 @@ double LabRenderer::runView(const RenderRequest& request, const Scene& scene, bo
         gl::BindTexture(GL_TEXTURE_2D, inputs[i]);
         program->set("uSurface" + std::to_string(i), int(i));
     }
+    // Every slot past the scene's lights is a black light at the last one's position (see
+    // common.glsl): it adds nothing, and no 0/0 where the real lights have none.
     std::vector<glm::vec3> positions, colors;
     for (const auto& l : scene.lights) {
         positions.emplace_back(l.position);
         colors.emplace_back(l.color);
     }
+    const glm::vec3 padding = positions.empty() ? glm::vec3(0, 100, 0) : positions.back();
+    positions.resize(lightSlots(scene.lights.size()), padding);
+    colors.resize(positions.size(), glm::vec3(0));
     program->set("uLightPositions", positions);
     program->set("uLightColors", colors);
     if (program->uses("uCameraPosition"))

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstring>
 #include <fstream>
 #include <regex>
 #include <set>
@@ -50,6 +51,25 @@ int findMSB(uint x) {
     return n;
 }
 int findMSB(int x) { return findMSB(uint(x < 0 ? ~x : x)); }
+)";
+
+// Built-ins with cases GLSL leaves undefined that a student's code reaches, defined the same on
+// every GPU so that a grade does not depend on the driver. Each student's part reads them
+// through a macro of the built-in's name (see expand). pow of a negative base is NaN, which is
+// what Mesa (the desktop's grader) computes; SwiftShader (the browser's) gives a number, so a
+// Fresnel term without its clamp passed in the page and failed on the desktop.
+const char* const kDefinedBuiltins = R"(float pbrlab_definedPow(float x, float y) {
+    return x < 0.0 ? intBitsToFloat(0x7fc00000) : pow(x, y);
+}
+vec2 pbrlab_definedPow(vec2 x, vec2 y) {
+    return mix(pow(x, y), vec2(intBitsToFloat(0x7fc00000)), lessThan(x, vec2(0.0)));
+}
+vec3 pbrlab_definedPow(vec3 x, vec3 y) {
+    return mix(pow(x, y), vec3(intBitsToFloat(0x7fc00000)), lessThan(x, vec3(0.0)));
+}
+vec4 pbrlab_definedPow(vec4 x, vec4 y) {
+    return mix(pow(x, y), vec4(intBitsToFloat(0x7fc00000)), lessThan(x, vec4(0.0)));
+}
 )";
 
 }  // namespace
@@ -172,6 +192,8 @@ struct Expander {
     std::map<std::string, std::string> privateHelpers;
     // The macros the current student's part defined, #undef'd after it.
     std::set<std::string> studentMacros;
+    // Whether the current student's part reads kDefinedBuiltins (#defined at its start).
+    bool routedBuiltins = false;
     // The current student's part's ShaderPart::unreachable.
     const std::map<std::string, std::string>* unreachable = nullptr;
 
@@ -286,6 +308,9 @@ struct Expander {
         out.text += "\n";
         for (const std::string& macro : studentMacros) out.text += "#undef " + macro + "\n";
         studentMacros.clear();
+        for (const auto& [builtin, definition] : definedBuiltins())
+            out.text += "#undef " + builtin + "\n";
+        routedBuiltins = false;
     }
 
     void expandText(const std::string& text, const std::string& name, const fs::path& file) {
@@ -294,6 +319,14 @@ struct Expander {
             screenStudentText(text, name);
             out.studentTexts[index] = text;
             if (unreachable && !unreachable->empty()) out.unreachable[index] = *unreachable;
+        }
+        if (!studentFolder.empty() && !routedBuiltins) {
+            // Defined in the student's own source string: Mesa reports a message about a
+            // macro's expansion in the source string of its #define.
+            out.text += "#line 0 " + std::to_string(index) + "\n";
+            for (const auto& [builtin, definition] : definedBuiltins())
+                out.text += "#define " + builtin + " " + definition + "\n";
+            routedBuiltins = true;
         }
         out.text += "#line 1 " + std::to_string(index) + "\n";
         static const std::regex includeLine(R"(^\s*#\s*include\s*"([^"]+)\"\s*(//.*)?$)");
@@ -352,6 +385,10 @@ ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
     // the reference solutions call them).
     const bool anyStudent = std::any_of(
         parts.begin(), parts.end(), [](const ShaderPart& p) { return !p.studentFolder.empty(); });
+    if (anyStudent) {
+        ex.out.text += kDefinedBuiltins;
+        for (const auto& [builtin, definition] : definedBuiltins()) ex.hostMacros.insert(builtin);
+    }
     bool afterStudent = false;
     for (const auto& part : parts) {
         if (!anyStudent) break;  // no one to screen
@@ -386,6 +423,11 @@ ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
         if (!part.studentFolder.empty()) ex.closeStudentPart();
     }
     return ex.out;
+}
+
+const std::map<std::string, std::string>& definedBuiltins() {
+    static const std::map<std::string, std::string> routed = {{"pow", "pbrlab_definedPow"}};
+    return routed;
 }
 
 std::string mapCompilerLog(const std::string& log, const std::vector<std::string>& sourceNames) {
@@ -455,6 +497,16 @@ int callLine(const std::string& text, const std::string& name) {
     });
 }
 
+// Whether line `line` (from 1) of `text` calls `name`.
+bool lineHas(const std::string& text, int line, const std::string& name) {
+    std::istringstream in(text);
+    std::string l;
+    int at = 0;
+    while (at < line && std::getline(in, l)) ++at;
+    const std::regex call("\\b" + name + "\\s*\\(");
+    return line > 0 && at == line && std::regex_search(l.substr(0, l.find("//")), call);
+}
+
 // The body of the first definition of `name` (its braces), or "".
 std::string bodyOf(const std::string& text, const std::string& name) {
     const std::regex definition("\\b" + name + "\\s*\\([^)]*\\)\\s*\\{");
@@ -510,7 +562,12 @@ std::string hintFor(const std::string& message, const std::string& name, const s
 }  // namespace
 
 std::string mapCompilerLog(const std::string& log, const ExpandedShader& shader) {
-    const std::string mapped = mapCompilerLog(log, shader.sourceNames);
+    // A student wrote the built-in's name: messages about its definition say that name.
+    std::string mapped = mapCompilerLog(log, shader.sourceNames);
+    for (const auto& [builtin, definition] : definedBuiltins())
+        for (size_t at = mapped.find(definition); at != std::string::npos;
+             at = mapped.find(definition, at + builtin.size()))
+            mapped.replace(at, definition.size(), builtin);
     if (shader.studentTexts.empty()) return mapped;
     // "file:L(C): error: message" as mapCompilerLog writes Mesa's messages.
     static const std::regex located(R"(^(.*):(\d+)\((\d+)\): (error|warning): (.*)$)");
@@ -538,10 +595,37 @@ std::string mapCompilerLog(const std::string& log, const ExpandedShader& shader)
     // string (common.glsl's), so it is moved to the student's call; a contract function of a
     // later step is said as such (ShaderPart::unreachable).
     static const std::regex undeclared(R"(no function with name '(\w+)')");
+    // Mesa reports a message about a macro's expansion in source string 0 at the student's
+    // line: one naming a routed built-in (definedBuiltins()) is moved to the student's
+    // file, and so is every message after it at the same place (its candidates, what follows
+    // from it).
+    std::map<std::string, std::string> movedPlaces;  // "file:line" -> "student file:line"
+    auto routedBuiltinAt = [&](const std::string& message, int line) -> std::string {
+        for (const auto& [builtin, definition] : definedBuiltins()) {
+            const std::regex named("\\b" + builtin + "\\b");
+            if (!std::regex_search(message, named)) continue;
+            for (const auto& [index, code] : shader.studentTexts) {
+                const int at = lineHas(code, line, builtin) ? line : callLine(code, builtin);
+                if (at) return shader.sourceNames[size_t(index)] + ":" + std::to_string(at);
+            }
+        }
+        return "";
+    };
     std::istringstream in(mapped);
     std::string out;
     for (std::string line; std::getline(in, line);) {
         std::smatch m, n;
+        if (std::regex_match(line, m, located) && !isStudentSource(shader, m[1].str())) {
+            const std::string place = m[1].str() + ":" + m[2].str();
+            if (!movedPlaces.count(place)) {
+                const std::string to = routedBuiltinAt(m[5].str(), std::stoi(m[2].str()));
+                if (!to.empty()) movedPlaces[place] = to;
+            }
+            if (movedPlaces.count(place)) {
+                out += movedPlaces[place] + ": " + m[4].str() + ": " + m[5].str() + "\n";
+                continue;
+            }
+        }
         if (std::regex_match(line, m, located) && std::regex_search(line, n, undeclared)) {
             const std::string name = n[1].str();
             for (const auto& [index, code] : shader.studentTexts) {

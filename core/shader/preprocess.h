@@ -99,6 +99,11 @@ private:
 // Rewrites "S:L(C)" / "S(L)" source references in a compiler log to "file:L(C)".
 std::string mapCompilerLog(const std::string& log, const std::vector<std::string>& sourceNames);
 
+// The built-ins a student's part reaches through a macro of their name, so that the cases GLSL
+// leaves undefined (pow of a negative base) compute the same on every GPU: built-in -> the
+// host's function the program defines before the first student's part.
+const std::map<std::string, std::string>& definedBuiltins();
+
 // mapCompilerLog, then every message that a student's file caused but the compiler reports
 // elsewhere (Mesa loses the source number of a redefinition and reports a recursion at 0:0)
 // is moved to the student's line that caused it, with a hint where one is true: a function
