@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstring>
 #include <fstream>
 #include <regex>
 #include <set>
@@ -192,8 +191,6 @@ struct Expander {
     std::map<std::string, std::string> privateHelpers;
     // The macros the current student's part defined, #undef'd after it.
     std::set<std::string> studentMacros;
-    // Whether the current student's part reads kDefinedBuiltins (#defined at its start).
-    bool routedBuiltins = false;
     // The current student's part's ShaderPart::unreachable.
     const std::map<std::string, std::string>* unreachable = nullptr;
 
@@ -310,7 +307,6 @@ struct Expander {
         studentMacros.clear();
         for (const auto& [builtin, definition] : definedBuiltins())
             out.text += "#undef " + builtin + "\n";
-        routedBuiltins = false;
     }
 
     void expandText(const std::string& text, const std::string& name, const fs::path& file) {
@@ -319,14 +315,6 @@ struct Expander {
             screenStudentText(text, name);
             out.studentTexts[index] = text;
             if (unreachable && !unreachable->empty()) out.unreachable[index] = *unreachable;
-        }
-        if (!studentFolder.empty() && !routedBuiltins) {
-            // Defined in the student's own source string: Mesa reports a message about a
-            // macro's expansion in the source string of its #define.
-            out.text += "#line 0 " + std::to_string(index) + "\n";
-            for (const auto& [builtin, definition] : definedBuiltins())
-                out.text += "#define " + builtin + " " + definition + "\n";
-            routedBuiltins = true;
         }
         out.text += "#line 1 " + std::to_string(index) + "\n";
         static const std::regex includeLine(R"(^\s*#\s*include\s*"([^"]+)\"\s*(//.*)?$)");
@@ -416,6 +404,9 @@ ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
         if (!ex.included.insert(file).second) continue;
         ex.out.files.push_back(file);
         ex.studentFolder = part.studentFolder;
+        if (!part.studentFolder.empty())  // the student's calls reach kDefinedBuiltins
+            for (const auto& [builtin, definition] : definedBuiltins())
+                ex.out.text += "#define " + builtin + " " + definition + "\n";
         ex.roots = part.studentFolder.empty() ? roots_ : std::vector<fs::path>{part.studentFolder};
         // A student's file is read by the name it was given, so that the screening sees a
         // link as a link (and names the file as the student knows it).

@@ -204,6 +204,8 @@ public:
                               {"renderError", lab_.shown().renderError},
                               {"sceneError", lab_.shown().sceneError},
                               {"rows", rows},
+                              {"liveSide", lab_.shown().liveSide},
+                              {"liveMs", lab_.shown().renderMs},
                               {"badge", badgeText(lab_.badges().of(id).status)},
                               {"gradeMessage", lab_.badges().of(id).gradeMessage}}
             .dump();
