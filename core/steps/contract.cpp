@@ -129,6 +129,9 @@ ContractStep readStep(const fs::path& file) {
     if (s.function.find('(') == std::string::npos)
         throw Error(file.string() + ": \"function\" is not a GLSL signature");
     s.folder = file.parent_path();
+    std::error_code ec;
+    s.withheld =
+        !fs::exists(s.folder / "solution.glsl", ec) && fs::exists(s.folder / "starter.glsl", ec);
     return s;
 }
 
@@ -281,9 +284,7 @@ fs::path withheldFolder;
 }  // namespace
 
 bool solutionWithheld(const ContractStep& step) {
-    std::error_code ec;
-    return !fs::exists(step.folder / "solution.glsl", ec) &&
-           fs::exists(step.folder / "starter.glsl", ec);
+    return step.withheld;
 }
 
 void setWithheldStepsFolder(const fs::path& folder) {

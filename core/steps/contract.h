@@ -44,6 +44,9 @@ struct ContractStep {
     };
     std::vector<GalleryView> gallery;
     std::filesystem::path folder;  // step.json, solution.glsl, view.glsl, README.md, ...
+    // The folder holds starter.glsl and no solution.glsl (solutionWithheld): read once, with
+    // step.json, not on every program's recipe.
+    bool withheld = false;
     std::string numbered() const;  // "04-ndotl": file names that sort in step order
 };
 

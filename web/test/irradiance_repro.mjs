@@ -16,6 +16,10 @@ const exact = fs.readFileSync(
     path.join(root, 'tests/variants/irradiance/correct_exact_solid_angle.glsl'), 'utf8');
 const approximate = exact.replace(
     /float omega = [^;]*;/s, 'float omega = h * h / pow(s * s + t * t + 1.0, 1.5);');
+// The page's own GLSL ES header (core/shader/preprocess.cpp: #version, precisions, findMSB),
+// so that the file compiles as the page's grader compiles it.
+const header = /kEs300Header = R"\(([\s\S]*?)\)";/.exec(
+    fs.readFileSync(path.join(root, 'core/shader/preprocess.cpp'), 'utf8'))[1];
 const page = (body) => `<canvas id=c width=4 height=1></canvas>
 <script>
 window.run = () => {
@@ -23,21 +27,7 @@ window.run = () => {
   gl.getExtension('EXT_color_buffer_float');
   const vs = \`#version 300 es
   void main() { vec2 p = vec2((gl_VertexID & 1) * 4 - 1, (gl_VertexID & 2) * 2 - 1); gl_Position = vec4(p, 0, 1); }\`;
-  const fs = \`#version 300 es
-precision highp float;
-precision highp int;
-precision highp samplerCube;
-int findMSB(uint x) {
-    if (x == 0u) return -1;
-    int n = 0;
-    for (int s = 16; s > 0; s >>= 1)
-        if (x >= (1u << uint(s))) {
-            x >>= uint(s);
-            n += s;
-        }
-    return n;
-}
-int findMSB(int x) { return findMSB(uint(x < 0 ? ~x : x)); }
+  const fs = \`${header}
 const float PI = 3.14159265358979;
 uniform samplerCube uEnvironment;
 uniform vec3 uN[4];
