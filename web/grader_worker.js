@@ -2,7 +2,8 @@
 // site's second program (core/host/web_grader.cpp), which grades a step as `pbrlab check`
 // does in its own WebGL 2 context on an OffscreenCanvas. Each message {step, files} carries
 // every file of the page's workspace (name -> text); they replace this worker's /work, and
-// the answer {step, report} is the report `pbrlab check --json` writes.
+// the answer {step, report} is the report `pbrlab check --json` writes; with {stats: true}
+// also {journal}, what every grade so far compiled and checked, with times (--stats).
 let started;
 const ready = new Promise((resolve) => { started = resolve; });
 var Module = {
@@ -14,7 +15,7 @@ importScripts('grader.js');
 
 onmessage = async (event) => {
   await ready;
-  const {step, files} = event.data;
+  const {step, files, stats} = event.data;
   const start = performance.now();
   let report;
   try {
@@ -32,5 +33,11 @@ onmessage = async (event) => {
     report = JSON.stringify({modules: [{id: step, status: 'failed',
                                         message: 'the grader stopped: ' + e}]});
   }
-  postMessage({step, report, ms: performance.now() - start});
+  const answer = {step, report, ms: performance.now() - start};
+  if (stats) {
+    const address = Module.ccall('pbrlab_journal', 'number', [], []);
+    answer.journal = UTF8ToString(address);
+    Module._free(address);
+  }
+  postMessage(answer);
 };

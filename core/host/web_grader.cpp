@@ -18,6 +18,7 @@
 #include "steps/paths.h"
 #include "steps/plugin_host.h"
 #include "util/error.h"
+#include "util/log.h"
 
 namespace {
 
@@ -55,6 +56,12 @@ EMSCRIPTEN_KEEPALIVE char* pbrlab_grade(const char* id) {
     const nlohmann::json report = {{"submission", kSubmission},
                                    {"modules", nlohmann::json::array({gradeJson(grade)})}};
     return strdup(report.dump().c_str());
+}
+
+// What the grades so far compiled, loaded, precomputed and checked, with times (as `pbrlab
+// check --stats` prints it); web/test/grade_probe.mjs reads it. The caller frees it.
+EMSCRIPTEN_KEEPALIVE char* pbrlab_journal() {
+    return strdup(pbrlab::journal().c_str());
 }
 
 }  // extern "C"

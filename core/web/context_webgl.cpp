@@ -25,6 +25,13 @@ public:
         glfwWindowHint(GLFW_CLIENT_API, GLFW_OPENGL_ES_API);
         glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
         glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 0);
+        // The page's canvas holds the GUI's colours only: every pass renders into its own
+        // framebuffer, and ImGui draws without depth or stencil. Without alpha the browser
+        // composites the canvas as opaque; GLFW's defaults (alpha, a 24-bit depth and an 8-bit
+        // stencil buffer) cost SwiftShader fill on each frame.
+        glfwWindowHint(GLFW_ALPHA_BITS, 0);
+        glfwWindowHint(GLFW_DEPTH_BITS, 0);
+        glfwWindowHint(GLFW_STENCIL_BITS, 0);
         window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
         if (!window_) {
             glfwTerminate();

@@ -101,39 +101,43 @@ try {
   await page.until(() => page.evaluate(`pbrlabPage.step === 'ndf'`), 10000, 'the editor on ndf');
   const correct = fs.readFileSync(path.join(root, 'labs/ndf/solution.glsl'), 'utf8');
   const wrong = fs.readFileSync(path.join(root, 'labs/ndf/mistakes/missing_pi.glsl'), 'utf8');
-  start = Date.now();
-  await typeFile(correct);
-  // The status under the picture comes with the evaluation; the step is settled once its
-  // badge is graded too (Lab::settled).
-  await page.until(async () => {
-    const s = await status();
-    return s.step === 'ndf' && s.rows?.length === 2 && s.rows[0].ok;
-  }, 120000, 'the status of the correct ndf');
-  figures.editToStatusMs = Date.now() - start;
-  let s = await page.until(async () => {
-    const s = await studentRow();
-    return s.rows[0].ok ? s : null;
-  }, 120000, 'the correct ndf to be within the band');
+  // After an edit: when the status under the picture first shows the file's row as within the
+  // band or not (`ok`), and when the badge first says `badge` (each polled every 50 ms), with
+  // the grade the badge took: sent and answered after the edit, and its time in the worker.
+  const afterEdit = async (text, ok, badge) => {
+    const start = Date.now();
+    const typedAt = await page.evaluate('performance.now()');
+    await typeFile(text);
+    const seen = {};
+    await page.until(async () => {
+      const s = await status();
+      if (s.step !== 'ndf') return false;
+      if (seen.statusMs === undefined && s.rows?.length === 2 && s.rows[0].ok === ok)
+        seen.statusMs = Date.now() - start;
+      if (seen.badgeMs === undefined && s.badge === badge) seen.badgeMs = Date.now() - start;
+      return seen.statusMs !== undefined && seen.badgeMs !== undefined;
+    }, 240000, `the status and the badge (${badge}) after the edit`);
+    seen.grades = (await page.evaluate(`pbrlabPage.gradeTimes`))
+        .filter((g) => g.step === 'ndf' && g.sentAt > typedAt)
+        .map((g) => ({sent: Math.round(g.sentAt - typedAt), worker: Math.round(g.ms),
+                      answered: Math.round(g.answeredAt - typedAt)}));
+    return seen;
+  };
+  let seen = await afterEdit(correct, true, 'passes');
+  figures.editToStatusMs = seen.statusMs;
+  figures.editToBadgeMs = seen.badgeMs;
+  figures.badgeGrades = seen.grades;
+  let s = await studentRow();
   check(s.rows[0].ok, `a correct ndf typed in the editor is within the band (${s.rows[0].text})`);
-  s = await page.until(async () => {
-    const s = await status();
-    return s.step === 'ndf' && s.badge === 'passes' ? s : null;
-  }, 240000, 'the badge of the correct ndf to say passes');
-  figures.editToBadgeMs = Date.now() - start;  // the first grade also starts the grader
   check(s.badge === 'passes', `the page's grader passes the correct ndf (badge: ${s.badge})`);
   await page.screenshot(path.join(out, 'ndf-correct.png'));
-  start = Date.now();
-  await typeFile(wrong);
-  s = await page.until(async () => {
-    const s = await studentRow();
-    return !s.rows[0].ok ? s : null;
-  }, 120000, 'the wrong ndf to fall outside the band');
+  seen = await afterEdit(wrong, false, 'fails');
+  figures.editToStatusAgainMs = seen.statusMs;
+  figures.editToBadgeAgainMs = seen.badgeMs;
+  figures.badgeGradesAgain = seen.grades;
+  s = await studentRow();
   check(!s.rows[0].ok, `ndf without its 1/pi is outside the band (${s.rows[0].text})`);
-  s = await page.until(async () => {
-    const s = await status();
-    return s.step === 'ndf' && s.badge === 'fails' ? s : null;
-  }, 240000, 'the badge of the wrong ndf to say fails');
-  figures.editToBadgeAgainMs = Date.now() - start;
+  check(s.badge === 'fails', `the page's grader fails the wrong ndf (badge: ${s.badge})`);
   check(/\b(pi|PI)\b/.test(s.gradeMessage),
         `the page's grader fails ndf without its 1/pi, naming the pi (${s.gradeMessage.slice(0, 200)})`);
   await page.screenshot(path.join(out, 'ndf-wrong.png'));

@@ -69,6 +69,8 @@ public:
     void poll(const ConsoleTarget& target);
     // No line queued or running.
     bool idle() const;
+    // No line queued or running, `wait` aside (it only watches the lab).
+    bool quiet() const { return queue_.empty() && child_ <= 0; }
     // The console's `wait` holds the lines after it until this is met.
     struct Wait {
         bool active = false;

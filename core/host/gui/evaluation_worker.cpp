@@ -191,11 +191,14 @@ void EvaluationWorker::runPendingHere() {
     started_ = std::chrono::steady_clock::now();
     std::string startError;
     try {
-        if (!hereRenderer_) hereRenderer_ = std::make_unique<LabRenderer>(paths_);
+        if (!hereRenderer_) {
+            ownRenderer_ = std::make_unique<LabRenderer>(paths_);
+            hereRenderer_ = ownRenderer_.get();
+        }
     } catch (const std::exception& e) {
         startError = std::string("the evaluation has no OpenGL: ") + e.what();
     }
-    runJob(hereRenderer_.get(), startError, job, generation);
+    runJob(hereRenderer_, startError, job, generation);
 }
 
 namespace {
@@ -319,7 +322,7 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
     }
     if (!r.studentRendered) r.studentValue = Image();
     if (job.compose && r.renderError.empty()) r.composed = job.compose(r);
-    if (job.environmentMapsHeld >= 0 &&
+    if (job.environmentMapsHeld >= 0 && !windowsRenderer_ &&
         renderer.environmentMapsBuilt(job.scene.environment, ibl) > job.environmentMapsHeld) {
         r.environment = job.scene.environment;
         r.environmentMaps = renderer.environmentMapImages(job.scene.environment, ibl);

@@ -158,6 +158,14 @@ public:
     // A job is posted whose result has not been taken (and which was not cancelled).
     bool busy() const;
     EvaluationProgress progress() const;
+    // Without a thread, the jobs run in the window's context: with the window's renderer
+    // (Lab's), whose programs and maps the live pictures then share, instead of a second
+    // renderer compiling and precomputing them again in the same context (a step's first drag
+    // compiled its live programs in its first frames).
+    void runWith(LabRenderer& windowsRenderer) {
+        hereRenderer_ = &windowsRenderer;
+        windowsRenderer_ = true;
+    }
 
 private:
     void loop();
@@ -188,9 +196,11 @@ private:
     std::chrono::steady_clock::time_point started_;
     // The worker's own: choices already made, kept when the job that made one was superseded.
     std::map<std::pair<std::string, double>, BudgetChoice> budgetChoices_;
-    // Without a thread: the renderer (made at the first job), and whether take() has seen
-    // the pending job once (the frame that saw it drew the progress line).
-    std::unique_ptr<LabRenderer> hereRenderer_;
+    // Without a thread: the renderer (runWith's, else made at the first job), and whether
+    // take() has seen the pending job once (the frame that saw it drew the progress line).
+    LabRenderer* hereRenderer_ = nullptr;
+    std::unique_ptr<LabRenderer> ownRenderer_;
+    bool windowsRenderer_ = false;  // runWith's: the maps built are the window's already
     bool pendingSeen_ = false;
     std::thread thread_;  // last: started once the members above exist (kEvaluationThread)
 };

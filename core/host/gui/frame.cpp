@@ -131,15 +131,12 @@ void Lab::update(GuiState& state, Requests& requests) {
     }
     if (std::optional<EvaluationResult> result = worker_->take())
         showEvaluation(std::move(*result), state);
-#ifdef __EMSCRIPTEN__
-    // A page cannot lower a worker's priority: a grade would share the cores with the
-    // evaluation of the picture the student is waiting for, so the picture goes first.
-    const bool grade = !dirty_ && !evaluating();
-#else
-    const bool grade = true;  // the grading process runs niced
-#endif
-    const std::string graded = grade ? badges_->update(*registry_) : std::string();
-    dirty_ = dirty_ || graded == m.id;
+    // The grades run beside the window: niced processes on the desktop; in a page, a worker
+    // that grades a file as soon as the editor writes it (shell.html), so the badge's report
+    // is usually made, or on its way, when the badge asks.
+    // A grade that arrives changes the badge and the grade line under the picture, which read
+    // the badge as they are drawn: the picture is not evaluated again for it.
+    if (!badges_->update(*registry_).empty()) ++gradesArrived_;
 }
 
 // An input changed what is drawn (camera, parameter, light): a live frame now, the full

@@ -268,6 +268,7 @@ private:
         }
         console_.poll({&lab_, &state_, &requests_});
         lab_.update(state_, requests_);
+        if (quietFrame()) return true;
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
         // GLFW's clock may not advance between two frames (a page's timer is coarse), and
@@ -298,6 +299,9 @@ private:
         if (last && !options_.screenshot.empty())
             saveScreenshot(options_.screenshot, w, h, lab_.shown().messages);
         glfwSwapBuffers(window);
+#ifdef __EMSCRIPTEN__
+        EM_ASM({ pbrlabPage.frameDrawn(); });
+#endif
         lab_.shown().frameMs = millisecondsSince(start);
         frameTimes_.push_back(lab_.shown().frameMs);
         renderTimes_.push_back(lab_.shown().renderMs);
@@ -309,6 +313,31 @@ private:
         if (lab_.evaluating() && kEvaluationThread)
             std::this_thread::sleep_until(start + std::chrono::microseconds(16667));
         return !last;
+    }
+
+    // True: this frame is not drawn. In a page the browser calls frame() at the display's
+    // rate, and drawing the window is most of what an idle page costs: SwiftShader draws on
+    // the CPU, on the cores the page's grader (a worker) and the picture's evaluation need,
+    // and a grade took 3x as long beside a window drawn 25 times a second. So while nothing
+    // on screen moves (no input in the page, no console line, nothing evaluated, no grade
+    // arrived), the window is drawn 4 times a second, which still shows a tooltip as it
+    // comes. After a change the next frames are drawn (ImGui lays a new window out over two).
+    // The desktop draws every frame: its GPU draws, with vsync.
+    bool quietFrame() {
+#ifdef __EMSCRIPTEN__
+        constexpr int kFramesAfterChange = 4;
+        constexpr auto kQuietFramePeriod = std::chrono::milliseconds(250);
+        const auto now = std::chrono::steady_clock::now();
+        const bool input = EM_ASM_INT({ return pbrlabPage.takeInput() ? 1 : 0; }) != 0;
+        if (input || !console_.quiet() || lab_.changing() || requests_.screenshot ||
+            lab_.gradesArrived() != gradesShown_)
+            framesToDraw_ = kFramesAfterChange;
+        gradesShown_ = lab_.gradesArrived();
+        if (framesToDraw_ == 0 && now - lastDrawn_ < kQuietFramePeriod) return true;
+        framesToDraw_ = std::max(framesToDraw_ - 1, 0);
+        lastDrawn_ = now;
+#endif
+        return false;
     }
 
     // --frame-times: every frame's times, then, for each evaluation against the CPU reference,
@@ -404,6 +433,8 @@ private:
     SideTabsMemory tabs_;
     Console console_;
     int frameCount_ = 0, width_ = 0, height_ = 0;
+    std::chrono::steady_clock::time_point lastDrawn_{};  // quietFrame's
+    int framesToDraw_ = 0, gradesShown_ = 0;
     std::vector<double> frameTimes_, renderTimes_;
     // Per frame, the evaluation against the CPU reference it overlapped or ran (the number
     // finished before it), or -1.

@@ -82,6 +82,7 @@ Lab::Lab(const GuiOptions& options, GuiState& state, std::unique_ptr<WorkerConte
     shown_.imageTexture = gl::makeTexture();
     displayPass_ = std::make_unique<DisplayPass>(renderer_->programs(), paths_.shaders());
     worker_ = std::make_unique<EvaluationWorker>(paths_, std::move(workerContext));
+    if (!kEvaluationThread) worker_->runWith(*renderer_);
 }
 
 fs::path Lab::studentFile(const GuiState& state) const {

@@ -128,6 +128,10 @@ public:
     // --frame-times tells the frames drawn while one ran.
     int evaluationsDone() const { return evaluationsDone_; }
     bool evaluating() const { return worker_->busy(); }
+    // What is on screen changes without input: an evaluation is due or running, or a live
+    // picture waits for it.
+    bool changing() const { return dirty_ || worker_->busy() || shown_.liveTexture != 0; }
+    int gradesArrived() const { return gradesArrived_; }  // grades the badges have taken
     EvaluationProgress evaluationProgress() const { return worker_->progress(); }
     // The programs the evaluation thread's renderer compiled, in order, as of its last
     // evaluation (the window's own: renderer().programs().compiled()).
@@ -187,6 +191,7 @@ private:
     LiveSize live_{kRenderSize};  // the live picture's side
     std::vector<int> liveSizes_;  // of every live frame, for --orbit's report
     int evaluationsDone_ = 0;
+    int gradesArrived_ = 0;
     std::vector<CompiledProgram> evaluationPrograms_;
     ViewChoice postedChoice_;  // the view the evaluation running composes
     // The student's files as they were when the window's renderer could not compile them for
