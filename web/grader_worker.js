@@ -3,7 +3,8 @@
 // does in its own WebGL 2 context on an OffscreenCanvas. Each message {step, files} carries
 // every file of the page's workspace (name -> text); they replace this worker's /work, and
 // the answer {step, report} is the report `pbrlab check --json` writes; with {stats: true}
-// also {journal}, what every grade so far compiled and checked, with times (--stats).
+// also {journal}, what every grade so far compiled and checked, with times (--stats). Before
+// it, a grade whose file fails says {namingTheMistake: true} as its feedback starts.
 let started;
 const ready = new Promise((resolve) => { started = resolve; });
 var Module = {

@@ -47,8 +47,15 @@ EMSCRIPTEN_KEEPALIVE char* pbrlab_grade(const char* id) {
         // earlier grade's files (the typical mistakes' and mutants' temporary files are read
         // at the same paths every time) are not this grade's.
         pbrlab::LabRenderer renderer(grader.paths, pbrlab::RendererOptions());
+        pbrlab::GradeSettings settings;
+        // The feedback runs after the checks, on a failure only: from there on the verdict is
+        // known, and the page says "fails" if naming the mistake runs past its time limit
+        // (shell.html) instead of a timeout, which would say nothing about the file.
+        settings.stage = [](const std::string& stage) {  // "<id>: <stage>"
+            if (stage.ends_with(": feedback")) EM_ASM({ postMessage({namingTheMistake : true}); });
+        };
         grade = pbrlab::gradeModuleHere(renderer, grader.modules.find(id), grader.paths,
-                                        {kSubmission, false}, pbrlab::GradeSettings());
+                                        {kSubmission, false}, settings);
     } catch (const std::exception& e) {
         grade.status = "failed";
         grade.message = pbrlab::validUtf8(std::string("the grader could not start: ") + e.what());

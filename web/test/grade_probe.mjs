@@ -28,7 +28,11 @@ const files = JSON.stringify({[`${step}.glsl`]: file});
 await page.evaluate(`(() => {
   window.grader = new Worker('grader_worker.js');
   window.answers = [];
-  grader.onmessage = (e) => answers.push(e.data);
+  window.naming = null;  // when the grade said the file fails (its feedback started)
+  grader.onmessage = (e) => {
+    if (e.data.namingTheMistake) naming = performance.now();
+    else answers.push({...e.data, naming});
+  };
   return true;
 })()`);
 const grades = [];
@@ -40,12 +44,14 @@ for (let run = 0; run < runs; ++run) grades.push([step, files]);
 let seen = 0;
 for (const [run, [id, files]] of grades.entries()) {
   const start = Date.now();
-  await page.evaluate(`grader.postMessage({step: '${id}', files: ${files}, stats: true}), true`);
+  const posted = await page.evaluate(
+      `naming = null; grader.postMessage({step: '${id}', files: ${files}, stats: true}); performance.now()`);
   const answer = await page.until(
       () => page.evaluate(`answers[${run}] ?? null`), 600000, `grade ${run + 1}`);
   const module = JSON.parse(answer.report).modules[0];
   console.log(`grade ${run + 1} (${id}): ${module.status}, ${answer.ms.toFixed(0)} ms in the worker, ` +
-              `${Date.now() - start} ms posted to answered`);
+              `${Date.now() - start} ms posted to answered` +
+              (answer.naming ? `, said it fails ${(answer.naming - posted).toFixed(0)} ms after posted` : ''));
   console.log(answer.journal.slice(seen).split('\n').filter((l) => l).map((l) => '  ' + l)
                   .join('\n'));
   seen = answer.journal.length;

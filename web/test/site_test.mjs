@@ -203,7 +203,8 @@ try {
   // adds to ndf the two steps whose files reach what GLSL leaves undefined (pow of a negative
   // base in fresnel, a light read past NUM_LIGHTS in reflectance): the programs define it.
   const gradeSteps = (args['grade-steps'] ?? 'ndf,fresnel,reflectance').split(',');
-  figures.grader = {files: 0, ms: []};
+  figures.grader = {files: 0, ms: [], announced: 0};
+  const announced = [];  // files whose grade said it fails, yet did not
   await page.evaluate(`window.sweeper = new Worker('grader_worker.js'); true`);
   for (const id of gradeSteps) {
     const files = [];
@@ -213,7 +214,11 @@ try {
     for (const file of files) {
       const text = fs.readFileSync(file, 'utf8');
       const pageGrade = await page.evaluate(`new Promise((resolve) => {
-        sweeper.onmessage = (e) => resolve(e.data);
+        let naming = false;  // the worker said the file fails, before its report
+        sweeper.onmessage = (e) => {
+          if (e.data.namingTheMistake) naming = true;
+          else resolve({...e.data, naming});
+        };
         sweeper.postMessage({step: ${JSON.stringify(id)}, files: {${JSON.stringify(id + '.glsl')}: ${JSON.stringify(text)}}});
       })`);
       const web = JSON.parse(pageGrade.report).modules[0];
@@ -225,6 +230,9 @@ try {
       } catch {}  // exit 1: it failed, which the report says
       const native = JSON.parse(fs.readFileSync(path.join(dir, 'r.json'), 'utf8')).modules[0];
       figures.grader.files += 1;
+      // The page turns a timeout after this message into "fails" (shell.html, gradeFailed).
+      if (pageGrade.naming) ++figures.grader.announced;
+      if (pageGrade.naming && web.status !== 'failed') announced.push(path.relative(root, file));
       figures.grader.ms.push(Math.round(pageGrade.ms));
       // The named mistake as a class report counts it (mistake_group: without the figures,
       // such as how many points were off, which GPUs may count differently).
@@ -238,6 +246,10 @@ try {
     }
   }
   await page.evaluate(`sweeper.terminate(); true`);
+  check(figures.grader.announced > 0 && announced.length === 0,
+        `the grades that said the file fails as their feedback started failed ` +
+        `(${figures.grader.announced} of ${figures.grader.files} files` +
+        `${announced.length ? '; not: ' + announced.join(', ') : ''})`);
 
   // 5. Orbiting: frames drawn while the mouse drags the picture.
   await page.evaluate(`pbrlabPage.countFrames(true)`);
