@@ -157,6 +157,28 @@ try {
       `document.querySelector('#highlight .error')?.textContent ?? ''`);
   check(marked.includes('retrun'), `the editor marks the line the compiler names (${marked})`);
   await page.screenshot(path.join(out, 'ndf-compile-error.png'));
+
+  // A badge waiting behind another grade, for a file typed over before its grade starts, still
+  // comes: the grader runs a long grade (prefilter's solution, 10-27 s), the correct ndf is
+  // typed and its badge asks for it (queued), then a wrong one replaces it in the queue.
+  const prefilter = fs.readFileSync(path.join(root, 'labs/prefilter/solution.glsl'), 'utf8');
+  await page.evaluate(
+      `pbrlabPage.request('prefilter', {'prefilter.glsl': ${JSON.stringify(prefilter)}}), true`);
+  await typeFile(correct + '\n// typed again\n');
+  const asked = await page.until(() => page.evaluate(
+      `pbrlabPage.wanted.ndf !== undefined || pbrlabPage.sent?.step !== 'prefilter'
+           ? pbrlabPage.wanted.ndf !== undefined : null`), 60000, 'the badge to ask for ndf');
+  await typeFile(wrong + '\n// typed again\n');
+  const replaced = await page.evaluate(`(pbrlabPage.flush(), pbrlabPage.sent?.step === 'prefilter' &&
+                                          pbrlabPage.queued.has('ndf'))`);
+  check(asked && replaced, `the badge asked for ndf behind another grade, and the file was ` +
+                           `typed over in the queue (asked ${asked}, replaced ${replaced})`);
+  s = await page.until(async () => {
+    const s = await settledOn('ndf');
+    return s && s.badge === 'fails' ? s : null;
+  }, 180000, 'the badge of the file typed over to come');
+  check(s.badge === 'fails', `the badge behind another grade comes for the file as typed last ` +
+                             `(${s.badge})`);
   await typeFile(wrong);
   await page.until(async () => !(await status()).error, 60000, 'the error to clear');
   await page.evaluate(`pbrlabPage.flush()`);
