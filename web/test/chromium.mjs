@@ -174,13 +174,16 @@ export class Page {
   // Typing, as a keyboard would (one input event for the text).
   async type(text) { await this.send('Input.insertText', {text}); }
 
-  async drag(from, to, steps) {
+  // A drag of the left button in `steps` moves; `afterMove(i)`, if given, runs after each.
+  async drag(from, to, steps, afterMove = null) {
     const move = (type, x, y, buttons) => this.send('Input.dispatchMouseEvent',
         {type, x, y, button: 'left', buttons, clickCount: type === 'mouseMoved' ? 0 : 1});
     await move('mousePressed', from.x, from.y, 1);
-    for (let i = 1; i <= steps; ++i)
+    for (let i = 1; i <= steps; ++i) {
       await move('mouseMoved', from.x + (to.x - from.x) * i / steps,
                  from.y + (to.y - from.y) * i / steps, 1);
+      if (afterMove) await afterMove(i);
+    }
     await move('mouseReleased', to.x, to.y, 0);
   }
 }

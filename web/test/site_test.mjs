@@ -5,8 +5,9 @@
 //      picture (the student's picture against the CPU reference's band), then a file that
 //      does not compile (the error shown, the last good picture kept);
 //   3. reloads the page and finds the student's file kept (IndexedDB);
-//   4. measures the time to the first picture, the frame time while orbiting, the download
-//      size; writes screenshots and figures.json to --out.
+//   4. measures the time to the first picture, the frame time while orbiting (a drag on past
+//      the picture's edge, which still turns the camera, with no evaluation until the
+//      release), the download size; writes screenshots and figures.json to --out.
 //
 // node --experimental-websocket web/test/site_test.mjs --site build-web/site \
 //      --pbrlab build/pbrlab --out DIR [--steps ndf,brdf]
@@ -273,14 +274,43 @@ try {
         `(${figures.grader.announced} of ${figures.grader.files} files` +
         `${announced.length ? '; not: ' + announced.join(', ') : ''})`);
 
-  // 5. Orbiting: frames drawn while the mouse drags the picture.
-  await page.evaluate(`pbrlabPage.countFrames(true)`);
+  // 5. Orbiting: frames drawn while the mouse drags the picture, on to the canvas's right
+  // edge: past the picture (three quarters of the way) the camera still turns, and nothing is
+  // evaluated while the button is held (the page's evaluation would stop its thread).
+  await page.until(() => settledOn('ndf'), 120000, 'ndf to settle before the drag');
   const view = await page.evaluate(`pbrlabPage.viewCentre()`);
+  const before = await status();
+  const pastThePicture = [];
+  await page.evaluate(`pbrlabPage.countFrames(true)`);
   start = Date.now();
-  await page.drag(view, {x: view.x + 200, y: view.y + 40}, 60);
+  await page.drag(view, {x: view.right, y: view.y + 40}, 60, async (i) => {
+    if (i === 45 || i === 60) pastThePicture.push(await status());
+  });
   const frames = await page.evaluate(`pbrlabPage.countFrames(false)`);
   figures.orbit = {frames, ms: Date.now() - start, fps: frames / ((Date.now() - start) / 1000)};
   await page.screenshot(path.join(out, 'orbit.png'));
+  check(pastThePicture[1].yaw !== pastThePicture[0].yaw,
+        `a drag past the picture's edge goes on turning the camera (yaw ` +
+        `${pastThePicture[0].yaw.toFixed(3)} then ${pastThePicture[1].yaw.toFixed(3)})`);
+  check(pastThePicture[1].evaluations === before.evaluations,
+        `no evaluation while the drag goes on (${before.evaluations} before it, ` +
+        `${pastThePicture[1].evaluations} at its end)`);
+  // Held still on the picture for longer than the settle delay (0.2 s): still no evaluation;
+  // it comes once the button is released.
+  await page.until(() => settledOn('ndf'), 120000, 'ndf to settle after the drag');
+  const held = [];
+  await page.drag(view, {x: view.x + 30, y: view.y}, 5, async (i) => {
+    if (i === 5) {
+      const s = await status();
+      await new Promise((resolve) => setTimeout(resolve, 800));
+      held.push(s, await status());
+    }
+  });
+  const released = await page.until(() => settledOn('ndf'), 120000, 'ndf to settle after release');
+  check(held[1].evaluations === held[0].evaluations && !held[1].settled &&
+            released.evaluations > held[1].evaluations,
+        `a drag held still for 0.8 s is not evaluated until released (evaluations ` +
+        `${held[0].evaluations}, ${held[1].evaluations} held, ${released.evaluations} released)`);
 } catch (e) {
   check(false, String(e.message ?? e));
 }

@@ -206,6 +206,8 @@ public:
                               {"rows", rows},
                               {"liveSide", lab_.shown().liveSide},
                               {"liveMs", lab_.shown().renderMs},
+                              {"yaw", state_.camera.yaw},
+                              {"evaluations", lab_.evaluationsDone()},
                               {"badge", badgeText(lab_.badges().of(id).status)},
                               {"gradeMessage", lab_.badges().of(id).gradeMessage}}
             .dump();
@@ -276,6 +278,7 @@ private:
         ImGui::GetIO().DeltaTime = std::max(ImGui::GetIO().DeltaTime, 1e-4f);
         ImGui::NewFrame();
         drawWindows();
+        requests_.holding = ImGui::IsAnyItemActive() && ImGui::IsMouseDown(ImGuiMouseButton_Left);
         ImGui::Render();
         glfwGetFramebufferSize(window, &w, &h);
         gl::BindFramebuffer(GL_FRAMEBUFFER, 0);

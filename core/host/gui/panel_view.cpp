@@ -35,16 +35,21 @@ void viewChooser(const Lab& lab, GuiState& state, Requests& requests) {
     ImGui::EndCombo();
 }
 
-// Drag: orbit; wheel: zoom; hover: the pixel inspector, on the settled picture.
+// Drag: orbit; wheel: zoom; hover: the pixel inspector, on the settled picture. The picture is
+// an invisible button drawn over the image, so that a drag that began on it goes on orbiting
+// when the pointer leaves it (an image is no item: the orbit stopped at its edge, and the
+// evaluation ran while the student was still dragging).
 void handleCamera(const Lab& lab, GuiState& state, Requests& requests, ImVec2 origin, float side) {
-    if (!ImGui::IsItemHovered()) return;
     ImGuiIO& io = ImGui::GetIO();
     OrbitCamera& camera = state.camera;
-    if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
+    // (Held still, the drag has not moved: Requests::holding says it is held.)
+    if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Left) &&
+        (io.MouseDelta.x != 0 || io.MouseDelta.y != 0)) {
         camera.yaw -= io.MouseDelta.x * 0.01;
         camera.pitch = std::clamp(camera.pitch + io.MouseDelta.y * 0.01, -1.5, 1.5);
         requests.moved = true;
     }
+    if (!ImGui::IsItemHovered()) return;
     if (io.MouseWheel != 0) {
         camera.distance = std::clamp(camera.distance * std::pow(0.9, io.MouseWheel), 1.2, 200.0);
         requests.moved = true;
@@ -184,8 +189,10 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
     float side = std::max(64.0f, std::min(avail.x - legend, avail.y - 150));
     ImVec2 origin = ImGui::GetCursorScreenPos();
     const GLuint shownTexture = shown.liveTexture ? shown.liveTexture : shown.imageTexture.id();
-    ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(shownTexture)),
-                 ImVec2(side, side));
+    ImGui::InvisibleButton("picture", ImVec2(side, side));
+    ImGui::GetWindowDrawList()->AddImage(
+        reinterpret_cast<ImTextureID>(static_cast<intptr_t>(shownTexture)), origin,
+        ImVec2(origin.x + side, origin.y + side));
     handleCamera(lab, state, requests, origin, side);
     // Beside the picture (before the line under it, which would push it down).
     if (legend > 0) {
