@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the lab for the browser (docs/web.md) into BUILD_DIR/site (default build-web/site):
-# index.html, index.js, index.wasm and index.data, served as static files.
+# index.html, index.js, index.wasm, the grader (grader.js, grader.wasm, grader_worker.js) and the
+# data both read (lab.data, lab-data.js), served as static files.
 #   bash scripts/build-web.sh [BUILD_DIR]
 # For an assignment (docs/assignment.md), a site without the solutions it has not released
 # (written by the desktop's pbrlab: --pbrlab, else the one on PATH), in BUILD_DIR/assignment-site:

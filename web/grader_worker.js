@@ -12,7 +12,8 @@ var Module = {
   printErr: (text) => console.warn('grader: ' + text),
   onRuntimeInitialized: () => started(),
 };
-importScripts('grader.js');
+// The site's data (the page's package: the browser fetched it for the page already).
+importScripts('lab-data.js', 'grader.js');
 
 onmessage = async (event) => {
   await ready;
