@@ -96,7 +96,7 @@ void Lab::update(GuiState& state, Requests& requests) {
     }
     if (requests.moved) moved();
     if (requests.recompose) compose(state);
-    [[maybe_unused]] const bool holding = requests.holding;  // (the page's, below)
+    const bool holding = requests.holding;
     Requests carriedOut;  // all but the screenshot, which the window takes after drawing
     carriedOut.screenshot = requests.screenshot;
     carriedOut.screenshotFile = std::move(requests.screenshotFile);
@@ -112,14 +112,12 @@ void Lab::update(GuiState& state, Requests& requests) {
     // nothing read back): 30 frames a second at least. The evaluation against the CPU
     // reference, the probes and the statistics follow once it has been still for a moment
     // (dirty_ stays set until then), on the evaluation thread: the frames go on meanwhile.
-    bool moving = std::chrono::steady_clock::now() - lastMove_ < kSettleDelay;
-#ifdef __EMSCRIPTEN__
-    // A page evaluates in its one thread, where the next move cannot cancel it: a control held
-    // still for a moment mid-drag would stop the page for the evaluation (0.8 s for ndf,
-    // seconds for the IBL steps). It waits for the release. (The desktop's evaluation thread
-    // shows it meanwhile, and the next move cancels it.)
-    moving = moving || holding;
-#endif
+    // Without an evaluation thread (a page) the evaluation runs in the window's, where the next
+    // move cannot cancel it: a control held still for a moment mid-drag would stop the window
+    // for the evaluation (0.8 s for ndf, seconds for the IBL steps). It waits for the release.
+    // (An evaluation thread shows it meanwhile, and the next move cancels it.)
+    const bool moving = std::chrono::steady_clock::now() - lastMove_ < kSettleDelay ||
+                        (!kEvaluationThread && holding);
     // An environment's maps (and --error-budget's settings for them) are made on the
     // evaluation thread, which hands them to the window's renderer with its result
     // (showEvaluation): a live picture before they arrive would make them in the frame (0.1 s
