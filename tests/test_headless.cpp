@@ -2,10 +2,15 @@
 // view, CPU reference.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
 #include "gl/context.h"
 #include "gl/objects.h"
 #include "grading/grade_step.h"
 #include "ibl/precompute.h"
+#include "render/evaluate.h"
 #include "test_support.h"
 #include "util/error.h"
 #include "util/log.h"
@@ -19,6 +24,13 @@ struct Headless {
     DataPaths paths{PBRLAB_SOURCE_DIR};
     ModuleRegistry modules{PBRLAB_MODULE_DIR};
     LabRenderer renderer{paths};
+
+    // A renderer of its own whose cache is `cache`: nothing from, or into, the user's cache.
+    LabRenderer rendererCachedIn(const test::TempDir& cache) const {
+        RendererOptions options;
+        options.cacheRoot = cache.path;
+        return LabRenderer{paths, options};
+    }
 
     StepResult check(const std::string& id, const StudentSource& source = {}) {
         return gradeStep(renderer, modules.find(id), paths, source, GradeSettings{});
@@ -174,9 +186,7 @@ TEST(Headless, ARenderIsAFunctionOfItsRequest) {
     // reach the maps the view reads (their pictures differ).
     test::TempDir cache;
     Headless h;
-    RendererOptions options;
-    options.cacheRoot = cache.path;  // nothing from, or into, the user's cache
-    LabRenderer renderer{h.paths, options};
+    LabRenderer renderer = h.rendererCachedIn(cache);
     const IblSettings small = test::smallMaps();
     IblSettings smaller = small;
     smaller.irradianceSize = 4;
@@ -349,4 +359,144 @@ TEST(Headless, WhatGlslLeavesUndefinedReadsTheSameOnEveryGpu) {
     EXPECT_TRUE(
         std::isnan(centre("    return pow(vec3(1.0, -0.5 + 0.0 * N.x, 1.0), vec3(2.0)).y;")));
     EXPECT_EQ(centre("    return pow(0.5 + 0.0 * N.x, 2.0);"), 0.25f);
+}
+
+TEST(Headless, ABandIsReusedOnlyForTheInputsItWasBuiltFrom) {
+    // The GUI's evaluation keeps its last band (BandCache): a student's edit changes GLSL only,
+    // and the band it needs is the one already built. Every input the band reads (a parameter,
+    // the camera, a material, the environment's maps) builds it again, and a band taken from
+    // the cache is exactly the band built afresh for the same request.
+    test::TempDir cache;
+    Headless h;
+    LabRenderer renderer = h.rendererCachedIn(cache);
+    BandCache bands;
+    auto evaluateBoth = [&](const LoadedModule& m, const ParamValues& params, const Scene& scene,
+                            const StudentSource& source, const IblSettings& ibl) {
+        EvalRequest request;
+        request.render = {&m, &params, &scene, source, nullptr, 32, 32};
+        request.render.ibl = ibl;
+        request.bandCache = &bands;
+        const Evaluation cached = evaluate(renderer, request);
+        request.bandCache = nullptr;
+        const Evaluation fresh = evaluate(renderer, request);
+        EXPECT_EQ(cached.band.expected, fresh.band.expected);
+        EXPECT_EQ(cached.band.lo, fresh.band.lo);
+        EXPECT_EQ(cached.band.hi, fresh.band.hi);
+        EXPECT_EQ(cached.band.slack, fresh.band.slack);
+        EXPECT_EQ(cached.comparison.outside, fresh.comparison.outside);
+        EXPECT_EQ(cached.comparison.worstExcess, fresh.comparison.worstExcess);
+        return cached;
+    };
+    auto counts = [&] { return std::make_pair(bands.built(), bands.reused()); };
+    using Counts = std::pair<int, int>;
+
+    const LoadedModule& ndf = h.modules.find("ndf");
+    Scene scene = loadScene(h.paths.scene(ndf.desc->scene));
+    ParamValues params(ndf.desc->params);
+    const IblSettings ibl = test::smallMaps();
+    const Evaluation solution = evaluateBoth(ndf, params, scene, {}, ibl);
+    EXPECT_EQ(solution.comparison.outside, 0);
+    EXPECT_EQ(counts(), Counts(1, 0));
+    // A student's edit: another picture, the same band.
+    test::TempDir kit;
+    kit.write("ndf.glsl",
+              "float distributionGGX(vec3 N, vec3 H, float roughness) {\n"
+              "    float a2 = roughness * roughness * roughness * roughness;\n"
+              "    float d = max(dot(N, H), 0.0) * max(dot(N, H), 0.0) * (a2 - 1.0) + 1.0;\n"
+              "    return a2 / (d * d);\n"  // without pi
+              "}\n");
+    const Evaluation student = evaluateBoth(ndf, params, scene, {kit.path}, ibl);
+    EXPECT_GT(student.comparison.outside, 0);
+    EXPECT_EQ(counts(), Counts(1, 1));
+    // Each input the band reads.
+    params.set("light_dir", glm::normalize(glm::dvec3(-3, 4, 6)));
+    evaluateBoth(ndf, params, scene, {kit.path}, ibl);
+    EXPECT_EQ(counts(), Counts(2, 1));
+    scene.camera.position += glm::dvec3(0.25, 0, 0);
+    evaluateBoth(ndf, params, scene, {kit.path}, ibl);
+    EXPECT_EQ(counts(), Counts(3, 1));
+    ASSERT_FALSE(scene.materials.empty());
+    scene.materials[0].roughness = 0.8;
+    evaluateBoth(ndf, params, scene, {kit.path}, ibl);
+    EXPECT_EQ(counts(), Counts(4, 1));
+    evaluateBoth(ndf, params, scene, {}, ibl);
+    EXPECT_EQ(counts(), Counts(4, 2));
+
+    // The environment's maps, for a step that reads them.
+    const LoadedModule& splitSum = h.modules.find("split_sum");
+    const Scene sky = loadScene(h.paths.scene(splitSum.desc->scene));
+    const ParamValues splitSumParams(splitSum.desc->params);
+    IblSettings smaller = ibl;
+    smaller.irradianceSize = 4;
+    smaller.prefilterSize = 8;
+    evaluateBoth(splitSum, splitSumParams, sky, {}, ibl);
+    EXPECT_EQ(counts(), Counts(5, 2));
+    evaluateBoth(splitSum, splitSumParams, sky, {}, smaller);
+    EXPECT_EQ(counts(), Counts(6, 2));
+    evaluateBoth(splitSum, splitSumParams, sky, {}, smaller);
+    EXPECT_EQ(counts(), Counts(6, 3));
+}
+
+TEST(Headless, BandCacheKeepsTheMostRecentlyUsed) {
+    BandCache bands(2);
+    Band a, b, c;
+    a.resize(1);
+    b.resize(2);
+    c.resize(3);
+    bands.keep(1, a);
+    bands.keep(2, b);
+    ASSERT_NE(bands.find(1), nullptr);  // 1 is now the most recently used
+    bands.keep(3, c);                   // and 2 goes
+    EXPECT_EQ(bands.find(2), nullptr);
+    ASSERT_NE(bands.find(1), nullptr);
+    EXPECT_EQ(bands.find(1)->expected.size(), 1u);
+    ASSERT_NE(bands.find(3), nullptr);
+    EXPECT_EQ(bands.find(3)->expected.size(), 3u);
+    EXPECT_EQ(bands.built(), 3);
+    EXPECT_EQ(bands.reused(), 5);  // the five finds that found
+}
+
+TEST(Headless, GradesThatShareTheirBandsGradeAsGradesAlone) {
+    // The page's grader keeps the checks' bands from one file to the next (GradeSettings::
+    // bands): every grade of a file must be the grade it gets alone, check by check, and the
+    // files after the first build few bands or none.
+    Headless h;
+    BandCache bands(64);
+    GradeSettings shared;
+    shared.bands = &bands;
+    namespace fs = std::filesystem;
+    const fs::path root = PBRLAB_SOURCE_DIR;
+    for (const std::string id : {"ndf", "fresnel"}) {
+        std::vector<fs::path> files = {root / "labs" / id / "solution.glsl"};
+        for (const auto& entry : fs::directory_iterator(root / "labs" / id / "mistakes"))
+            files.push_back(entry.path());
+        std::sort(files.begin() + 1, files.end());
+        for (const fs::path& file : files) {
+            test::TempDir kit;
+            std::ifstream in(file, std::ios::binary);
+            std::stringstream text;
+            text << in.rdbuf();
+            kit.write(id + ".glsl", text.str());
+            const int builtBefore = bands.built();
+            const StepResult alone =
+                gradeStep(h.renderer, h.modules.find(id), h.paths, {kit.path}, GradeSettings{});
+            const StepResult after =
+                gradeStep(h.renderer, h.modules.find(id), h.paths, {kit.path}, shared);
+            SCOPED_TRACE(file.string());
+            EXPECT_EQ(after.passed, alone.passed);
+            EXPECT_EQ(after.message, alone.message);
+            EXPECT_EQ(after.mistakeGroup, alone.mistakeGroup);
+            ASSERT_EQ(after.checks.size(), alone.checks.size());
+            for (size_t i = 0; i < alone.checks.size(); ++i) {
+                EXPECT_EQ(after.checks[i].name, alone.checks[i].name);
+                EXPECT_EQ(after.checks[i].passed, alone.checks[i].passed);
+                EXPECT_EQ(after.checks[i].outside, alone.checks[i].outside);
+                EXPECT_EQ(after.checks[i].worstExcess, alone.checks[i].worstExcess);
+            }
+            if (file != files.front()) {
+                EXPECT_EQ(bands.built(), builtBefore) << "new bands";
+            }
+        }
+    }
+    EXPECT_GT(bands.reused(), 0);
 }

@@ -31,6 +31,9 @@ struct GradeSettings {
     bool stopAtFirstFailure = false;
     // Told as each check starts, so that a crash can be reported with where it happened.
     std::function<void(const std::string&)> stage;
+    // The bands of the checks' CPU references, kept from grade to grade where one program
+    // grades many files (the page's grader): the next file's checks take them from here.
+    BandCache* bands = nullptr;
 };
 
 // What a check is about, for the weights of an assignment (assignment.h): set where each

@@ -110,6 +110,7 @@ ValuesRun StepGrader::runValues(const std::string& name, const std::string& cate
     request.render.seamlessCubes = false;
     request.render.isolatePoints = surfaces != nullptr;
     request.render.cacheGBuffer = true;
+    request.bandCache = settings_.bands;
     Evaluation e = evaluate(renderer_, request);
     ValuesRun run;
     run.report = reportFor(name, d_, e.comparison, e.render.surfaces, d_.tolerance.outlierFraction,

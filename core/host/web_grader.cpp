@@ -23,12 +23,18 @@
 namespace {
 
 constexpr const char* kSubmission = "/work";
+constexpr size_t kBandsKept = 64;
 
 struct Grader {
     pbrlab::DataPaths paths = pbrlab::DataPaths::locate();
     // The steps linked in (a page loads no libraries).
     pbrlab::ModuleRegistry modules{std::vector<std::filesystem::path>()};
     std::unique_ptr<pbrlab::GlContext> context = pbrlab::createHeadlessContext();
+    // The checks' bands, from grade to grade: a band is what the CPU reference says on inputs
+    // the host draws (no student's file is in it), and the next file of a step is graded on
+    // the same inputs. A grade of ndf builds 6, one of fresnel 9; each at most 0.9 MB (the
+    // scene checks' 96 x 96 points): kBandsKept holds several steps' grades.
+    pbrlab::BandCache bands{kBandsKept};
     Grader() { pbrlab::setWithheldStepsFolder(kSubmission); }  // as `check --submission`
 };
 
@@ -48,6 +54,7 @@ EMSCRIPTEN_KEEPALIVE char* pbrlab_grade(const char* id) {
         // at the same paths every time) are not this grade's.
         pbrlab::LabRenderer renderer(grader.paths, pbrlab::RendererOptions());
         pbrlab::GradeSettings settings;
+        settings.bands = &grader.bands;
         // The feedback runs after the checks, on a failure only: from there on the verdict is
         // known, and the page says "fails" if naming the mistake runs past its time limit
         // (shell.html) instead of a timeout, which would say nothing about the file.

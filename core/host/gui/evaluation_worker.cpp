@@ -254,6 +254,7 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
         request.render.seamlessCubes = false;
         request.render.ibl = ibl;
         request.stop = [this, generation] { return superseded(generation); };
+        request.bandCache = &bandCache_;
         Evaluation solution = evaluate(renderer, request);
         r.solutionMs = solution.render.milliseconds;
         r.solutionValue = std::move(solution.render.value);

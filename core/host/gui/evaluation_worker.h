@@ -22,6 +22,7 @@
 #include "assets/scene.h"
 #include "pbrlab/params.h"
 #include "render/compare.h"
+#include "render/evaluate.h"
 #include "render/renderer.h"
 #include "shader/program.h"
 #include "steps/paths.h"
@@ -196,6 +197,9 @@ private:
     std::chrono::steady_clock::time_point started_;
     // The worker's own: choices already made, kept when the job that made one was superseded.
     std::map<std::pair<std::string, double>, BudgetChoice> budgetChoices_;
+    // The worker's own: the last solution's band, which a student's edit reuses (the edit
+    // changes GLSL only: the band is what the CPU reference says).
+    BandCache bandCache_;
     // Without a thread: the renderer (runWith's, else made at the first job), and whether
     // take() has seen the pending job once (the frame that saw it drew the progress line).
     LabRenderer* hereRenderer_ = nullptr;
