@@ -9,13 +9,24 @@ namespace pbrlab {
 namespace {
 
 // What referenceBand(module, surfaces, context) reads, field by field (a Surface's padding is
-// no input). The module by its id and address: a reference is code, which has no digest here.
+// no input). The module by its id, address, tolerances and alternatives' names: a reference is
+// code, which has no digest here (a grader's altered copy of a module, at another address or at
+// the same one later, differs in its tolerances or alternatives).
 std::uint64_t bandInputs(LabRenderer& renderer, const ModuleDesc& module, const Scene& scene,
                          const ReferenceContext& context, const IblSettings& ibl,
                          const std::vector<Surface>& surfaces) {
     Digest digest;
     digest.add(module.id);
     digest.add(reinterpret_cast<std::uintptr_t>(&module));
+    digest.add(module.components);
+    for (int c = 0; c < module.components; ++c) {
+        const Tolerance& t = module.toleranceFor(c);
+        digest.add(glm::dvec4(t.absolute, t.relative, t.ulps, t.outlierFraction));
+    }
+    for (const AcceptedAlternative& a : module.alternatives) {
+        digest.add(a.name);
+        digest.add(a.range);
+    }
     for (const auto& [name, value] : context.params.all()) {
         digest.add(name);
         digest.add(value);
