@@ -68,6 +68,29 @@ TEST(LiveView, CoarseSpheresHaveTheSegmentsTheirSizeOnScreenNeeds) {
 // same picture, moved by under a pixel. The outline moves only onto its neighbours, and every
 // other value is one the full picture has within a pixel (a fraction of a pixel is a change
 // of N.L of a few hundredths where the normal turns quickly, but not a new value).
+// The first drag's side comes from the settled picture's cost: the view pass and its value's
+// read-back, since a browser's glFinish returns before the GPU has drawn (the view pass alone
+// measured 0.0-0.4 ms at 512 in headless Chromium, and the first drag began at full size).
+TEST(LiveView, ThePicturesCostCountsTheReadBackThatWaitsForTheGpu) {
+    auto context = createHeadlessContext();
+    DataPaths paths{PBRLAB_SOURCE_DIR};
+    ModuleRegistry modules{PBRLAB_MODULE_DIR};
+    LabRenderer renderer{paths, RendererOptions{{}, {}}};
+    const LoadedModule& ndf = modules.find("ndf");
+    const ParamValues params(ndf.desc->params);
+    const Scene scene = loadScene(paths.scene("sphere-grid"));
+    RenderRequest request{&ndf, &params, &scene, {}, nullptr, kRenderSize, kRenderSize};
+    request.readValue = false;
+    renderer.render(request);  // compiled: not part of what is timed below
+    const RenderResult drawn = renderer.render(request);
+    EXPECT_EQ(drawn.pictureMilliseconds, drawn.milliseconds);  // nothing read back
+    request.readValue = true;
+    const RenderResult read = renderer.render(request);
+    ASSERT_EQ(read.value.width, kRenderSize);
+    EXPECT_GT(read.milliseconds, 0);
+    EXPECT_GT(read.pictureMilliseconds, read.milliseconds);  // 4 MB of floats came back
+}
+
 TEST(LiveView, CoarseSpheresMoveThePictureByUnderAPixel) {
     auto context = createHeadlessContext();
     DataPaths paths{PBRLAB_SOURCE_DIR};

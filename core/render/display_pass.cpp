@@ -5,15 +5,19 @@ namespace pbrlab {
 DisplayPass::DisplayPass(ProgramCache& programs, const std::filesystem::path& shaders)
     : programs_(programs), shaders_(shaders) {}
 
-GLuint DisplayPass::run(GLuint value, int width, int height, const Display& display,
-                        int components) {
-    if (!target_ || target_->width() != width || target_->height() != height)
-        target_ = std::make_unique<gl::RenderTarget>(width, height, 1, false);
+std::shared_ptr<Program> DisplayPass::program() {
     ProgramRecipe recipe;
     recipe.label = "display";
     recipe.vertex = {shaders_ / "fullscreen.vert"};
     recipe.fragment = {shaders_ / "color.glsl", shaders_ / "display.frag"};
-    const std::shared_ptr<Program> program = programs_.get(recipe);
+    return programs_.get(recipe);
+}
+
+GLuint DisplayPass::run(GLuint value, int width, int height, const Display& display,
+                        int components) {
+    if (!target_ || target_->width() != width || target_->height() != height)
+        target_ = std::make_unique<gl::RenderTarget>(width, height, 1, false);
+    const std::shared_ptr<Program> program = this->program();
     target_->bind();
     gl::Disable(GL_DEPTH_TEST);
     program->use();

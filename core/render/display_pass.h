@@ -16,8 +16,13 @@ public:
     // into the pass's own RGBA8 texture, row 0 = the top of the picture.
     GLuint run(GLuint value, int width, int height, const Display& display, int components);
     GLuint texture() const { return target_ ? target_->colorTexture(0) : 0; }
+    // Compiles the pass's program ahead of the first run (a page compiles in tens of ms: not
+    // within the first frame of the first drag).
+    void prepare() { program(); }
 
 private:
+    std::shared_ptr<Program> program();
+
     ProgramCache& programs_;
     std::filesystem::path shaders_;
     gl::FullscreenTriangle fullscreen_;

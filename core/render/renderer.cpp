@@ -287,7 +287,14 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
         result.milliseconds =
             runView(request, scene, false, inputs, request.width, request.height, viewProjection);
         result.valueTexture = valueTarget_->colorTexture(0);
-        if (request.readValue) result.value = valueTarget_->read(0);
+        result.pictureMilliseconds = result.milliseconds;
+        if (request.readValue) {
+            const auto readStart = std::chrono::steady_clock::now();
+            result.value = valueTarget_->read(0);
+            result.pictureMilliseconds += std::chrono::duration<double, std::milli>(
+                                              std::chrono::steady_clock::now() - readStart)
+                                              .count();
+        }
         if (request.readSurfaces) {
             std::vector<Image> textures;
             for (int i = 0; i < kGBufferTextures; ++i) textures.push_back(gbuffer_->read(i));
@@ -307,7 +314,12 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
     }
     result.milliseconds =
         runView(request, scene, true, inputs, q * request.width, q * request.height, glm::mat4(1));
+    const auto readStart = std::chrono::steady_clock::now();
     result.value = valueTarget_->read(0);
+    result.pictureMilliseconds =
+        result.milliseconds +
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - readStart)
+            .count();
     if (q > 1) {  // one value per quad (all four are the same point)
         Image value = result.value;
         value.width = request.width;

@@ -42,6 +42,10 @@ struct RenderResult {
     GLuint valueTexture = 0;
     double milliseconds = 0;  // view pass, glFinish + steady clock (GPU timer queries
                               // are unreliable on llvmpipe)
+    // The view pass and the value's read-back (when asked for): the read-back waits for the
+    // GPU where glFinish may not (WebGL's finish returns before the work is done, so
+    // `milliseconds` is near 0 in a browser, and this is the view's cost there).
+    double pictureMilliseconds = 0;
 };
 
 // The probe's inputs, row 0 = top (y = 1 there, so larger values are up in pictures).

@@ -256,7 +256,7 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
         request.stop = [this, generation] { return superseded(generation); };
         request.bandCache = &bandCache_;
         Evaluation solution = evaluate(renderer, request);
-        r.solutionMs = solution.render.milliseconds;
+        r.solutionMs = solution.render.pictureMilliseconds;
         r.solutionValue = std::move(solution.render.value);
         r.surfaces = std::move(solution.render.surfaces);
         band = std::move(solution.band);

@@ -104,7 +104,7 @@ struct EvaluationResult {
     bool solutionWithheld = false;
     std::vector<Surface> surfaces;  // the G-buffer's inputs, one per pixel
     Comparison solutionStats;
-    double solutionMs = 0;  // the solution's view pass at full size (LiveSize::fullSizeTook)
+    double solutionMs = 0;  // the solution's view pass and read-back at full size (LiveSize)
     // The student's file: each failed attempt's message in order (a new file that does not
     // compile fails twice, then renders with the last good programs), then whether it rendered.
     std::vector<std::string> studentErrors;

@@ -29,8 +29,9 @@ public:
         side_ = full_;
         window_.clear();
     }
-    // The view took `ms` at full size (the settled frame measures it): the next drag starts
-    // at a side that fits, not with seconds-long frames at full size.
+    // The view took `ms` at full size, its read-back included (the settled frame measures it;
+    // in a browser glFinish returns before the GPU has drawn, and only the read-back waits):
+    // the next drag starts at a side that fits, not with seconds-long frames at full size.
     void fullSizeTook(double ms) { side_ = std::min(side_, sideWithin(full_, ms)); }
     // A live frame at side() took `ms` (frames that compiled or precomputed left out: they
     // say nothing about what the picture costs). Resized at most every 4 frames, from their
