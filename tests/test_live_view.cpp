@@ -7,9 +7,13 @@
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <iterator>
 #include <thread>
 
 #include "gl/context.h"
+#include "gui/evaluation_worker.h"
 #include "gui/lab.h"
 #include "gui/live_size.h"
 #include "ibl/map_error.h"
@@ -371,4 +375,73 @@ TEST(LiveView, AReferenceBandStopsBetweenPointsWhenAsked) {
     EXPECT_EQ(whole.expected, askedNever.expected);
     EXPECT_EQ(whole.lo, askedNever.lo);
     EXPECT_EQ(whole.hi, askedNever.hi);
+}
+
+// After a student's edit only their file has changed: the evaluation takes the solution's
+// picture, band and probe from the last one instead of drawing and reading back the picture
+// again (in the page, 0.25-0.5 s of each evaluation after an edit), and grades the new file
+// exactly as a fresh evaluation does. Any other input draws the solution anew.
+TEST(LiveView, AnEditReusesTheSolutionsStageAndOtherInputsDoNot) {
+    auto context = createHeadlessContext();
+    DataPaths paths{PBRLAB_SOURCE_DIR};
+    ModuleRegistry modules{PBRLAB_MODULE_DIR};
+    const test::TempDir work;
+    auto text = [](const std::filesystem::path& file) {
+        std::ifstream in(file);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    const std::string correct = text(PBRLAB_SOURCE_DIR "/labs/ndf/solution.glsl");
+    const std::string wrong = text(PBRLAB_SOURCE_DIR "/labs/ndf/mistakes/alpha_is_roughness.glsl");
+    EvaluationJob job;
+    job.module = &modules.find("ndf");
+    job.params = ParamValues(job.module->desc->params);
+    job.scene = loadScene(paths.scene("sphere-grid"));
+    job.submission = work.path;
+    job.student = true;
+    job.side = 128;
+    auto evaluate = [&](EvaluationWorker& worker) {
+        worker.post(job);
+        return worker.wait();
+    };
+    EvaluationWorker worker(paths, headlessWorkerContext());
+    work.write("ndf.glsl", correct);
+    const EvaluationResult first = evaluate(worker);
+    ASSERT_TRUE(first.renderError.empty()) << first.renderError;
+    EXPECT_FALSE(first.solutionKept);
+    ASSERT_TRUE(first.studentRendered);
+    EXPECT_TRUE(first.studentStats.passes(false, 0));
+
+    work.write("ndf.glsl", wrong);
+    const EvaluationResult edited = evaluate(worker);
+    EXPECT_TRUE(edited.solutionKept);
+    EXPECT_EQ(edited.solutionValue.pixels, first.solutionValue.pixels);
+    EXPECT_EQ(edited.referenceValue.pixels, first.referenceValue.pixels);
+    EXPECT_EQ(edited.probeSolution.pixels, first.probeSolution.pixels);
+    EXPECT_EQ(edited.surfaces, first.surfaces);  // shared, not copied
+    // The wrong file's statistics, as a worker that kept nothing computes them.
+    EvaluationWorker fresh(paths, headlessWorkerContext());
+    const EvaluationResult alone = evaluate(fresh);
+    EXPECT_FALSE(alone.solutionKept);
+    ASSERT_TRUE(edited.studentRendered);
+    EXPECT_FALSE(edited.studentStats.passes(false, 0));
+    EXPECT_EQ(edited.studentStats.outside, alone.studentStats.outside);
+    EXPECT_EQ(edited.studentStats.worstExcess, alone.studentStats.worstExcess);
+    EXPECT_EQ(edited.studentStats.worstIndex, alone.studentStats.worstIndex);
+    EXPECT_EQ(edited.studentValue.pixels, alone.studentValue.pixels);
+    EXPECT_EQ(edited.solutionValue.pixels, alone.solutionValue.pixels);
+
+    // Each of the solution's inputs draws it anew: a parameter, the camera, a light, a material,
+    // the picture's side.
+    const std::vector<std::function<void()>> changes = {
+        [&] { job.params.set("light_dir", glm::dvec3(0.6, 0.6, 0.52)); },
+        [&] { job.scene.camera.position.x += 0.1; },
+        [&] { job.scene.lights[0].color *= 2.0; },
+        [&] { job.scene.materials[0].albedo *= 0.5; },
+        [&] { job.side = 96; },
+    };
+    for (size_t i = 0; i < changes.size(); ++i) {
+        changes[i]();
+        EXPECT_FALSE(evaluate(worker).solutionKept) << "change " << i;
+        EXPECT_TRUE(evaluate(worker).solutionKept) << "change " << i << ", again";
+    }
 }

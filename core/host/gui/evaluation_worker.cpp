@@ -11,6 +11,7 @@
 #include "render/converge.h"
 #include "render/evaluate.h"
 #include "steps/contract.h"
+#include "util/digest.h"
 #include "util/error.h"
 #include "util/log.h"
 
@@ -223,10 +224,133 @@ Image referencePicture(LabRenderer& renderer, const EvaluationJob& job, const Ib
 
 }  // namespace
 
+namespace {
+
+std::vector<std::shared_ptr<const ModelData>> modelsOf(const Scene& scene) {
+    std::vector<std::shared_ptr<const ModelData>> models;
+    for (const SceneModel& model : scene.models) models.push_back(model.data);
+    return models;
+}
+
+// What the solution's stage reads: the module, its parameters, the scene, the environment's
+// maps and settings, the picture's side; the student's files not, unless a step the view links
+// has its solution withheld (an assignment's site links the student's file of that step in its
+// place; for a step that reads the environment's maps, any step: their passes link steps too):
+// then none, and the stage runs every time.
+std::optional<std::uint64_t> solutionInputs(LabRenderer& renderer, const EvaluationJob& job,
+                                            const IblSettings& ibl) {
+    const ModuleDesc& d = *job.module->desc;
+    const ContractStep* own = findContractStep(d.id);
+    std::vector<const ContractStep*> linked;
+    if (own && !(d.needs & NeedsEnvironment))
+        linked = stepsVisibleFrom(*own);
+    else
+        for (const ContractStep& step : contractSteps()) linked.push_back(&step);
+    for (const ContractStep* step : linked)
+        if (solutionWithheld(*step)) return std::nullopt;
+    Digest digest;
+    digest.add(reinterpret_cast<std::uintptr_t>(job.module));  // the registry outlives us
+    digest.add(d.id);
+    for (const auto& [name, value] : job.params.all()) {
+        digest.add(name);
+        digest.add(value);
+    }
+    const Scene& scene = job.scene;
+    digest.add(scene.camera.position);
+    digest.add(scene.camera.target);
+    digest.add(scene.camera.fovY);
+    digest.add(scene.lights.size());
+    for (const PointLightDesc& light : scene.lights) {
+        digest.add(light.position);
+        digest.add(light.color);
+    }
+    digest.add(scene.materials.size());
+    for (const MaterialDesc& m : scene.materials) {
+        digest.add(m.name);
+        digest.add(m.albedo);
+        digest.add(glm::dvec4(m.metallic, m.roughness, m.ao, m.occlusionStrength));
+        digest.add(m.normalScale);
+        digest.add(m.emissive);
+        for (const TextureSource* map : {&m.albedoMap, &m.metallicRoughnessMap, &m.roughnessMap,
+                                         &m.metallicMap, &m.aoMap, &m.normalMap, &m.emissiveMap}) {
+            digest.add(map->key);
+            digest.add(map->wrapU);
+            digest.add(map->wrapV);
+        }
+    }
+    digest.add(scene.objects.size());
+    for (const ObjectDesc& object : scene.objects) {
+        digest.add(object.model);
+        digest.add(object.translate);
+        digest.add(object.scale);
+        digest.add(object.material);
+    }
+    // A model by its address: the kept solution holds the models, so none other takes it.
+    for (const SceneModel& model : scene.models) {
+        digest.add(reinterpret_cast<std::uintptr_t>(model.data.get()));
+        digest.add(model.materialOffset);
+    }
+    digest.add(scene.environment);
+    digest.add(ibl.key());
+    if (d.needs & NeedsEnvironment)
+        digest.add(renderer.environmentDigest(scene, ibl, (d.needs & NeedsPrecomputedMaps) != 0));
+    digest.add(job.side);
+    return digest.h;
+}
+
+}  // namespace
+
+// The solution's picture, evaluated against the CPU reference (its band), and its probe: the
+// first two stages. Returns early when superseded (the caller checks).
+void EvaluationWorker::runSolution(LabRenderer& renderer, const EvaluationJob& job,
+                                   const IblSettings& ibl, unsigned generation, int& stage,
+                                   int stages, EvaluationResult& r, Band& band) {
+    const LoadedModule& m = *job.module;
+    const ModuleDesc& d = *m.desc;
+    enter(++stage, stages, "the solution's picture and the reference");
+    EvalRequest request;
+    request.render = {&m, &job.params, &job.scene, {}, nullptr, job.side, job.side};
+    request.render.readSurfaces = true;
+    request.render.reuseGBuffer = true;  // a parameter's or a light's edit draws none
+    request.render.seamlessCubes = false;
+    request.render.ibl = ibl;
+    request.stop = [this, generation] { return superseded(generation); };
+    request.bandCache = &bandCache_;
+    Evaluation solution = evaluate(renderer, request);
+    r.solutionMs = solution.render.pictureMilliseconds;
+    r.solutionValue = std::move(solution.render.value);
+    r.surfaces = std::make_shared<const std::vector<Surface>>(std::move(solution.render.surfaces));
+    band = std::move(solution.band);
+    r.solutionStats = solution.comparison;
+    r.referenceValue = r.solutionValue;
+    for (size_t i = 0; i < band.expected.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            r.referenceValue.pixels[i * 4 + size_t(c)] = float(band.expected[i][c]);
+    // Without the solution's GLSL the picture above was the student's file (or the
+    // starter) in its place: what is shown as the solution is the CPU reference.
+    const ContractStep* step = findContractStep(d.id);
+    r.solutionWithheld = step && solutionWithheld(*step);
+    if (r.solutionWithheld) r.solutionValue = r.referenceValue;
+    if (superseded(generation)) return;
+    enter(++stage, stages, "the solution's probe");
+    const std::vector<Surface> probe = probeSurfaces(d.probe);
+    if (r.solutionWithheld) {
+        r.probeSolution =
+            referencePicture(renderer, job, ibl, probe, d.probe.width, d.probe.height);
+    } else {
+        RenderRequest probeRequest{&m,     &job.params,   &job.scene,    {},
+                                   &probe, d.probe.width, d.probe.height};
+        probeRequest.seamlessCubes = false;
+        probeRequest.ibl = ibl;
+        r.probeSolution = renderer.render(probeRequest).value;
+    }
+}
+
 // The stages Lab::render ran in the frame before: the solution's picture, evaluated against
-// the CPU reference; its probe; then the student's picture, compared with the same band, and
-// its probe. Views read cube maps as the CPU reference does (seamlessCubes off), so the
-// statistics are the ones `pbrlab check` grades with.
+// the CPU reference; its probe (both the last evaluation's when their inputs are the same: after
+// a student's edit); then the student's picture, compared with the same band, and its probe.
+// Views read cube maps as the CPU reference does (seamlessCubes off), so the statistics are
+// the ones `pbrlab check` grades with.
 std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
                                                       const EvaluationJob& job,
                                                       unsigned generation) {
@@ -245,43 +369,34 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
         if (superseded(generation)) return std::nullopt;
     }
     Band band;  // the reference's band on the picture, for the student's statistics
+    const Band* studentBand = &band;
     try {
-        enter(++stage, stages, "the solution's picture and the reference");
-        EvalRequest request;
-        request.render = {&m, &job.params, &job.scene, {}, nullptr, job.side, job.side};
-        request.render.readSurfaces = true;
-        request.render.reuseGBuffer = true;  // a parameter's or a light's edit draws none
-        request.render.seamlessCubes = false;
-        request.render.ibl = ibl;
-        request.stop = [this, generation] { return superseded(generation); };
-        request.bandCache = &bandCache_;
-        Evaluation solution = evaluate(renderer, request);
-        r.solutionMs = solution.render.pictureMilliseconds;
-        r.solutionValue = std::move(solution.render.value);
-        r.surfaces = std::move(solution.render.surfaces);
-        band = std::move(solution.band);
-        r.solutionStats = solution.comparison;
-        r.referenceValue = r.solutionValue;
-        for (size_t i = 0; i < band.expected.size(); ++i)
-            for (int c = 0; c < 3; ++c)
-                r.referenceValue.pixels[i * 4 + size_t(c)] = float(band.expected[i][c]);
-        // Without the solution's GLSL the picture above was the student's file (or the
-        // starter) in its place: what is shown as the solution is the CPU reference.
-        const ContractStep* step = findContractStep(d.id);
-        r.solutionWithheld = step && solutionWithheld(*step);
-        if (r.solutionWithheld) r.solutionValue = r.referenceValue;
-        if (superseded(generation)) return std::nullopt;
-        enter(++stage, stages, "the solution's probe");
-        const std::vector<Surface> probe = probeSurfaces(d.probe);
-        if (r.solutionWithheld) {
-            r.probeSolution =
-                referencePicture(renderer, job, ibl, probe, d.probe.width, d.probe.height);
+        // The solution's stage depends on these inputs only (none: it may link a student's
+        // file).
+        const std::optional<std::uint64_t> inputs =
+            job.errorBudget > 0 ? std::nullopt : solutionInputs(renderer, job, ibl);
+        if (inputs && keptSolution_ && keptSolution_->inputs == *inputs) {
+            // The same picture, band and probe as the last evaluation's: taken, not drawn.
+            const KeptSolution& kept = *keptSolution_;
+            stage += 2;
+            r.solutionKept = true;
+            r.solutionMs = kept.solutionMs;
+            r.solutionValue = kept.solutionValue;
+            r.referenceValue = kept.referenceValue;
+            r.probeSolution = kept.probeSolution;
+            r.surfaces = kept.surfaces;
+            r.solutionStats = kept.solutionStats;
+            studentBand = &kept.band;
         } else {
-            RenderRequest probeRequest{&m,     &job.params,   &job.scene,    {},
-                                       &probe, d.probe.width, d.probe.height};
-            probeRequest.seamlessCubes = false;
-            probeRequest.ibl = ibl;
-            r.probeSolution = renderer.render(probeRequest).value;
+            keptSolution_.reset();  // its memory, before the next band's
+            runSolution(renderer, job, ibl, generation, stage, stages, r, band);
+            if (superseded(generation)) return std::nullopt;
+            if (inputs) {
+                keptSolution_ = KeptSolution{*inputs,         r.solutionValue, r.referenceValue,
+                                             r.probeSolution, r.surfaces,      std::move(band),
+                                             r.solutionStats, r.solutionMs,    modelsOf(job.scene)};
+                studentBand = &keptSolution_->band;
+            }
         }
     } catch (const Cancelled&) {
         return std::nullopt;
@@ -297,14 +412,15 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
             enter(stage + 1, stages, "your picture");
             RenderRequest request{&m,      &job.params, &job.scene, studentSource,
                                   nullptr, job.side,    job.side};
-            request.reuseGBuffer = true;  // the solution's, drawn in stage 1
+            request.reuseGBuffer = true;  // the solution's (drawn anew when not held: a live frame)
             request.seamlessCubes = false;
             request.ibl = ibl;
             r.studentValue = renderer.render(request).value;
             // Without the solution's band (its render failed) there is nothing to compare with.
             if (r.renderError.empty())
-                r.studentStats = compareWithBand(r.studentValue, r.surfaces, band, d.components,
-                                                 d.nonNegative, d.tolerance.outlierFraction);
+                r.studentStats =
+                    compareWithBand(r.studentValue, *r.surfaces, *studentBand, d.components,
+                                    d.nonNegative, d.tolerance.outlierFraction);
             if (superseded(generation)) return std::nullopt;
             enter(stage + 2, stages, "your probe");
             const std::vector<Surface> probe = probeSurfaces(d.probe);

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -102,9 +103,12 @@ struct EvaluationResult {
     // The site withholds the step's solution (an assignment's page, contract.h): the solution's
     // picture and probe are the CPU reference's, and solutionStats are the student's file's.
     bool solutionWithheld = false;
-    std::vector<Surface> surfaces;  // the G-buffer's inputs, one per pixel
+    // The G-buffer's inputs, one per pixel (shared with the worker, which keeps the last
+    // solution's: KeptSolution).
+    std::shared_ptr<const std::vector<Surface>> surfaces;
     Comparison solutionStats;
-    double solutionMs = 0;  // the solution's view pass and read-back at full size (LiveSize)
+    bool solutionKept = false;  // the fields above are the last evaluation's (the same inputs)
+    double solutionMs = 0;      // the solution's view pass and read-back at full size (LiveSize)
     // The student's file: each failed attempt's message in order (a new file that does not
     // compile fails twice, then renders with the last good programs), then whether it rendered.
     std::vector<std::string> studentErrors;
@@ -179,6 +183,8 @@ private:
     // The job's stages; empty when a newer generation superseded it between two.
     std::optional<EvaluationResult> run(LabRenderer& renderer, const EvaluationJob& job,
                                         unsigned generation);
+    void runSolution(LabRenderer& renderer, const EvaluationJob& job, const IblSettings& ibl,
+                     unsigned generation, int& stage, int stages, EvaluationResult& r, Band& band);
     bool superseded(unsigned generation) const { return generation != latest_.load(); }
     void enter(int stage, int stages, const char* what);
     const BudgetChoice& chooseForBudget(LabRenderer& renderer, const std::string& environment,
@@ -200,6 +206,19 @@ private:
     // The worker's own: the last solution's band, which a student's edit reuses (the edit
     // changes GLSL only: the band is what the CPU reference says).
     BandCache bandCache_;
+    // The worker's own: the last solution's stage (its picture, the reference's band on it,
+    // its probe), which the next evaluation on the same inputs takes instead of drawing and
+    // reading back the picture again: after a student's edit, only the student's file changed.
+    struct KeptSolution {
+        std::uint64_t inputs = 0;  // solutionInputs()
+        Image solutionValue, referenceValue, probeSolution;
+        std::shared_ptr<const std::vector<Surface>> surfaces;
+        Band band;
+        Comparison solutionStats;
+        double solutionMs = 0;
+        std::vector<std::shared_ptr<const ModelData>> models;  // the scene's, held
+    };
+    std::optional<KeptSolution> keptSolution_;
     // Without a thread: the renderer (runWith's, else made at the first job), and whether
     // take() has seen the pending job once (the frame that saw it drew the progress line).
     LabRenderer* hereRenderer_ = nullptr;

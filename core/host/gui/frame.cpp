@@ -293,7 +293,7 @@ void Lab::startEvaluation(const GuiState& state) {
     postedChoice_ = viewChoice(state);
     job.compose = [&d, choice = postedChoice_](const EvaluationResult& r) {
         return composeView(d, choice, r.solutionValue, r.studentValue, r.referenceValue,
-                           r.surfaces);
+                           *r.surfaces);
     };
     worker_->post(std::move(job));
 }
@@ -365,7 +365,7 @@ ViewChoice Lab::viewChoice(const GuiState& state) const {
 void Lab::compose(const GuiState& state) {
     if (shown_.solutionValue.pixels.empty()) return;
     show(composeView(module(state), viewChoice(state), shown_.solutionValue, shown_.studentValue,
-                     shown_.referenceValue, shown_.surfaces));
+                     shown_.referenceValue, *shown_.surfaces));
 }
 
 void Lab::show(const ComposedView& composed) {

@@ -73,7 +73,9 @@ struct Shown {
     std::string messages;     // start-up notes for the steps panel (modules, font, state)
     bool hasStudent = false;  // a student file exists for this step
     Image studentValue, solutionValue, referenceValue, probeSolution, probeStudent;
-    std::vector<Surface> surfaces;  // the G-buffer's inputs, one per pixel of the picture
+    // The G-buffer's inputs, one per pixel of the picture (never null once evaluated).
+    std::shared_ptr<const std::vector<Surface>> surfaces =
+        std::make_shared<const std::vector<Surface>>();
     Comparison studentStats, solutionStats;
     // The site has no solution GLSL of this step (EvaluationResult::solutionWithheld): the
     // solution's picture and probe are the CPU reference's.

@@ -61,8 +61,9 @@ void handleCamera(const Lab& lab, GuiState& state, Requests& requests, ImVec2 or
         shown.solutionValue.pixels.empty() || shown.liveTexture)
         return;
     size_t i = size_t(y) * shown.solutionValue.width + x;
-    if (i >= shown.surfaces.size() || !shown.surfaces[i].covered) return;
-    const Surface& s = shown.surfaces[i];
+    const std::vector<Surface>& surfaces = *shown.surfaces;
+    if (i >= surfaces.size() || !surfaces[i].covered) return;
+    const Surface& s = surfaces[i];
     auto value = [&](const Image& im) {
         char buf[96];
         std::snprintf(buf, sizeof buf, "%.6g %.6g %.6g", im.pixels[i * 4], im.pixels[i * 4 + 1],
