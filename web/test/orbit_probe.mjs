@@ -4,6 +4,7 @@
 // time under it; then a sampling profile of one more drag, the calls that wait on the GPU
 // process (WebGL's getParameter, getError, readPixels, ...) with their callers.
 //   node --experimental-websocket web/test/orbit_probe.mjs --site build-web/site [--step ndf]
+//        [--wait 6000]
 // (Function names in the wasm need the site linked with --profiling-funcs.)
 import fs from 'node:fs';
 import os from 'node:os';
@@ -25,6 +26,12 @@ const page = await browser.newPage();
 const {settledOn, status} = labPage(page);
 await page.navigate(`http://127.0.0.1:${server.address().port}/index.html?step=${step}&view=solution`);
 await page.until(() => settledOn(step), 120000, `${step} to settle`);
+// --wait MS: the first drag after the grader has loaded and graded (it warms up once the first
+// picture has settled, on the same cores), as a student's first drag usually is.
+if (args.wait) {
+  await new Promise((resolve) => setTimeout(resolve, Number(args.wait)));
+  await page.until(() => settledOn(step), 120000, `${step} to settle`);
+}
 // The GUI's frames only (emscripten's main loop), not the page's frame counter's ticks.
 await page.evaluate(`(() => {
   window.probe = {busy: [], gaps: [], last: 0};
