@@ -268,6 +268,15 @@ Image quadsBottomUp(const Image& image, int q) {
     return out;
 }
 
+// The view's value read back, its time added to the picture's (the read-back waits for the GPU,
+// where glFinish may not).
+void readValueTimed(gl::RenderTarget& target, RenderResult& result) {
+    const auto start = std::chrono::steady_clock::now();
+    result.value = target.read(0);
+    result.pictureMilliseconds +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
 // The scene's float-rounded camera and first light: what the shader saw.
 glm::dvec3 asFloat(const glm::dvec3& v) {
     return glm::dvec3(glm::vec3(v));
@@ -288,13 +297,7 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
             runView(request, scene, false, inputs, request.width, request.height, viewProjection);
         result.valueTexture = valueTarget_->colorTexture(0);
         result.pictureMilliseconds = result.milliseconds;
-        if (request.readValue) {
-            const auto readStart = std::chrono::steady_clock::now();
-            result.value = valueTarget_->read(0);
-            result.pictureMilliseconds += std::chrono::duration<double, std::milli>(
-                                              std::chrono::steady_clock::now() - readStart)
-                                              .count();
-        }
+        if (request.readValue) readValueTimed(*valueTarget_, result);
         if (request.readSurfaces) {
             std::vector<Image> textures;
             for (int i = 0; i < kGBufferTextures; ++i) textures.push_back(gbuffer_->read(i));
@@ -314,12 +317,8 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
     }
     result.milliseconds =
         runView(request, scene, true, inputs, q * request.width, q * request.height, glm::mat4(1));
-    const auto readStart = std::chrono::steady_clock::now();
-    result.value = valueTarget_->read(0);
-    result.pictureMilliseconds =
-        result.milliseconds +
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - readStart)
-            .count();
+    result.pictureMilliseconds = result.milliseconds;
+    readValueTimed(*valueTarget_, result);
     if (q > 1) {  // one value per quad (all four are the same point)
         Image value = result.value;
         value.width = request.width;

@@ -204,7 +204,8 @@ private:
     // The worker's own: choices already made, kept when the job that made one was superseded.
     std::map<std::pair<std::string, double>, BudgetChoice> budgetChoices_;
     // The worker's own: the last solution's band, which a student's edit reuses (the edit
-    // changes GLSL only: the band is what the CPU reference says).
+    // changes GLSL only: the band is what the CPU reference says), also where no solution's
+    // stage is kept (a withheld step's picture is the student's file, its band is not).
     BandCache bandCache_;
     // The worker's own: the last solution's stage (its picture, the reference's band on it,
     // its probe), which the next evaluation on the same inputs takes instead of drawing and

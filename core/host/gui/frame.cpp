@@ -310,7 +310,11 @@ void Lab::showEvaluation(EvaluationResult r, const GuiState& state) {
     if (r.renderError.empty()) {
         shown_.solutionValue = std::move(r.solutionValue);
         live_.fullSizeTook(r.solutionMs);
-        displayPass_->prepare();  // compiled now, not in the first live frame
+        try {
+            displayPass_->prepare();  // compiled now, not in the first live frame
+        } catch (const Error&) {
+            // The first live frame compiles it again and says why (drawLive's renderError).
+        }
         shown_.surfaces = std::move(r.surfaces);
         shown_.solutionStats = r.solutionStats;
         shown_.solutionWithheld = r.solutionWithheld;
