@@ -3,7 +3,8 @@
 // does in its own WebGL 2 context on an OffscreenCanvas. Each message {step, files} carries
 // every file of the page's workspace (name -> text); they replace this worker's /work, and
 // the answer {step, report} is the report `pbrlab check --json` writes; with {stats: true}
-// also {journal}, what every grade so far compiled and checked, with times (--stats). Before
+// also {journal}, what every grade so far compiled and checked, with times (--stats), and
+// {heapBytes}, the program's memory (its in-memory files included). Before
 // it, a grade whose file fails says {namingTheMistake: true} as its feedback starts.
 let started;
 const ready = new Promise((resolve) => { started = resolve; });
@@ -40,6 +41,7 @@ onmessage = async (event) => {
     const address = Module.ccall('pbrlab_journal', 'number', [], []);
     answer.journal = UTF8ToString(address);
     Module._free(address);
+    answer.heapBytes = HEAP8.length;  // the program's memory, its in-memory files included
   }
   postMessage(answer);
 };

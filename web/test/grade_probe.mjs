@@ -2,7 +2,7 @@
 // page's worker (web/grader_worker.js) grades one file of a step several times in a row, and
 // the probe prints each grade's time and what the grader's journal says it did, with times.
 //   node --experimental-websocket web/test/grade_probe.mjs --site build-web/site \
-//       [--step ndf] [--file labs/ndf/solution.glsl] [--runs 3] [--first FILE]
+//       [--step ndf] [--file labs/ndf/solution.glsl] [--runs 3] [--first FILE] [--edits 1]
 // (--first: a grade of another file of the step before them, in the same worker: what a
 // worker's first grade costs, or what one grade leaves to the next.)
 import fs from 'node:fs';
@@ -40,7 +40,10 @@ if (args.first) {
   const first = fs.readFileSync(path.resolve(root, args.first), 'utf8');
   grades.push([step, JSON.stringify({[`${step}.glsl`]: first})]);
 }
-for (let run = 0; run < runs; ++run) grades.push([step, files]);
+// --edits: each grade's file differs by a comment, as a student's edits do (the file's
+// programs compile again); without it the same text is graded each time.
+for (let run = 0; run < runs; ++run)
+  grades.push([step, args.edits ? JSON.stringify({[`${step}.glsl`]: file + `\n// edit ${run}\n`}) : files]);
 let seen = 0;
 for (const [run, [id, files]] of grades.entries()) {
   const start = Date.now();
@@ -51,7 +54,8 @@ for (const [run, [id, files]] of grades.entries()) {
   const module = JSON.parse(answer.report).modules[0];
   console.log(`grade ${run + 1} (${id}): ${module.status}, ${answer.ms.toFixed(0)} ms in the worker, ` +
               `${Date.now() - start} ms posted to answered` +
-              (answer.naming ? `, said it fails ${(answer.naming - posted).toFixed(0)} ms after posted` : ''));
+              (answer.naming ? `, said it fails ${(answer.naming - posted).toFixed(0)} ms after posted` : '') +
+              `; the worker's memory ${(answer.heapBytes / 2 ** 20).toFixed(0)} MB`);
   console.log(answer.journal.slice(seen).split('\n').filter((l) => l).map((l) => '  ' + l)
                   .join('\n'));
   seen = answer.journal.length;

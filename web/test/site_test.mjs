@@ -229,46 +229,61 @@ try {
   figures.grader = {files: 0, ms: [], announced: 0};
   const announced = [];  // files whose grade said it fails, yet did not
   await page.evaluate(`window.sweeper = new Worker('grader_worker.js'); true`);
-  for (const id of gradeSteps) {
-    const files = [];
+  const sweep = [];  // [step, file]
+  for (const id of gradeSteps)
     for (const dir of [path.join(root, 'labs', id, 'mistakes'), path.join(root, 'tests/variants', id)])
       if (fs.existsSync(dir))
-        for (const f of fs.readdirSync(dir).sort()) files.push(path.join(dir, f));
-    for (const file of files) {
-      const text = fs.readFileSync(file, 'utf8');
-      const pageGrade = await page.evaluate(`new Promise((resolve) => {
-        let naming = false;  // the worker said the file fails, before its report
-        sweeper.onmessage = (e) => {
-          if (e.data.namingTheMistake) naming = true;
-          else resolve({...e.data, naming});
-        };
-        sweeper.postMessage({step: ${JSON.stringify(id)}, files: {${JSON.stringify(id + '.glsl')}: ${JSON.stringify(text)}}});
-      })`);
-      const web = JSON.parse(pageGrade.report).modules[0];
-      const dir = fs.mkdtempSync(path.join(out, 'grade-'));
-      fs.writeFileSync(path.join(dir, `${id}.glsl`), text);
-      try {
-        execFileSync(args.pbrlab, ['check', id, '--submission', dir, '--json', path.join(dir, 'r.json')],
-                     {stdio: 'ignore'});
-      } catch {}  // exit 1: it failed, which the report says
-      const native = JSON.parse(fs.readFileSync(path.join(dir, 'r.json'), 'utf8')).modules[0];
-      figures.grader.files += 1;
-      // The page turns a timeout after this message into "fails" (shell.html, gradeFailed).
-      if (pageGrade.naming) ++figures.grader.announced;
-      if (pageGrade.naming && web.status !== 'failed') announced.push(path.relative(root, file));
-      figures.grader.ms.push(Math.round(pageGrade.ms));
-      // The named mistake as a class report counts it (mistake_group: without the figures,
-      // such as how many points were off, which GPUs may count differently).
-      check(web.status === native.status && web.mistake_group === native.mistake_group,
-            `${id} ${path.relative(root, file)}: the page's grade is the desktop's ` +
-            `(${web.status}${web.mistake_group ? ', ' + web.mistake_group : ''}; desktop ` +
-            `${native.status}${native.mistake_group ? ', ' + native.mistake_group : ''}; ` +
-            `${Math.round(pageGrade.ms)} ms)`);
-      if (web.status !== native.status)
-        console.log(`     page: ${web.message.slice(0, 300)}\n     desktop: ${native.message.slice(0, 300)}`);
+        for (const f of fs.readdirSync(dir).sort()) sweep.push([id, path.join(dir, f)]);
+  let journal = '';  // what the worker did in the whole sweep (its answer to the last file)
+  for (const [index, [id, file]] of sweep.entries()) {
+    const text = fs.readFileSync(file, 'utf8');
+    const last = index === sweep.length - 1;
+    const pageGrade = await page.evaluate(`new Promise((resolve) => {
+      let naming = false;  // the worker said the file fails, before its report
+      sweeper.onmessage = (e) => {
+        if (e.data.namingTheMistake) naming = true;
+        else resolve({...e.data, naming});
+      };
+      sweeper.postMessage({step: ${JSON.stringify(id)}, files: {${JSON.stringify(id + '.glsl')}: ${JSON.stringify(text)}}, stats: ${last}});
+    })`);
+    if (last) {
+      journal = pageGrade.journal;
+      figures.grader.heapMB = Math.round(pageGrade.heapBytes / 2 ** 20);
     }
+    const web = JSON.parse(pageGrade.report).modules[0];
+    const dir = fs.mkdtempSync(path.join(out, 'grade-'));
+    fs.writeFileSync(path.join(dir, `${id}.glsl`), text);
+    try {
+      execFileSync(args.pbrlab, ['check', id, '--submission', dir, '--json', path.join(dir, 'r.json')],
+                   {stdio: 'ignore'});
+    } catch {}  // exit 1: it failed, which the report says
+    const native = JSON.parse(fs.readFileSync(path.join(dir, 'r.json'), 'utf8')).modules[0];
+    figures.grader.files += 1;
+    // The page turns a timeout after this message into "fails" (shell.html, gradeFailed).
+    if (pageGrade.naming) ++figures.grader.announced;
+    if (pageGrade.naming && web.status !== 'failed') announced.push(path.relative(root, file));
+    figures.grader.ms.push(Math.round(pageGrade.ms));
+    // The named mistake as a class report counts it (mistake_group: without the figures,
+    // such as how many points were off, which GPUs may count differently).
+    check(web.status === native.status && web.mistake_group === native.mistake_group,
+          `${id} ${path.relative(root, file)}: the page's grade is the desktop's ` +
+          `(${web.status}${web.mistake_group ? ', ' + web.mistake_group : ''}; desktop ` +
+          `${native.status}${native.mistake_group ? ', ' + native.mistake_group : ''}; ` +
+          `${Math.round(pageGrade.ms)} ms)`);
+    if (web.status !== native.status)
+      console.log(`     page: ${web.message.slice(0, 300)}\n     desktop: ${native.message.slice(0, 300)}`);
   }
   await page.evaluate(`sweeper.terminate(); true`);
+  // The worker keeps what `pbrlab check` keeps on disk from one grade to the next, in its
+  // memory (core/web/build_ids.cpp): ndf's sphere grid, drawn by its first grade, is read
+  // from there by the next ones (0.3 s of a grade of 0.8 s in the worker before).
+  if (gradeSteps.includes('ndf')) {
+    figures.grader.gbuffersFromCache = (journal.match(/\[gbuffer\] from /g) ?? []).length;
+    check(figures.grader.gbuffersFromCache > 0,
+          `the grader's later grades read the scene checks' G-buffers that its first drew ` +
+          `(${figures.grader.gbuffersFromCache} read; the worker's memory after the sweep: ` +
+          `${figures.grader.heapMB} MB)`);
+  }
   check(figures.grader.announced > 0 && announced.length === 0,
         `the grades that said the file fails as their feedback started failed ` +
         `(${figures.grader.announced} of ${figures.grader.files} files` +
