@@ -59,6 +59,35 @@ TEST(LiveView, TheLiveSideFollowsTheTimeBudget) {
     EXPECT_EQ(live.side(), 512);
 }
 
+// In a browser a live frame's time is not its picture's (kLiveFramesTimed): the settled
+// picture's cost, timed by its read-back, sets the side, and the frames move it only between
+// half of that side and all of it.
+TEST(LiveView, UntimedFramesKeepTheSideTheSettledPicturesCostAllows) {
+    const double budget = LiveSize::kBudgetMs;
+    LiveSize live(512, false);
+    live.fullSizeTook(4 * budget);  // the budget fits a picture of half the side
+    EXPECT_EQ(live.side(), 256);
+    // Every frame far over the budget (the GPU process's queue): no smaller than half of it.
+    for (int i = 0; i < 40; ++i) live.frameTook(3 * budget);
+    EXPECT_EQ(live.side(), 128);
+    // Frames that look cheap (a GPU that queues the work): no larger than the side allowed.
+    for (int i = 0; i < 40; ++i) live.frameTook(0.1 * budget);
+    EXPECT_EQ(live.side(), 256);
+    // The next settled picture measures again, cheaper: that side, whatever the frames did.
+    for (int i = 0; i < 40; ++i) live.frameTook(3 * budget);
+    live.fullSizeTook(budget);
+    EXPECT_EQ(live.side(), 512);
+    // The costliest views keep the smallest side as their floor.
+    live.fullSizeTook(5000);
+    EXPECT_EQ(live.side(), 24);
+    for (int i = 0; i < 8; ++i) live.frameTook(100 * budget);
+    EXPECT_EQ(live.side(), LiveSize::kMinSide);
+    live.reset();  // another step: full size, the whole range again
+    EXPECT_EQ(live.side(), 512);
+    for (int i = 0; i < 40; ++i) live.frameTook(3 * budget);
+    EXPECT_EQ(live.side(), LiveSize::kMinSide);
+}
+
 // n >= pi sqrt(r) keeps a chord within half a pixel of a circle of radius r pixels.
 TEST(LiveView, CoarseSpheresHaveTheSegmentsTheirSizeOnScreenNeeds) {
     EXPECT_EQ(sphereSegments(1), 16);

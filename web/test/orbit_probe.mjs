@@ -70,6 +70,7 @@ for (let run = 0; run < 3; ++run) {
               `second; the GUI's frame: median ${median(p.busy)} ms, between frames ` +
               `${median(p.gaps)} ms`);
   console.log(`  live picture (every 6th move): ${sides.join(', ')}`);
+  console.log(`  the first 16 frames' intervals: ${p.gaps.slice(0, 16).map((g) => g.toFixed(0)).join(' ')} ms`);
 }
 await page.send('Profiler.enable');
 await page.send('Profiler.setSamplingInterval', {interval: 200});

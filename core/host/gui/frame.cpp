@@ -204,23 +204,10 @@ bool Lab::settled(const GuiState& state) const {
 bool Lab::drawLive(const GuiState& state) {
     const auto start = std::chrono::steady_clock::now();
     const int setupWork = setupWorkDone();
-    const Scene scene = currentScene(state);
-    const bool student = state.view != View::Solution && !shown_.studentValue.pixels.empty() &&
-                         studentWatch_.current() != liveStudentFailed_;
+    const bool student = liveShowsStudent(state);
     const ModuleDesc& m = module(state);
     try {
-        RenderRequest request{
-            &loaded(state), &state.params.at(m.id),
-            &scene,         student ? StudentSource{submission_, false} : StudentSource{},
-            nullptr,        live_.side(),
-            live_.side()};
-        request.seamlessCubes = false;  // as the settled picture: no jump when it lands
-        request.readValue = false;
-        request.coarseSpheres = true;  // the outline within half a pixel; the settled one exact
-        request.ibl = iblFor(scene);
-        const RenderResult r = renderer_->render(request);
-        shown_.liveTexture =
-            displayPass_->run(r.valueTexture, live_.side(), live_.side(), m.display, m.components);
+        shown_.liveTexture = renderLive(state, student);
         // (A withheld solution's program holds the student's file in its place: contract.h.)
         const ContractStep* step = findContractStep(m.id);
         shown_.liveWho = student || (step && solutionWithheld(*step)) ? "your" : "the solution's";
@@ -237,14 +224,38 @@ bool Lab::drawLive(const GuiState& state) {
         }
         return false;
     }
-    // Magnified smoothly, as dynamic resolution does (the line under it gives its size).
-    gl::BindTexture(GL_TEXTURE_2D, shown_.liveTexture);
-    gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     shown_.renderMs = millisecondsSince(start);
     shown_.liveSide = live_.side();
     liveSizes_.push_back(live_.side());
     if (setupWorkDone() == setupWork) live_.frameTook(shown_.renderMs);  // the next side
     return true;
+}
+
+bool Lab::liveShowsStudent(const GuiState& state) const {
+    return state.view != View::Solution && !shown_.studentValue.pixels.empty() &&
+           studentWatch_.current() != liveStudentFailed_;
+}
+
+// The live picture at LiveSize's side, mapped for display: its texture.
+GLuint Lab::renderLive(const GuiState& state, bool student) {
+    const Scene scene = currentScene(state);
+    const ModuleDesc& m = module(state);
+    RenderRequest request{
+        &loaded(state), &state.params.at(m.id),
+        &scene,         student ? StudentSource{submission_, false} : StudentSource{},
+        nullptr,        live_.side(),
+        live_.side()};
+    request.seamlessCubes = false;  // as the settled picture: no jump when it lands
+    request.readValue = false;
+    request.coarseSpheres = true;  // the outline within half a pixel; the settled one exact
+    request.ibl = iblFor(scene);
+    const RenderResult r = renderer_->render(request);
+    const GLuint texture =
+        displayPass_->run(r.valueTexture, live_.side(), live_.side(), m.display, m.components);
+    // Magnified smoothly, as dynamic resolution does (the line under it gives its size).
+    gl::BindTexture(GL_TEXTURE_2D, texture);
+    gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    return texture;
 }
 
 void Lab::render(const GuiState& state) {
@@ -343,6 +354,17 @@ void Lab::showEvaluation(EvaluationResult r, const GuiState& state) {
         show(*r.composed);
     else
         compose(state);
+    // In a page the live frames share the evaluation's renderer, which has just drawn at full
+    // size: the next drag's first live frame made its targets again at the live side and drew
+    // into them first, 70-100 ms where the next frames took 25-35 (headless Chromium). A live
+    // picture drawn now, while nothing moves, pays that instead of the drag.
+    if (!kEvaluationThread && r.renderError.empty()) {
+        try {
+            renderLive(state, liveShowsStudent(state));
+        } catch (const Error&) {
+            // The next drag's first live frame meets it again and says why (drawLive).
+        }
+    }
 }
 
 // The programs this step needs for the scene on screen, as `pbrlab permutations` lists them:

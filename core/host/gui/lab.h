@@ -154,6 +154,9 @@ private:
     // --error-budget's settings for the scene's environment are still being chosen.
     bool waitsForBudgetSettings(const Scene& scene) const;
     bool drawLive(const GuiState& state);
+    // The live picture is the student's (their file has rendered, and has not failed since).
+    bool liveShowsStudent(const GuiState& state) const;
+    GLuint renderLive(const GuiState& state, bool student);
     void startEvaluation(const GuiState& state);
     void showEvaluation(EvaluationResult result, const GuiState& state);
     void compose(const GuiState& state);
@@ -193,8 +196,8 @@ private:
     // The evaluation is out of date (dirty_) and the input last moved at lastMove_.
     bool dirty_ = true;
     std::chrono::steady_clock::time_point lastMove_{};
-    LiveSize live_{kRenderSize};  // the live picture's side
-    std::vector<int> liveSizes_;  // of every live frame, for --orbit's report
+    LiveSize live_{kRenderSize, kLiveFramesTimed};  // the live picture's side
+    std::vector<int> liveSizes_;                    // of every live frame, for --orbit's report
     int evaluationsDone_ = 0;
     int gradesArrived_ = 0;
     std::vector<CompiledProgram> evaluationPrograms_;

@@ -10,6 +10,17 @@
 
 namespace pbrlab {
 
+// Whether a live frame's time is what its picture costs. Not in a browser: there the frame's
+// first GL query waits for the GPU process to finish everything queued before it, the previous
+// frame's panels and the page's compositing included, and glFinish returns at once (in headless
+// Chromium a live frame measured 16-32 ms at any side from 16 to 176 pixels, so every frame
+// looked over the budget and the picture shrank to 16 pixels in every drag).
+#ifdef __EMSCRIPTEN__
+constexpr bool kLiveFramesTimed = false;
+#else
+constexpr bool kLiveFramesTimed = true;
+#endif
+
 class LiveSize {
 public:
     // The picture's time budget, of the 33 ms a frame at 30 a second has: the rest of a frame
@@ -21,18 +32,34 @@ public:
     // drawn by one thread).
     static constexpr int kMinSide = 16;
 
-    explicit LiveSize(int fullSide) : full_(fullSide), side_(fullSide) {}
+    // `framesTimed`: whether a live frame's time is the picture's. In a browser it is not (see
+    // kLiveFramesTimed): there the side stays between half and all of the side that the
+    // settled picture's cost allows, and the frames move it only within that range.
+    explicit LiveSize(int fullSide, bool framesTimed = true)
+        : full_(fullSide), side_(fullSide), framesTimed_(framesTimed) {}
 
     int side() const { return side_; }
     // Full size again: another step, another cost.
     void reset() {
-        side_ = full_;
+        side_ = ceiling_ = full_;
+        floor_ = kMinSide;
         window_.clear();
     }
     // The view took `ms` at full size, its read-back included (the settled frame measures it;
     // in a browser glFinish returns before the GPU has drawn, and only the read-back waits):
     // the next drag starts at a side that fits, not with seconds-long frames at full size.
-    void fullSizeTook(double ms) { side_ = std::min(side_, sideWithin(full_, ms)); }
+    // Without timed frames this measure is the only one to trust: the picture then costs the
+    // budget at most and a quarter of it at least (half the side), whatever the frames say.
+    void fullSizeTook(double ms) {
+        const int fits = sideWithin(full_, ms);
+        if (framesTimed_) {
+            side_ = std::min(side_, fits);
+            return;
+        }
+        side_ = ceiling_ = fits;
+        floor_ = std::max(kMinSide, roundDown(fits / 2.0));
+        window_.clear();
+    }
     // A live frame at side() took `ms` (frames that compiled or precomputed left out: they
     // say nothing about what the picture costs). Resized at most every 4 frames, from their
     // median (a new size reallocates the targets, and the frames where llvmpipe's threads
@@ -43,7 +70,7 @@ public:
         window_.push_back(ms);
         const size_t n = window_.size();
         if (n >= 2 && std::min(window_[n - 2], window_[n - 1]) > 2 * kBudgetMs) {
-            side_ = sideWithin(side_, std::min(window_[n - 2], window_[n - 1]));
+            side_ = std::max(floor_, sideWithin(side_, std::min(window_[n - 2], window_[n - 1])));
             window_.clear();
             return;
         }
@@ -52,9 +79,9 @@ public:
         const double median = (window_[1] + window_[2]) / 2;
         window_.clear();
         if (median > kBudgetMs)
-            side_ = std::max(kMinSide, std::min(roundDown(side_ * 0.8), sideWithin(side_, median)));
+            side_ = std::max(floor_, std::min(roundDown(side_ * 0.8), sideWithin(side_, median)));
         else if (median < 0.4 * kBudgetMs)
-            side_ = std::min(full_, std::max(side_ + 8, roundDown(side_ * 1.25)));
+            side_ = std::min(ceiling_, std::max(side_ + 8, roundDown(side_ * 1.25)));
     }
 
 private:
@@ -67,7 +94,9 @@ private:
     }
 
     int full_, side_;
-    std::vector<double> window_;  // the live frames' times since the last resize
+    bool framesTimed_;
+    int floor_ = kMinSide, ceiling_ = full_;  // the sides the frames may choose from
+    std::vector<double> window_;              // the live frames' times since the last resize
 };
 
 }  // namespace pbrlab
