@@ -292,7 +292,8 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
     if (!request.surfaces) {
         const glm::mat4 viewProjection =
             drawGBuffer(scene, d.needs, request.width, request.height, request);
-        for (int i = 0; i < kGBufferTextures; ++i) inputs.push_back(gbuffer_->colorTexture(i));
+        const gl::RenderTarget& gbuffer = request.coarseSpheres ? *liveGbuffer_ : *gbuffer_;
+        for (int i = 0; i < kGBufferTextures; ++i) inputs.push_back(gbuffer.colorTexture(i));
         result.milliseconds =
             runView(request, scene, false, inputs, request.width, request.height, viewProjection);
         result.valueTexture = valueTarget_->colorTexture(0);
@@ -300,7 +301,7 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
         if (request.readValue) readValueTimed(*valueTarget_, result);
         if (request.readSurfaces) {
             std::vector<Image> textures;
-            for (int i = 0; i < kGBufferTextures; ++i) textures.push_back(gbuffer_->read(i));
+            for (int i = 0; i < kGBufferTextures; ++i) textures.push_back(gbuffer.read(i));
             ref::PointLight first{asFloat(scene.lights[0].position),
                                   asFloat(scene.lights[0].color)};
             result.surfaces = unpackSurfaces(textures, asFloat(scene.camera.position), first);

@@ -225,6 +225,11 @@ private:
     ProgramCache programs_;
     gl::FullscreenTriangle fullscreen_;
     std::unique_ptr<gl::RenderTarget> gbuffer_, valueTarget_;
+    // The live pictures' G-buffer (RenderRequest::coarseSpheres), kept at its own size: a drag
+    // and the evaluation after it do not reallocate each other's (in a page both draw with
+    // this renderer), and a live picture leaves the settled one's G-buffer held for the next
+    // edit (gbufferHolds_).
+    std::unique_ptr<gl::RenderTarget> liveGbuffer_;
     // GPU meshes by the CPU mesh they came from; the models stay alive while cached, so no
     // address is reused for another mesh.
     std::map<const MeshData*, std::unique_ptr<gl::GpuMesh>> meshes_;

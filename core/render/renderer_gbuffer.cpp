@@ -115,9 +115,10 @@ std::vector<LabRenderer::MaterialMap> LabRenderer::materialMaps(const MaterialDe
 glm::mat4 LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int height,
                                    const RenderRequest& request) {
     const bool coarseSpheres = request.coarseSpheres;
-    if (!gbuffer_ || gbuffer_->width() != width || gbuffer_->height() != height) {
-        gbuffer_ = std::make_unique<gl::RenderTarget>(width, height, kGBufferTextures);
-        gbufferHolds_.clear();
+    std::unique_ptr<gl::RenderTarget>& target = coarseSpheres ? liveGbuffer_ : gbuffer_;
+    if (!target || target->width() != width || target->height() != height) {
+        target = std::make_unique<gl::RenderTarget>(width, height, kGBufferTextures);
+        if (!coarseSpheres) gbufferHolds_.clear();
     }
     const Camera& cam = scene.camera;
     // Near and far planes from the camera's distance, so models of any size keep depth
@@ -143,7 +144,7 @@ glm::mat4 LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width
         programs_.get(gbufferRecipe(scene.materials.at(size_t(items[0].material)), needs));
         return viewProjection;
     }
-    gbuffer_->bind();
+    target->bind();
     const float zero[4] = {0, 0, 0, 0};
     for (int i = 0; i < kGBufferTextures; ++i) gl::ClearBufferfv(GL_COLOR, i, zero);
     gl::Clear(GL_DEPTH_BUFFER_BIT);
@@ -194,7 +195,7 @@ glm::mat4 LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width
     gl::Disable(GL_DEPTH_TEST);
     gl::checkError("G-buffer pass");
     if (!file.empty()) writeGBuffer(file);
-    gbufferHolds_ = key;
+    if (!coarseSpheres) gbufferHolds_ = key;
     return viewProjection;
 }
 

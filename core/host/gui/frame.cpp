@@ -354,9 +354,10 @@ void Lab::showEvaluation(EvaluationResult r, const GuiState& state) {
         show(*r.composed);
     else
         compose(state);
-    // In a page the live frames share the evaluation's renderer, which has just drawn at full
-    // size: the next drag's first live frame made its targets again at the live side and drew
-    // into them first, 70-100 ms where the next frames took 25-35 (headless Chromium). A live
+    // In a page the live frames share the evaluation's renderer: its value target, which the
+    // evaluation has just made full size, and the live G-buffer, which the new side allowed
+    // (LiveSize) may resize. The next drag's first live frame made them again and drew into
+    // them first, 70-100 ms where the next frames took 25-35 (headless Chromium). A live
     // picture drawn now, while nothing moves, pays that instead of the drag.
     if (!kEvaluationThread && r.renderError.empty()) {
         try {
