@@ -91,7 +91,8 @@ struct RenderRequest {
     // pixel of the full mesh's at this size (sphereSegments), for the GUI's live frames: the
     // G-buffer's vertices are transformed on one thread on llvmpipe, and the lesson's grid of
     // 49 full spheres takes longer than a frame at 30 a second at any picture size. Off for
-    // every image that is saved, compared or graded.
+    // every image that is saved, compared or graded. Drawn into the live pictures' G-buffer
+    // (liveGbuffer_), so it never replaces the one a settled picture left for the next edit.
     bool coarseSpheres = false;
     // GL_TEXTURE_CUBE_MAP_SEAMLESS in the view pass: on for pictures; off for checks, so the
     // GPU reads the texels CubeSampler reads on the CPU.
