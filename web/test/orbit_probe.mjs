@@ -1,8 +1,10 @@
 // Where a frame's time goes while the mouse orbits the camera in the page (docs/web.md,
 // "Orbiting"): three drags of the picture; for each, the frames drawn, the GUI's frame (the
 // main loop's callback) and the time between frames, with the live picture's side and draw
-// time under it; then a sampling profile of one more drag, the calls that wait on the GPU
-// process (WebGL's getParameter, getError, readPixels, ...) with their callers.
+// time under it; three drags grabbed again while the last release's evaluation may run (the
+// time the page takes to answer); then a sampling profile of one more drag, the calls that
+// wait on the GPU process (WebGL's getParameter, getError, readPixels, ...) with their
+// callers.
 //   node --experimental-websocket web/test/orbit_probe.mjs --site build-web/site [--step ndf]
 //        [--wait 6000]
 // (Function names in the wasm need the site linked with --profiling-funcs.)
@@ -46,14 +48,14 @@ await page.evaluate(`(() => {
   return true;
 })()`);
 const view = await page.evaluate(`pbrlabPage.viewCentre()`);
+const move = (type, x, y, buttons) => page.send('Input.dispatchMouseEvent',
+    {type, x, y, button: 'left', buttons, clickCount: type === 'mouseMoved' ? 0 : 1});
 const median = (a) => a.slice().sort((x, y) => x - y)[Math.floor(a.length / 2)]?.toFixed(1);
 for (let run = 0; run < 3; ++run) {
   await page.evaluate(`probe.busy = []; probe.gaps = []; probe.last = 0; true`);
   await page.evaluate(`pbrlabPage.countFrames(true)`);
   const start = Date.now();
   const sides = [];
-  const move = (type, x, y, buttons) => page.send('Input.dispatchMouseEvent',
-      {type, x, y, button: 'left', buttons, clickCount: type === 'mouseMoved' ? 0 : 1});
   await move('mousePressed', view.x, view.y, 1);
   for (let i = 1; i <= 60; ++i) {
     await move('mouseMoved', view.x + 200 * i / 60, view.y + 40 * i / 60, 1);
@@ -71,6 +73,24 @@ for (let run = 0; run < 3; ++run) {
               `${median(p.gaps)} ms`);
   console.log(`  live picture (every 6th move): ${sides.join(', ')}`);
   console.log(`  the first 16 frames' intervals: ${p.gaps.slice(0, 16).map((g) => g.toFixed(0)).join(' ')} ms`);
+}
+// Grabbed again while the last release's evaluation may run (it starts about 0.25 s after the
+// release and takes 1.1-1.4 s for ndf): from the press to the fifth move the page has taken
+// (each dispatch returns once the page has handled the event), then the evaluation after the
+// release settles.
+for (const delay of [350, 600, 850]) {
+  await page.until(() => settledOn(step), 120000, `${step} to settle`);
+  const before = (await status()).evaluations;
+  await page.drag(view, {x: view.x + 60, y: view.y}, 10);
+  await new Promise((resolve) => setTimeout(resolve, delay));
+  const start = Date.now();
+  await move('mousePressed', view.x + 60, view.y, 1);
+  for (let i = 1; i <= 5; ++i) await move('mouseMoved', view.x + 60 - 8 * i, view.y, 1);
+  const grabbed = Date.now() - start;
+  await move('mouseReleased', view.x + 20, view.y, 0);
+  const settled = await page.until(() => settledOn(step), 120000, `${step} to settle`);
+  console.log(`grabbed again ${delay} ms after a release: the fifth move taken after ${grabbed} ms; ` +
+              `${settled.evaluations - before} evaluations finished since that release`);
 }
 await page.send('Profiler.enable');
 await page.send('Profiler.setSamplingInterval', {interval: 200});

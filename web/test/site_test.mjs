@@ -326,6 +326,25 @@ try {
             released.evaluations > held[1].evaluations,
         `a drag held still for 0.8 s is not evaluated until released (evaluations ` +
         `${held[0].evaluations}, ${held[1].evaluations} held, ${released.evaluations} released)`);
+  // Grabbed again 0.35 s after a release, while the release's evaluation runs (it starts 0.2 s
+  // after the release; 1.1-1.4 s for ndf here): the evaluation gives the page to the press
+  // (isInputPending) and is dropped, the drag turns the camera, and the evaluation after the
+  // second release settles. (web/test/orbit_probe.mjs: grabbed 0.35, 0.6 and 0.85 s after a
+  // release, the press and five moves took 0.27-1.14 s without the yield, 0.15-0.43 s with it.)
+  await page.drag(view, {x: view.x + 60, y: view.y}, 10);
+  const releasedAt = await status();
+  await new Promise((resolve) => setTimeout(resolve, 350));
+  start = Date.now();
+  await page.drag({x: view.x + 60, y: view.y}, {x: view.x + 20, y: view.y}, 5);
+  figures.regrabMs = Date.now() - start;
+  const regrabbed = await page.until(() => settledOn('ndf'), 120000, 'ndf to settle after a re-grab');
+  check(regrabbed.evaluationsYielded > releasedAt.evaluationsYielded &&
+            regrabbed.yaw !== releasedAt.yaw &&
+            regrabbed.evaluations === releasedAt.evaluations + 1,
+        `a drag grabbed again while the release's evaluation runs takes the page from it ` +
+        `(evaluations given way ${releasedAt.evaluationsYielded} then ` +
+        `${regrabbed.evaluationsYielded}; the drag's ${figures.regrabMs} ms; evaluations ` +
+        `${releasedAt.evaluations} then ${regrabbed.evaluations})`);
 } catch (e) {
   check(false, String(e.message ?? e));
 }

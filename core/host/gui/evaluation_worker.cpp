@@ -84,6 +84,7 @@ void EvaluationWorker::cancel() {
     pending_.reset();
     result_.reset();
     wanted_ = false;
+    yieldsLeft_ = kYieldsInARow;  // the input changed the job
 }
 
 std::optional<EvaluationResult> EvaluationWorker::take() {
@@ -98,6 +99,7 @@ std::optional<EvaluationResult> EvaluationWorker::take() {
 
 EvaluationResult EvaluationWorker::wait() {
     if (!kEvaluationThread) {
+        yieldsLeft_ = 0;  // nothing else runs until it returns
         pendingSeen_ = true;
         runPendingHere();
     }
@@ -187,6 +189,7 @@ void EvaluationWorker::runPendingHere() {
     pendingSeen_ = false;
     EvaluationJob job = std::move(*pending_);
     pending_.reset();
+    yielding_ = false;
     const unsigned generation = latest_.load();
     progress_ = {true, 0, 0, "", 0};
     started_ = std::chrono::steady_clock::now();
@@ -200,6 +203,20 @@ void EvaluationWorker::runPendingHere() {
         startError = std::string("the evaluation has no OpenGL: ") + e.what();
     }
     runJob(hereRenderer_, startError, job, generation);
+    if (!yielding_) {
+        yieldsLeft_ = kYieldsInARow;
+    } else if (!superseded(generation)) {
+        --yieldsLeft_;
+        yielded_ = true;
+        wanted_ = false;  // no result comes: the window posts the job again
+    }
+}
+
+bool EvaluationWorker::stopRequested(unsigned generation) {
+    if (superseded(generation)) return true;
+    if (kEvaluationThread || !inputWaiting_ || yieldsLeft_ <= 0 || !inputWaiting_()) return false;
+    yielding_ = true;
+    return true;
 }
 
 namespace {
@@ -314,7 +331,7 @@ void EvaluationWorker::runSolution(LabRenderer& renderer, const EvaluationJob& j
     request.render.reuseGBuffer = true;  // a parameter's or a light's edit draws none
     request.render.seamlessCubes = false;
     request.render.ibl = ibl;
-    request.stop = [this, generation] { return superseded(generation); };
+    request.stop = [this, generation] { return stopRequested(generation); };
     request.bandCache = &bandCache_;
     Evaluation solution = evaluate(renderer, request);
     r.solutionMs = solution.render.pictureMilliseconds;

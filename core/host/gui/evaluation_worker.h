@@ -18,6 +18,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "assets/scene.h"
@@ -171,6 +172,16 @@ public:
         hereRenderer_ = &windowsRenderer;
         windowsRenderer_ = true;
     }
+    // Without a thread, the job running yields to the student when `inputWaiting` says a press
+    // or a key waits (a page: navigator.scheduling.isInputPending): it stops at its next point
+    // of the CPU reference, is dropped, and takeYielded() says so once; the window posts it again
+    // when the input is still. A student who grabs the picture again while it settles turns it
+    // at once, instead of after the evaluation (1.1-1.4 s for ndf). At most kYieldsInARow times
+    // without a result or a change (cancel): clicks that change nothing cannot keep a long
+    // evaluation (irradiance's 12-15 s) from ever finishing.
+    void yieldWhen(std::function<bool()> inputWaiting) { inputWaiting_ = std::move(inputWaiting); }
+    bool takeYielded() { return std::exchange(yielded_, false); }
+    static constexpr int kYieldsInARow = 3;
 
 private:
     void loop();
@@ -186,6 +197,8 @@ private:
     void runSolution(LabRenderer& renderer, const EvaluationJob& job, const IblSettings& ibl,
                      unsigned generation, int& stage, int stages, EvaluationResult& r, Band& band);
     bool superseded(unsigned generation) const { return generation != latest_.load(); }
+    // What the CPU reference asks between points: superseded, or yielding to input.
+    bool stopRequested(unsigned generation);
     void enter(int stage, int stages, const char* what);
     const BudgetChoice& chooseForBudget(LabRenderer& renderer, const std::string& environment,
                                         double budget);
@@ -226,7 +239,11 @@ private:
     std::unique_ptr<LabRenderer> ownRenderer_;
     bool windowsRenderer_ = false;  // runWith's: the maps built are the window's already
     bool pendingSeen_ = false;
-    std::thread thread_;  // last: started once the members above exist (kEvaluationThread)
+    std::function<bool()> inputWaiting_;  // yieldWhen's
+    int yieldsLeft_ = kYieldsInARow;
+    bool yielding_ = false;  // the job running stops for the student's input
+    bool yielded_ = false;   // and was dropped (takeYielded)
+    std::thread thread_;     // last: started once the members above exist (kEvaluationThread)
 };
 
 }  // namespace pbrlab

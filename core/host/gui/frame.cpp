@@ -137,6 +137,13 @@ void Lab::update(GuiState& state, Requests& requests) {
     }
     if (std::optional<EvaluationResult> result = worker_->take())
         showEvaluation(std::move(*result), state);
+    // A page's evaluation gave the thread to a press or a key (EvaluationWorker::yieldWhen):
+    // posted again once the input is still, as after a move.
+    if (worker_->takeYielded()) {
+        ++evaluationsYielded_;
+        dirty_ = true;
+        lastMove_ = std::chrono::steady_clock::now();
+    }
     // The grades run beside the window: niced processes on the desktop; in a page, a worker
     // that grades a file as soon as the editor writes it (shell.html), so the badge's report
     // is usually made, or on its way, when the badge asks.

@@ -208,6 +208,7 @@ public:
                               {"liveMs", lab_.shown().renderMs},
                               {"yaw", state_.camera.yaw},
                               {"evaluations", lab_.evaluationsDone()},
+                              {"evaluationsYielded", lab_.evaluationsYielded()},
                               {"badge", badgeText(lab_.badges().of(id).status)},
                               {"gradeMessage", lab_.badges().of(id).gradeMessage}}
             .dump();

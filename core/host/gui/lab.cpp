@@ -1,5 +1,9 @@
 #include "lab.h"
 
+#ifdef __EMSCRIPTEN__
+#include <emscripten.h>
+#endif
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -83,6 +87,15 @@ Lab::Lab(const GuiOptions& options, GuiState& state, std::unique_ptr<WorkerConte
     displayPass_ = std::make_unique<DisplayPass>(renderer_->programs(), paths_.shaders());
     worker_ = std::make_unique<EvaluationWorker>(paths_, std::move(workerContext));
     if (!kEvaluationThread) worker_->runWith(*renderer_);
+#ifdef __EMSCRIPTEN__
+    // Asked once per point of the CPU reference (microseconds each): the browser, every 64th.
+    worker_->yieldWhen([calls = 0]() mutable {
+        return ++calls % 64 == 0 &&
+               EM_ASM_INT({
+                   return navigator.scheduling && navigator.scheduling.isInputPending() ? 1 : 0;
+               }) != 0;
+    });
+#endif
 }
 
 fs::path Lab::studentFile(const GuiState& state) const {

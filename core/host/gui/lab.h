@@ -132,6 +132,8 @@ public:
     // Evaluations against the CPU reference finished so far, and whether one is running now:
     // --frame-times tells the frames drawn while one ran.
     int evaluationsDone() const { return evaluationsDone_; }
+    // Evaluations a page dropped for the student's input (EvaluationWorker::yieldWhen).
+    int evaluationsYielded() const { return evaluationsYielded_; }
     bool evaluating() const { return worker_->busy(); }
     // What is on screen changes without input: an evaluation is due or running, or a live
     // picture waits for it.
@@ -198,7 +200,7 @@ private:
     std::chrono::steady_clock::time_point lastMove_{};
     LiveSize live_{kRenderSize, kLiveFramesTimed};  // the live picture's side
     std::vector<int> liveSizes_;                    // of every live frame, for --orbit's report
-    int evaluationsDone_ = 0;
+    int evaluationsDone_ = 0, evaluationsYielded_ = 0;
     int gradesArrived_ = 0;
     std::vector<CompiledProgram> evaluationPrograms_;
     ViewChoice postedChoice_;  // the view the evaluation running composes
