@@ -292,7 +292,7 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
     if (!request.surfaces) {
         const glm::mat4 viewProjection =
             drawGBuffer(scene, d.needs, request.width, request.height, request);
-        const gl::RenderTarget& gbuffer = request.coarseSpheres ? *liveGbuffer_ : *gbuffer_;
+        const gl::RenderTarget& gbuffer = *gbufferFor(request.coarseSpheres);
         for (int i = 0; i < kGBufferTextures; ++i) inputs.push_back(gbuffer.colorTexture(i));
         result.milliseconds =
             runView(request, scene, false, inputs, request.width, request.height, viewProjection);

@@ -231,6 +231,9 @@ private:
     // this renderer), and a live picture leaves the settled one's G-buffer held for the next
     // edit (gbufferHolds_).
     std::unique_ptr<gl::RenderTarget> liveGbuffer_;
+    std::unique_ptr<gl::RenderTarget>& gbufferFor(bool coarseSpheres) {
+        return coarseSpheres ? liveGbuffer_ : gbuffer_;
+    }
     // GPU meshes by the CPU mesh they came from; the models stay alive while cached, so no
     // address is reused for another mesh.
     std::map<const MeshData*, std::unique_ptr<gl::GpuMesh>> meshes_;

@@ -115,7 +115,7 @@ std::vector<LabRenderer::MaterialMap> LabRenderer::materialMaps(const MaterialDe
 glm::mat4 LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int height,
                                    const RenderRequest& request) {
     const bool coarseSpheres = request.coarseSpheres;
-    std::unique_ptr<gl::RenderTarget>& target = coarseSpheres ? liveGbuffer_ : gbuffer_;
+    std::unique_ptr<gl::RenderTarget>& target = gbufferFor(coarseSpheres);
     if (!target || target->width() != width || target->height() != height) {
         target = std::make_unique<gl::RenderTarget>(width, height, kGBufferTextures);
         if (!coarseSpheres) gbufferHolds_.clear();

@@ -99,9 +99,10 @@ std::optional<EvaluationResult> EvaluationWorker::take() {
 
 EvaluationResult EvaluationWorker::wait() {
     if (!kEvaluationThread) {
-        yieldsLeft_ = 0;  // nothing else runs until it returns
+        const int yieldsLeft = std::exchange(yieldsLeft_, 0);  // nothing else runs meanwhile
         pendingSeen_ = true;
         runPendingHere();
+        if (yieldsLeft_ == 0) yieldsLeft_ = yieldsLeft;  // no job ran (one that did reset it)
     }
     std::unique_lock<std::mutex> lock(mutex_);
     changed_.wait(lock, [&] { return result_ && result_->generation == latest_.load(); });
@@ -189,7 +190,7 @@ void EvaluationWorker::runPendingHere() {
     pendingSeen_ = false;
     EvaluationJob job = std::move(*pending_);
     pending_.reset();
-    yielding_ = false;
+    yielded_ = false;
     const unsigned generation = latest_.load();
     progress_ = {true, 0, 0, "", 0};
     started_ = std::chrono::steady_clock::now();
@@ -203,11 +204,12 @@ void EvaluationWorker::runPendingHere() {
         startError = std::string("the evaluation has no OpenGL: ") + e.what();
     }
     runJob(hereRenderer_, startError, job, generation);
-    if (!yielding_) {
+    if (!yielded_) {
         yieldsLeft_ = kYieldsInARow;
-    } else if (!superseded(generation)) {
+    } else if (superseded(generation)) {
+        yielded_ = false;  // a newer post or cancel: the window has what it needs
+    } else {
         --yieldsLeft_;
-        yielded_ = true;
         wanted_ = false;  // no result comes: the window posts the job again
     }
 }
@@ -215,7 +217,7 @@ void EvaluationWorker::runPendingHere() {
 bool EvaluationWorker::stopRequested(unsigned generation) {
     if (superseded(generation)) return true;
     if (kEvaluationThread || !inputWaiting_ || yieldsLeft_ <= 0 || !inputWaiting_()) return false;
-    yielding_ = true;
+    yielded_ = true;
     return true;
 }
 

@@ -241,9 +241,8 @@ private:
     bool pendingSeen_ = false;
     std::function<bool()> inputWaiting_;  // yieldWhen's
     int yieldsLeft_ = kYieldsInARow;
-    bool yielding_ = false;  // the job running stops for the student's input
-    bool yielded_ = false;   // and was dropped (takeYielded)
-    std::thread thread_;     // last: started once the members above exist (kEvaluationThread)
+    bool yielded_ = false;  // the last job stopped for the student's input (takeYielded)
+    std::thread thread_;    // last: started once the members above exist (kEvaluationThread)
 };
 
 }  // namespace pbrlab
