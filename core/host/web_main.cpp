@@ -94,6 +94,12 @@ EMSCRIPTEN_KEEPALIVE void pbrlab_console(const char* line) {
     pbrlab::guiSubmitConsoleLine(line);
 }
 
+// GuiOptions::checkRedraw, on (1) or off (0): the site test's check that the frames drawn over
+// the last one are the frames drawn whole (the status's "redraw").
+EMSCRIPTEN_KEEPALIVE void pbrlab_check_redraw(int on) {
+    pbrlab::guiCheckRedraw(on != 0);
+}
+
 // The page's canvas has a new size.
 EMSCRIPTEN_KEEPALIVE void pbrlab_resize(int width, int height) {
     pbrlab::guiResize(width, height);

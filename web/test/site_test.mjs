@@ -303,6 +303,14 @@ try {
   });
   const frames = await page.evaluate(`pbrlabPage.countFrames(false)`);
   figures.orbit = {frames, ms: Date.now() - start, fps: frames / ((Date.now() - start) / 1000)};
+  // What of the canvas the drag's frames drew (core/host/gui/redraw.h): the picture and a few
+  // lines, not the panels.
+  const redraw = (s) => s.redraw;
+  figures.orbit.framesInPart = redraw(pastThePicture[1]).framesInPart - redraw(before).framesInPart;
+  figures.orbit.lastFraction = redraw(pastThePicture[1]).lastFraction;
+  check(figures.orbit.framesInPart > 0 && figures.orbit.lastFraction < 0.5,
+        `the drag's frames are drawn only where they change (${figures.orbit.framesInPart} ` +
+        `frames in part; the last drew ${(100 * figures.orbit.lastFraction).toFixed(1)}% of the canvas)`);
   await page.screenshot(path.join(out, 'orbit.png'));
   check(pastThePicture[1].yaw !== pastThePicture[0].yaw,
         `a drag past the picture's edge goes on turning the camera (yaw ` +
@@ -310,6 +318,18 @@ try {
   check(pastThePicture[1].evaluations === before.evaluations,
         `no evaluation while the drag goes on (${before.evaluations} before it, ` +
         `${pastThePicture[1].evaluations} at its end)`);
+  // Each frame of a drag and of its settling drawn also whole: the frames drawn over the last
+  // one are the frames drawn whole, pixel for pixel (on the desktop: Gui.OrbitRedrawsOnlyWhatChanged).
+  await page.until(() => settledOn('ndf'), 120000, 'ndf to settle after the drag');
+  await page.evaluate(`pbrlabPage.checkRedraw(true)`);
+  await page.drag(view, {x: view.x - 80, y: view.y + 30}, 15);
+  await page.until(() => settledOn('ndf'), 120000, 'ndf to settle after the checked drag');
+  await page.evaluate(`pbrlabPage.checkRedraw(false)`);
+  const checked = redraw(await status());
+  figures.redrawCheck = {frames: checked.framesChecked, pixelsDiffering: checked.pixelsDiffering};
+  check(checked.framesChecked > 0 && checked.pixelsDiffering === 0,
+        `the frames drawn only where they changed are the frames drawn whole (${checked.framesChecked} ` +
+        `frames checked, ${checked.pixelsDiffering} pixels differ)`);
   // Held still on the picture for longer than the settle delay (0.2 s): still no evaluation;
   // it comes once the button is released.
   await page.until(() => settledOn('ndf'), 120000, 'ndf to settle after the drag');

@@ -46,6 +46,9 @@ public:
         cmd.add_flag("--orbit", options_.orbit,
                      "With --frames: orbit the camera a step each frame (as dragging does) and "
                      "print the frame times, median and 95th percentile");
+        cmd.add_flag("--check-redraw", options_.checkRedraw,
+                     "Draw each frame also whole and count the pixels where the frame drawn "
+                     "only where it changed differs (printed at the end)");
         cmd.add_flag("--frame-times", options_.frameTimes,
                      "With --frames: print the frame times, and the longest frame while an "
                      "evaluation against the CPU reference runs");

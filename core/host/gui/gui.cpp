@@ -24,6 +24,7 @@
 #include "gl/context.h"
 #include "lab.h"
 #include "panels.h"
+#include "redraw.h"
 #include "render/display.h"
 #include "util/error.h"
 #include "view_status.h"
@@ -125,6 +126,20 @@ std::unique_ptr<WorkerContext> evaluationContext() {
 // The windows' background.
 const ImVec4 kBackground(0.11f, 0.115f, 0.13f, 1);
 
+// Whether the window's framebuffer keeps its pixels from one frame to the next, so that a
+// frame can be drawn over the last one in place (WindowRedraw): a page's canvas whose WebGL
+// context shell.html asked for with preserveDrawingBuffer.
+bool windowKeepsItsPixels() {
+#ifdef __EMSCRIPTEN__
+    return EM_ASM_INT({
+               const gl = Module.ctx;
+               return gl && gl.getContextAttributes().preserveDrawingBuffer ? 1 : 0;
+           }) != 0;
+#else
+    return false;
+#endif
+}
+
 void styleUi() {
     ImGui::StyleColorsDark();
     ImGuiStyle& s = ImGui::GetStyle();
@@ -185,11 +200,16 @@ public:
         styleUi();
         ImGui_ImplGlfw_InitForOpenGL(context_->window(), true);
         ImGui_ImplOpenGL3_Init(gl::kWebGl2 ? "#version 300 es" : "#version 450 core");
+        redraw_.setChecking(options.checkRedraw);
         runningApp = this;
     }
 
     std::string stepOnScreen() const { return lab_.module(state_).id; }
-    void resize(int width, int height) { glfwSetWindowSize(context_->window(), width, height); }
+    void resize(int width, int height) {
+        glfwSetWindowSize(context_->window(), width, height);
+        redraw_.invalidate();  // a canvas given a size, even its own, is blank
+    }
+    void checkRedraw(bool on) { redraw_.setChecking(on); }
     std::string statusJson() const {
         const ViewStatus status = viewStatus(lab_, state_);
         nlohmann::json rows = nlohmann::json::array();
@@ -209,9 +229,16 @@ public:
                               {"yaw", state_.camera.yaw},
                               {"evaluations", lab_.evaluationsDone()},
                               {"evaluationsYielded", lab_.evaluationsYielded()},
+                              {"redraw", redrawJson()},
                               {"badge", badgeText(lab_.badges().of(id).status)},
                               {"gradeMessage", lab_.badges().of(id).gradeMessage}}
             .dump();
+    }
+    nlohmann::json redrawJson() const {
+        const RedrawStats& r = redraw_.stats();
+        return {{"framesDrawn", r.framesDrawn},         {"framesInPart", r.framesInPart},
+                {"framesUnchanged", r.framesUnchanged}, {"lastFraction", r.lastFraction},
+                {"framesChecked", r.framesChecked},     {"pixelsDiffering", r.pixelsDiffering}};
     }
     void saveSolutionPicture(const fs::path& file) const {
         const ModuleDesc& m = lab_.module(state_);
@@ -250,6 +277,7 @@ public:
         while (!glfwWindowShouldClose(context_->window()) && frame()) {
         }
         if (options_.orbit) printOrbitReport(frameTimes_, renderTimes_, width_, height_);
+        if (options_.orbit || options_.checkRedraw) printRedrawReport();
         if (options_.frameTimes) printEvaluationFrames(frameTimes_, whileEvaluating_);
         return 0;
 #endif
@@ -282,11 +310,7 @@ private:
         requests_.holding = ImGui::IsAnyItemActive() && ImGui::IsMouseDown(ImGuiMouseButton_Left);
         ImGui::Render();
         glfwGetFramebufferSize(window, &w, &h);
-        gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
-        gl::Viewport(0, 0, w, h);
-        gl::ClearColor(kBackground.x, kBackground.y, kBackground.z, 1);
-        gl::Clear(GL_COLOR_BUFFER_BIT);
-        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        redraw_.draw(*ImGui::GetDrawData(), ImGui::GetIO().Fonts->TexID, kBackground);
         ++frameCount_;
         // Scripted: the frames asked for, the console's lines and the evaluation have
         // finished, the evaluation before this frame (ImGui hides a window, such as the
@@ -397,6 +421,22 @@ private:
                 kRenderSize, kRenderSize, settledMs, live[live.size() / 2] / settledMs);
     }
 
+    // How much of the window the frames drew (WindowRedraw), and with --check-redraw whether
+    // each, drawn over the last, was the frame drawn whole.
+    void printRedrawReport() const {
+        const RedrawStats& r = redraw_.stats();
+        std::vector<double> fractions = r.fractions;
+        std::sort(fractions.begin(), fractions.end());
+        std::printf(
+            "window redrawn: %lld frames drawn, %lld of them only where they changed, %lld "
+            "unchanged; median %.1f%% of the window's pixels a frame\n",
+            r.framesDrawn, r.framesInPart, r.framesUnchanged,
+            fractions.empty() ? 100.0 : 100 * fractions[fractions.size() / 2]);
+        if (r.framesChecked > 0)
+            std::printf("redraw check: %lld frames also drawn whole, %lld pixels differ\n",
+                        r.framesChecked, r.pixelsDiffering);
+    }
+
     // Steps | picture | module, side by side, filling the window.
     void drawWindows() {
         ImVec2 size = ImGui::GetIO().DisplaySize;
@@ -431,6 +471,7 @@ private:
 
     GuiOptions options_;
     std::unique_ptr<GlContext> context_;
+    WindowRedraw redraw_{windowKeepsItsPixels()};  // after context_ (a page asks the canvas's)
     GuiState state_;
     Lab lab_;  // after context_ (it needs GL) and state_ (it fills it)
     Requests requests_;
@@ -461,6 +502,10 @@ std::string guiStatusJson() {
 
 void guiResize(int width, int height) {
     if (runningApp) runningApp->resize(width, height);
+}
+
+void guiCheckRedraw(bool on) {
+    if (runningApp) runningApp->checkRedraw(on);
 }
 
 void guiSaveSolutionPicture(const fs::path& file) {

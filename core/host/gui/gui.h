@@ -27,6 +27,9 @@ struct GuiOptions {
     // the CPU reference (the settled picture and its statistics) runs: whether the window
     // keeps drawing meanwhile.
     bool frameTimes = false;
+    // Draw every frame also whole and count the pixels where the frame drawn over the last
+    // one (only where it changed: redraw.h) differs; printed at the end.
+    bool checkRedraw = false;
     // > 0: each environment's maps are computed with the cheapest settings whose measured mean
     // errors stay within this (chooseIblSettings, as `pbrlab precompute --error-budget`).
     double errorBudget = 0;
@@ -40,13 +43,15 @@ int runGui(const GuiOptions& options);
 std::string guiStepOnScreen();
 void guiSubmitConsoleLine(const std::string& line);
 // What the status lines under the picture say, as JSON: {"step", "settled", "error",
-// "errorLog", "notice", "renderError", "sceneError", "rows": [{"text", "ok"}], "badge"} (the
-// page's tests read it).
+// "errorLog", "notice", "renderError", "sceneError", "rows": [{"text", "ok"}], "badge", "redraw"}
+// (the page's tests read it).
 std::string guiStatusJson();
 // The step's settled solution picture, display-encoded as `pbrlab render --out x.png` writes
 // it, saved to `file` (the page's tests compare it with the desktop's).
 void guiSaveSolutionPicture(const std::filesystem::path& file);
 // The page's canvas has a new size.
 void guiResize(int width, int height);
+// GuiOptions::checkRedraw, turned on or off (the page's tests; the status JSON's "redraw").
+void guiCheckRedraw(bool on);
 
 }  // namespace pbrlab
