@@ -53,6 +53,7 @@ const move = (type, x, y, buttons) => page.send('Input.dispatchMouseEvent',
 const median = (a) => a.slice().sort((x, y) => x - y)[Math.floor(a.length / 2)]?.toFixed(1);
 for (let run = 0; run < 3; ++run) {
   await page.evaluate(`probe.busy = []; probe.gaps = []; probe.last = 0; true`);
+  const atPress = await status();
   await page.evaluate(`pbrlabPage.countFrames(true)`);
   const start = Date.now();
   const sides = [];
@@ -72,6 +73,10 @@ for (let run = 0; run < 3; ++run) {
               `second; the GUI's frame: median ${median(p.busy)} ms, between frames ` +
               `${median(p.gaps)} ms`);
   console.log(`  live picture (every 6th move): ${sides.join(', ')}`);
+  const atRelease = await status();
+  console.log(`  evaluations finished during the drag: ${atRelease.evaluations - atPress.evaluations}, ` +
+              `given way to the press: ${atRelease.evaluationsYielded - atPress.evaluationsYielded}; ` +
+              `the window's last frame drew ${(100 * atRelease.redraw.lastFraction).toFixed(1)}% of it`);
   console.log(`  the first 16 frames' intervals: ${p.gaps.slice(0, 16).map((g) => g.toFixed(0)).join(' ')} ms`);
 }
 // Grabbed again while the last release's evaluation may run (it starts about 0.25 s after the

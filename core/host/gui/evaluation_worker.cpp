@@ -87,8 +87,8 @@ void EvaluationWorker::cancel() {
     yieldsLeft_ = kYieldsInARow;  // the input changed the job
 }
 
-std::optional<EvaluationResult> EvaluationWorker::take() {
-    if (!kEvaluationThread) runPendingHere();
+std::optional<EvaluationResult> EvaluationWorker::take(bool runPending) {
+    if (!kEvaluationThread && runPending) runPendingHere();
     std::lock_guard<std::mutex> lock(mutex_);
     if (!result_ || result_->generation != latest_.load()) return std::nullopt;
     std::optional<EvaluationResult> r = std::move(result_);
@@ -350,7 +350,7 @@ void EvaluationWorker::runSolution(LabRenderer& renderer, const EvaluationJob& j
     const ContractStep* step = findContractStep(d.id);
     r.solutionWithheld = step && solutionWithheld(*step);
     if (r.solutionWithheld) r.solutionValue = r.referenceValue;
-    if (superseded(generation)) return;
+    if (stopRequested(generation)) return;
     enter(++stage, stages, "the solution's probe");
     const std::vector<Surface> probe = probeSurfaces(d.probe);
     if (r.solutionWithheld) {
@@ -385,7 +385,7 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
         enter(++stage, stages, "the IBL settings within the error budget");
         r.budgetChoice = chooseForBudget(renderer, job.scene.environment, job.errorBudget);
         ibl = r.budgetChoice->settings;
-        if (superseded(generation)) return std::nullopt;
+        if (stopRequested(generation)) return std::nullopt;
     }
     Band band;  // the reference's band on the picture, for the student's statistics
     const Band* studentBand = &band;
@@ -409,7 +409,8 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
         } else {
             keptSolution_.reset();  // its memory, before the next band's
             runSolution(renderer, job, ibl, generation, stage, stages, r, band);
-            if (superseded(generation)) return std::nullopt;
+            // Stopped midway: nothing to keep.
+            if (yielded_ || superseded(generation)) return std::nullopt;
             if (inputs) {
                 keptSolution_ = KeptSolution{*inputs,         r.solutionValue, r.referenceValue,
                                              r.probeSolution, r.surfaces,      std::move(band),
@@ -422,7 +423,7 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
     } catch (const Error& e) {
         r.renderError = e.what();
     }
-    if (superseded(generation)) return std::nullopt;
+    if (stopRequested(generation)) return std::nullopt;
     const StudentSource studentSource{job.submission, false};
     // A new file that does not compile fails twice (the view's program, then the probe's),
     // and renders the third time with the last good programs (this renderer's cache kept them).
@@ -440,7 +441,7 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
                 r.studentStats =
                     compareWithBand(r.studentValue, *r.surfaces, *studentBand, d.components,
                                     d.nonNegative, d.tolerance.outlierFraction);
-            if (superseded(generation)) return std::nullopt;
+            if (stopRequested(generation)) return std::nullopt;
             enter(stage + 2, stages, "your probe");
             const std::vector<Surface> probe = probeSurfaces(d.probe);
             RenderRequest probeRequest{&m,     &job.params,   &job.scene,    studentSource,
@@ -454,7 +455,7 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
             // read: the UI thread shows why; once more with the last good program.
             r.studentErrors.push_back(e.what());
         }
-        if (superseded(generation)) return std::nullopt;
+        if (stopRequested(generation)) return std::nullopt;
     }
     if (!r.studentRendered) r.studentValue = Image();
     if (job.compose && r.renderError.empty()) r.composed = job.compose(r);

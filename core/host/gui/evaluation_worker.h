@@ -157,8 +157,10 @@ public:
     unsigned post(EvaluationJob job);
     // The input changed: the job running stops at its next stage, and none is delivered.
     void cancel();
-    // The latest job's result, once, when it has finished.
-    std::optional<EvaluationResult> take();
+    // The latest job's result, once, when it has finished. Without a thread, a job posted
+    // before the last take() runs here first, unless `runPending` is false (the student holds
+    // the mouse button down: the job would stop the page for the drag that follows).
+    std::optional<EvaluationResult> take(bool runPending = true);
     // Blocks until the latest job has finished, and returns its result (--orbit's baseline).
     EvaluationResult wait();
     // A job is posted whose result has not been taken (and which was not cancelled).
@@ -174,11 +176,11 @@ public:
     }
     // Without a thread, the job running yields to the student when `inputWaiting` says a press
     // or a key waits (a page: navigator.scheduling.isInputPending): it stops at its next point
-    // of the CPU reference, is dropped, and takeYielded() says so once; the window posts it again
-    // when the input is still. A student who grabs the picture again while it settles turns it
-    // at once, instead of after the evaluation (1.1-1.4 s for ndf). At most kYieldsInARow times
-    // without a result or a change (cancel): clicks that change nothing cannot keep a long
-    // evaluation (irradiance's 12-15 s) from ever finishing.
+    // of the CPU reference or its next stage, is dropped, and takeYielded() says so once; the
+    // window posts it again when the input is still. A student who grabs the picture again while it
+    // settles turns it at once, instead of after the evaluation (1.1-1.4 s for ndf). At most
+    // kYieldsInARow times without a result or a change (cancel): clicks that change nothing cannot
+    // keep a long evaluation (irradiance's 12-15 s) from ever finishing.
     void yieldWhen(std::function<bool()> inputWaiting) { inputWaiting_ = std::move(inputWaiting); }
     bool takeYielded() { return std::exchange(yielded_, false); }
     static constexpr int kYieldsInARow = 3;
@@ -197,7 +199,8 @@ private:
     void runSolution(LabRenderer& renderer, const EvaluationJob& job, const IblSettings& ibl,
                      unsigned generation, int& stage, int stages, EvaluationResult& r, Band& band);
     bool superseded(unsigned generation) const { return generation != latest_.load(); }
-    // What the CPU reference asks between points: superseded, or yielding to input.
+    // What the CPU reference asks between points, and each stage before it starts:
+    // superseded, or (without a thread) yielding to the student's input.
     bool stopRequested(unsigned generation);
     void enter(int stage, int stages, const char* what);
     const BudgetChoice& chooseForBudget(LabRenderer& renderer, const std::string& environment,

@@ -135,7 +135,8 @@ void Lab::update(GuiState& state, Requests& requests) {
         // first, for tenths of a second to seconds, which the evaluation thread does anyway.
         startEvaluation(state);
     }
-    if (std::optional<EvaluationResult> result = worker_->take())
+    // Without an evaluation thread the posted job runs in take(): not while the button is held.
+    if (std::optional<EvaluationResult> result = worker_->take(kEvaluationThread || !holding))
         showEvaluation(std::move(*result), state);
     // A page's evaluation gave the thread to a press or a key (EvaluationWorker::yieldWhen):
     // posted again once the input is still, as after a move.

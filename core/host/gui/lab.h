@@ -37,8 +37,9 @@ struct Requests {
     bool moved = false;        // camera, parameter or light changed: live frames, then the
                                // evaluation once the input is still
     bool recompose = false;    // the view or its settings changed: the same values shown anew
-    // A control is held with the mouse (the picture's orbit, a slider), still or not: without
-    // an evaluation thread it counts as moving (the evaluation would stop the window mid-drag).
+    // A control is held with the mouse (the picture's orbit, a slider), still or not, or the
+    // button has just been pressed: without an evaluation thread it counts as moving (the
+    // evaluation would stop the window mid-drag).
     bool holding = false;
     // Save the window, when drawn, to screenshotFile (empty: pbrlab-screenshot.png); the
     // window does it, not update().

@@ -22,7 +22,7 @@ std::uint64_t mix(std::uint64_t hash, std::uint64_t value) {
 constexpr size_t kVertexWords = sizeof(ImDrawVert) / sizeof(std::uint32_t);
 static_assert(sizeof(ImDrawVert) % sizeof(std::uint32_t) == 0);
 
-// Triangle k of a command (its first index at cmd.IdxOffset + 3k): its vertices.
+// The vertex of the command's index number `index` (from cmd.IdxOffset).
 const ImDrawVert& vertexOf(const ImDrawList& list, const ImDrawCmd& cmd, unsigned index) {
     return list.VtxBuffer[int(cmd.VtxOffset + list.IdxBuffer[int(cmd.IdxOffset + index)])];
 }
@@ -38,9 +38,11 @@ PixelRect triangleBounds(const ImDrawList& list, const ImDrawCmd& cmd, unsigned 
         loY = std::min(loY, p.y), hiY = std::max(hiY, p.y);
     }
     const ImVec2 off = data.DisplayPos, scale = data.FramebufferScale;
+    // Far outside any framebuffer is as good as there, and converts to int.
+    auto pixel = [](float v) { return int(std::clamp(v, -1e6f, 1e6f)); };
     return PixelRect{
-        int(std::floor((loX - off.x) * scale.x)), int(std::floor((loY - off.y) * scale.y)),
-        int(std::ceil((hiX - off.x) * scale.x)), int(std::ceil((hiY - off.y) * scale.y))}
+        pixel(std::floor((loX - off.x) * scale.x)), pixel(std::floor((loY - off.y) * scale.y)),
+        pixel(std::ceil((hiX - off.x) * scale.x)), pixel(std::ceil((hiY - off.y) * scale.y))}
         .intersect(scissor);
 }
 
