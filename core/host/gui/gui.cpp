@@ -300,8 +300,8 @@ private:
         console_.poll({&lab_, &state_, &requests_});
         // A press since the last frame: ImGui takes it in this frame's NewFrame, after
         // update(), which in a page would first run an evaluation posted before it, in the
-        // page's one thread, with the button down (orbit_probe's back-to-back drags stalled
-        // 1.1-1.3 s on their fifth frame). GLFW has the button's state from the press's event.
+        // page's one thread, with the button down (orbit_probe's back-to-back drags: one frame
+        // of 1.1-1.5 s in 3 of 12). GLFW has the button's state from the press's event.
         if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS)
             requests_.holding = true;
         lab_.update(state_, requests_);
