@@ -305,9 +305,8 @@ try {
   figures.orbit = {frames, ms: Date.now() - start, fps: frames / ((Date.now() - start) / 1000)};
   // What of the canvas the drag's frames drew (core/host/gui/redraw.h): the picture and a few
   // lines, not the panels.
-  const redraw = (s) => s.redraw;
-  figures.orbit.framesInPart = redraw(pastThePicture[1]).framesInPart - redraw(before).framesInPart;
-  figures.orbit.lastFraction = redraw(pastThePicture[1]).lastFraction;
+  figures.orbit.framesInPart = pastThePicture[1].redraw.framesInPart - before.redraw.framesInPart;
+  figures.orbit.lastFraction = pastThePicture[1].redraw.lastFraction;
   check(figures.orbit.framesInPart > 0 && figures.orbit.lastFraction < 0.5,
         `the drag's frames are drawn only where they change (${figures.orbit.framesInPart} ` +
         `frames in part; the last drew ${(100 * figures.orbit.lastFraction).toFixed(1)}% of the canvas)`);
@@ -325,7 +324,7 @@ try {
   await page.drag(view, {x: view.x - 80, y: view.y + 30}, 15);
   await page.until(() => settledOn('ndf'), 120000, 'ndf to settle after the checked drag');
   await page.evaluate(`pbrlabPage.checkRedraw(false)`);
-  const checked = redraw(await status());
+  const checked = (await status()).redraw;
   figures.redrawCheck = {frames: checked.framesChecked, pixelsDiffering: checked.pixelsDiffering};
   check(checked.framesChecked > 0 && checked.pixelsDiffering === 0,
         `the frames drawn only where they changed are the frames drawn whole (${checked.framesChecked} ` +

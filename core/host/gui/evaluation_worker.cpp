@@ -333,7 +333,13 @@ void EvaluationWorker::runSolution(LabRenderer& renderer, const EvaluationJob& j
     request.render.reuseGBuffer = true;  // a parameter's or a light's edit draws none
     request.render.seamlessCubes = false;
     request.render.ibl = ibl;
-    request.stop = [this, generation] { return stopRequested(generation); };
+    // Asked between points of the CPU reference (microseconds each): the browser at every
+    // 64th (before each stage, stopRequested asks it every time). With a thread, the
+    // reference's threads call this at once: the count is only a page's, which has one.
+    request.stop = [this, generation, points = 0]() mutable {
+        if (kEvaluationThread || ++points % 64 != 0) return superseded(generation);
+        return stopRequested(generation);
+    };
     request.bandCache = &bandCache_;
     Evaluation solution = evaluate(renderer, request);
     r.solutionMs = solution.render.pictureMilliseconds;

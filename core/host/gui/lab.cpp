@@ -88,13 +88,12 @@ Lab::Lab(const GuiOptions& options, GuiState& state, std::unique_ptr<WorkerConte
     worker_ = std::make_unique<EvaluationWorker>(paths_, std::move(workerContext));
     if (!kEvaluationThread) worker_->runWith(*renderer_);
 #ifdef __EMSCRIPTEN__
-    // Asked once per point of the CPU reference (microseconds each): the browser, every 64th.
     // isInputPending is Chromium's; in other browsers the evaluation never yields.
-    worker_->yieldWhen([calls = 0]() mutable {
-        return ++calls % 64 == 0 && EM_ASM_INT({
-                                        const s = navigator.scheduling;
-                                        return s && s.isInputPending && s.isInputPending() ? 1 : 0;
-                                    }) != 0;
+    worker_->yieldWhen([] {
+        return EM_ASM_INT({
+                   const s = navigator.scheduling;
+                   return s && s.isInputPending && s.isInputPending() ? 1 : 0;
+               }) != 0;
     });
 #endif
 }
