@@ -24,5 +24,14 @@ void main()
         return;
     }
 #endif
+#ifdef PBRLAB_TRACE_NONFINITE
+    // The diagnosis build (core/shader/preprocess.h): which of the student's calls made the
+    // first NaN or Inf, and its line, in place of the value.
+    if (s.covered) {
+        view(s);
+        outValue = vec4(float(pbrlab_traceCall), float(pbrlab_traceLine), 0.0, 1.0);
+        return;
+    }
+#endif
     outValue = s.covered ? vec4(view(s), 1.0) : vec4(0.0);
 }

@@ -137,6 +137,7 @@ ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentS
     // IBL functions); only what the step may read is bound (see runView).
     r.defines["PBRLAB_IBL"] = "1";
     if ((d.needs & NeedsEnvironment) && d.skyBackground && !probe) r.defines["PBRLAB_SKY"] = "1";
+    if (source.traceNonFinite) r.defines[kTraceNonFinite] = "1";
     return r;
 }
 

@@ -71,6 +71,45 @@ vec4 pbrlab_definedPow(vec4 x, vec4 y) {
 }
 )";
 
+// The diagnosis build's functions (kTraceNonFinite): one per traced built-in and argument
+// type, calling the built-in (pow: its defined form) and noting the first call whose
+// arguments are finite and whose result is not.
+std::string traceFunctions() {
+    std::string out = R"(int pbrlab_traceCall = 0;
+int pbrlab_traceLine = 0;
+bool pbrlab_finite(float x) { return !isnan(x) && !isinf(x); }
+bool pbrlab_finite(vec2 x) { return !any(isnan(x)) && !any(isinf(x)); }
+bool pbrlab_finite(vec3 x) { return !any(isnan(x)) && !any(isinf(x)); }
+bool pbrlab_finite(vec4 x) { return !any(isnan(x)) && !any(isinf(x)); }
+void pbrlab_noteCall(bool made, int call, int line) {
+    if (made && pbrlab_traceCall == 0) {
+        pbrlab_traceCall = call;
+        pbrlab_traceLine = line;
+    }
+}
+)";
+    const std::vector<TracedCall>& calls = tracedCalls();
+    for (size_t k = 0; k < calls.size(); ++k) {
+        const TracedCall& c = calls[k];
+        const std::string impl = c.builtin == "pow" ? "pbrlab_definedPow" : c.builtin;
+        for (const char* t : {"float", "vec2", "vec3", "vec4"}) {
+            const std::string T = t;
+            // mod(genType, float) too.
+            for (const std::string& second : c.arguments == 2 && T != "float" && c.builtin == "mod"
+                                                 ? std::vector<std::string>{T, "float"}
+                                                 : std::vector<std::string>{T}) {
+                const bool two = c.arguments == 2;
+                out += T + " pbrlab_trace_" + c.builtin + "(" + T + " x, " +
+                       (two ? second + " y, " : "") + "int line) {\n    " + T + " r = " + impl +
+                       (two ? "(x, y);\n" : "(x);\n") + "    pbrlab_noteCall(pbrlab_finite(x) && " +
+                       (two ? "pbrlab_finite(y) && " : "") + "!pbrlab_finite(r), " +
+                       std::to_string(k + 1) + ", line);\n    return r;\n}\n";
+            }
+        }
+    }
+    return out;
+}
+
 }  // namespace
 
 namespace {
@@ -193,6 +232,30 @@ struct Expander {
     std::set<std::string> studentMacros;
     // The current student's part's ShaderPart::unreachable.
     const std::map<std::string, std::string>* unreachable = nullptr;
+    bool trace = false;  // the diagnosis build (kTraceNonFinite)
+
+    // What a student's part reads its built-ins through: definedBuiltins(), or in the
+    // diagnosis build a macro per traced built-in that passes the call's line.
+    std::string builtinMacros() const {
+        std::string out;
+        if (!trace) {
+            for (const auto& [builtin, definition] : definedBuiltins())
+                out += "#define " + builtin + " " + definition + "\n";
+            return out;
+        }
+        for (const TracedCall& c : tracedCalls())
+            out += "#define " + c.builtin + (c.arguments == 2 ? "(x, y)" : "(x)") +
+                   " pbrlab_trace_" + c.builtin + (c.arguments == 2 ? "(x, y" : "(x") +
+                   ", __LINE__)\n";
+        return out;
+    }
+    std::set<std::string> builtinMacroNames() const {
+        std::set<std::string> names;
+        for (const auto& [builtin, definition] : definedBuiltins()) names.insert(builtin);
+        if (trace)
+            for (const TracedCall& c : tracedCalls()) names.insert(c.builtin);
+        return names;
+    }
 
     int sourceIndex(const std::string& name) {
         out.sourceNames.push_back(name);
@@ -305,7 +368,7 @@ struct Expander {
         out.text += "\n";
         for (const std::string& macro : studentMacros) out.text += "#undef " + macro + "\n";
         studentMacros.clear();
-        for (const auto& [builtin, definition] : definedBuiltins())
+        for (const std::string& builtin : builtinMacroNames())
             out.text += "#undef " + builtin + "\n";
     }
 
@@ -373,10 +436,11 @@ ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
     // the reference solutions call them).
     const bool anyStudent = std::any_of(
         parts.begin(), parts.end(), [](const ShaderPart& p) { return !p.studentFolder.empty(); });
-    if (anyStudent) {
-        ex.out.text += kDefinedBuiltins;
-        for (const auto& [builtin, definition] : definedBuiltins()) ex.hostMacros.insert(builtin);
-    }
+    ex.trace = defines.count(kTraceNonFinite) != 0;
+    if (anyStudent || ex.trace) ex.out.text += kDefinedBuiltins;
+    if (ex.trace) ex.out.text += traceFunctions();
+    if (anyStudent)
+        for (const std::string& builtin : ex.builtinMacroNames()) ex.hostMacros.insert(builtin);
     bool afterStudent = false;
     for (const auto& part : parts) {
         if (!anyStudent) break;  // no one to screen
@@ -405,8 +469,7 @@ ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
         ex.out.files.push_back(file);
         ex.studentFolder = part.studentFolder;
         if (!part.studentFolder.empty())  // the student's calls reach kDefinedBuiltins
-            for (const auto& [builtin, definition] : definedBuiltins())
-                ex.out.text += "#define " + builtin + " " + definition + "\n";
+            ex.out.text += ex.builtinMacros();
         ex.roots = part.studentFolder.empty() ? roots_ : std::vector<fs::path>{part.studentFolder};
         // A student's file is read by the name it was given, so that the screening sees a
         // link as a link (and names the file as the student knows it).
@@ -414,6 +477,21 @@ ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
         if (!part.studentFolder.empty()) ex.closeStudentPart();
     }
     return ex.out;
+}
+
+const std::vector<TracedCall>& tracedCalls() {
+    static const std::vector<TracedCall> calls = {
+        {"pow", 2, "pow with a negative base (or 0 to a negative power)"},
+        {"sqrt", 1, "sqrt of a negative number"},
+        {"inversesqrt", 1, "inversesqrt of a negative number or of 0"},
+        {"log", 1, "log of a negative number or of 0"},
+        {"log2", 1, "log2 of a negative number or of 0"},
+        {"normalize", 1, "normalize of a zero vector (0/0)"},
+        {"acos", 1, "acos of a number outside [-1, 1]"},
+        {"asin", 1, "asin of a number outside [-1, 1]"},
+        {"mod", 2, "mod(x, 0)"},
+    };
+    return calls;
 }
 
 const std::map<std::string, std::string>& definedBuiltins() {

@@ -104,6 +104,20 @@ std::string mapCompilerLog(const std::string& log, const std::vector<std::string
 // host's function the program defines before the first student's part.
 const std::map<std::string, std::string>& definedBuiltins();
 
+// The diagnosis build of a student's part, when the define set holds kTraceNonFinite: each call
+// the part makes of a built-in that can turn finite arguments into a NaN or an Inf (pow of a
+// negative base, sqrt of a negative, normalize of a zero vector ...) notes the first that did,
+// in pbrlab_traceCall (its index in tracedCalls() + 1; 0: none did) and pbrlab_traceLine (the
+// line of the student's file), and the view writes both out instead of its value
+// (shaders/view_main.frag). Feedback renders the points where a value is not finite with it.
+inline constexpr const char* kTraceNonFinite = "PBRLAB_TRACE_NONFINITE";
+struct TracedCall {
+    std::string builtin;  // "pow"
+    int arguments;        // 1 or 2
+    std::string what;     // what made the NaN or Inf, for the student
+};
+const std::vector<TracedCall>& tracedCalls();
+
 // mapCompilerLog, then every message that a student's file caused but the compiler reports
 // elsewhere (Mesa loses the source number of a redefinition and reports a recursion at 0:0)
 // is moved to the student's line that caused it, with a hint where one is true: a function
