@@ -1,7 +1,9 @@
 // Feedback that names the mistake from the shape of the error (docs/grading.md): a constant
 // factor, an offset, a power, a sign, a constant output, an error confined to one region of
-// an input, an input the function ignores or depends on wrongly. General patterns, not a
-// list of known files; grading/grade_step.cpp adds the nearest typical mistake on top.
+// an input, an input the function ignores or depends on wrongly, a NaN traced to the call
+// that made it; the named terms (term_fits.h) and the reference on other inputs and curves
+// (input_fits.h). General patterns, not a list of known files; grading/failure_message.cpp
+// adds the nearest typical mistake on top.
 #pragma once
 
 #include <string>
@@ -28,7 +30,19 @@ struct FeedbackInputs {
     // environment's maps): the named-term fits recompute the step with it (term_fits.h).
     // Optional.
     const ReferenceContext* context = nullptr;
+    // Where the student's function made its first NaN or Inf at these points (the diagnosis
+    // build, shader/preprocess.h): the traced call (its index in tracedCalls() + 1, 0 none) that
+    // most of them share, its line, at how many points, of how many traced. Optional.
+    struct NonFiniteOrigin {
+        int call = 0, line = 0, points = 0, traced = 0;
+    };
+    std::function<NonFiniteOrigin(const std::vector<Surface>&)> traceNonFinite;
 };
+
+// The inputs a step's errors are located and substituted by: its own (ModuleDesc::inputAxes)
+// or, when it declares none, the generic ones (N.V, N.L, V.L, roughness, metallic, ao, the
+// mean albedo, the light's distance, extra.x, extra.y, tangent.w). Kept for the program's life.
+const std::vector<InputAxis>& inputAxes(const ModuleDesc& module);
 
 // What the inputs at a point were, in the module's terms: the fields its domain (or probe)
 // varies, and the cosines between the directions it reads ("N.V 0.42, roughness 0.05").
