@@ -667,55 +667,132 @@ void StepGrader::gradeHighCounts(const Scene& judged, const PointSet& probe,
     }
 }
 
-// The environment at another size than grading's default (256): textureSize(uEnvironment)
-// is a host value the step may read (a texel-sum quadrature picks its mip by it, filtered
-// importance sampling its LOD); EstimatorSpec::otherEnvironmentSize says why 16. At the
-// largest count, where filtered importance sampling's LOD is 0, on the first random points.
-// Cost: one cube of 16^2 and 16 points.
+// The environment at other sizes than grading's default (256): textureSize(uEnvironment) is a
+// host value the step may read (a texel-sum quadrature picks its mip by it, filtered
+// importance sampling its LOD). At EstimatorSpec::otherEnvironmentSize (16: it says why) and, for
+// code that queries a texture's size, at the largest the host builds (`precompute
+// --learnopengl`'s 512), at the largest count, where filtered importance sampling's LOD is 0,
+// on the first random points. Cost: one cube of each size and 16 points each.
+//
+// A failure there is named from the evaluation. A size written in (256) is right at the
+// default size at every count; at another size its error follows the count as a correct
+// estimator's blur would at the size it assumes, and falls as n grows. A blur or mip choice
+// that does not follow the sample count (a texel solid angle written 4 pi / (6 w n), so that n
+// cancels in filtered importance sampling's LOD) reads textureSize and is wrong by a bias that
+// does not shrink as n grows. So, on failure only, an estimator with a sample count is also
+// rendered at the other size at the largest graded count (1024, 64x fewer samples: noise alone
+// falls 8x), and the failure is told a bias that does not shrink where the error at the largest
+// count stays above kBiasFallLimit of that. Measured on prefilter at 16 x 16 (mean relative
+// error at 1024 and 65536 samples): the size written as 256 in filtered importance sampling
+// 0.084 and 0.0091 (0.11 of it); the solid angle without n 0.0245 and 0.0242 (0.99), with
+// Krivanek's +1 mip 0.0546 and 0.0547 (1.0; 0.056 at 64 samples: one blur at every count).
 void StepGrader::gradeEnvironmentSize(const Scene& judged, const PointSet& random) {
+    // Between the two (0.11 and 1.0), well above noise's 1/8.
+    constexpr double kBiasFallLimit = 0.5;
     const EstimatorSpec& e = *d_.estimator;
-    const std::string side =
-        std::to_string(e.otherEnvironmentSize) + "x" + std::to_string(e.otherEnvironmentSize);
-    IblSettings ibl = kGradingIbl;
-    ibl.environmentSize = e.otherEnvironmentSize;
     const size_t points = std::min(size_t(e.highCountPoints), random.surfaces.size());
     const Grid g =
         grid(std::vector<Surface>(random.surfaces.begin(), random.surfaces.begin() + long(points)));
     const int n = e.sampleCounts.empty() ? 0
                   : e.highCounts.empty() ? e.sampleCounts.back()
                                          : e.highCounts.back();
-    const ParamValues params =
-        n > 0 ? withSets(d_, {e.samplesParam + "=" + std::to_string(n)}) : ParamValues(d_.params);
-    const ReferenceContext context = referenceContext(renderer_, d_, judged, params, ibl);
-    std::vector<Estimate> truth(points);
-    parallelFor(points, [&](size_t i) {
-        if (g.surfaces[i].covered) truth[i] = e.converged(g.surfaces[i], context, e.truthSamples);
-    });
-    const std::string name = std::to_string(points) + " random inputs" +
-                             (n > 0 ? " with " + e.samplesParam + " = " + std::to_string(n) : "") +
-                             " (" + judged.environment + ", uEnvironment " + side + ")";
-    stage(name);
-    noteHostValues(judged, params, ibl);
-    RenderRequest request{&m_, &params, &judged, source_, &g.surfaces, g.width, g.height};
-    request.ibl = ibl;
-    request.seamlessCubes = false;
-    request.isolatePoints = true;
-    RenderResult r = renderer_.render(request);
-    if (e.scaleTolerance > 0) rescale(name, r.value, g.surfaces, truth);
-    Band band = convergedBand(d_, g.surfaces, truth, n, e.systematic);
-    const Comparison c = compareWithBand(r.value, g.surfaces, band, d_.components, d_.nonNegative,
-                                         e.systematic.outlierFraction);
-    // Recorded, not handed to the feedback (whose references read the default maps), and named
-    // as gradeHostValues names the maps of split_sum.
-    CheckReport report = estimatorRun(name, d_, c, g.surfaces, std::move(r.value), std::move(band),
-                                      judged, params, nullptr, g.width, g.height)
-                             .report;
-    if (!report.passed)
+    auto paramsAt = [&](int count) {
+        return count > 0 ? withSets(d_, {e.samplesParam + "=" + std::to_string(count)})
+                         : ParamValues(d_.params);
+    };
+    const ParamValues params = paramsAt(n);
+    // The largest only for code that can tell it from the default: a read at a direction and a
+    // LOD is the same function of a finer cube (a fixed mip is finer, nearer the truth), while
+    // building the 512^2 cube costs 0.3-0.7 s.
+    std::vector<int> sizes = {e.otherEnvironmentSize};
+    if (codeQueriesTextureSize())
+        sizes.push_back(
+            std::max(IblSettings::learnOpenGl().environmentSize, kGradingIbl.environmentSize));
+    for (const int size : sizes) {
+        const std::string side = std::to_string(size) + "x" + std::to_string(size);
+        IblSettings ibl = kGradingIbl;
+        ibl.environmentSize = size;
+        const ReferenceContext context = referenceContext(renderer_, d_, judged, params, ibl);
+        std::vector<Estimate> truth(points);
+        parallelFor(points, [&](size_t i) {
+            if (g.surfaces[i].covered)
+                truth[i] = e.converged(g.surfaces[i], context, e.truthSamples);
+        });
+        auto renderAt = [&](const ParamValues& p, const std::string& name) {
+            RenderRequest request{&m_, &p, &judged, source_, &g.surfaces, g.width, g.height};
+            request.ibl = ibl;
+            request.seamlessCubes = false;
+            request.isolatePoints = true;
+            RenderResult r = renderer_.render(request);
+            if (e.scaleTolerance > 0) rescale(name, r.value, g.surfaces, truth);
+            return r;
+        };
+        // The mean relative error, as the fall of gradeConvergence measures it.
+        auto meanError = [&](const Image& value) {
+            double sum = 0;
+            int count = 0;
+            for (size_t i = 0; i < points; ++i) {
+                if (!g.surfaces[i].covered) continue;
+                for (int c = 0; c < d_.components; ++c) {
+                    const double v = value.pixels[i * 4 + size_t(c)], t = truth[i].mean[c];
+                    if (!std::isfinite(v)) continue;
+                    sum += std::abs(v - t) / std::max(std::abs(t), e.systematic.absolute);
+                    ++count;
+                }
+            }
+            return count ? sum / count : 0.0;
+        };
+        const std::string with = n > 0 ? " with " + e.samplesParam + " = " + std::to_string(n) : "";
+        const std::string name = std::to_string(points) + " random inputs" + with + " (" +
+                                 judged.environment + ", uEnvironment " + side + ")";
+        stage(name);
+        noteHostValues(judged, params, ibl);
+        RenderResult r = renderAt(params, name);
+        const double errorAtN = meanError(r.value);
+        Band band = convergedBand(d_, g.surfaces, truth, n, e.systematic);
+        const Comparison c = compareWithBand(r.value, g.surfaces, band, d_.components,
+                                             d_.nonNegative, e.systematic.outlierFraction);
+        // Recorded, not handed to the feedback (whose references read the default maps).
+        CheckReport report =
+            estimatorRun(name, d_, c, g.surfaces, std::move(r.value), std::move(band), judged,
+                         params, nullptr, g.width, g.height)
+                .report;
+        if (report.passed) {
+            record(report);
+            continue;
+        }
+        const std::string hardCoded =
+            "hard-coded host value (the size of uEnvironment, textureSize): right with " +
+            std::to_string(kGradingIbl.environmentSize) + "x" +
+            std::to_string(kGradingIbl.environmentSize) + ", wrong with " + side;
+        const int fewer = e.sampleCounts.empty() ? 0 : e.sampleCounts.back();
+        if (fewer <= 0 || fewer >= n || settings_.stopAtFirstFailure) {
+            // No count to vary: a size written in, or a blur or mip that does not follow it.
+            report.detail =
+                hardCoded + " (or a blur or mip choice that does not follow it); " + report.detail;
+            record(report);
+            continue;
+        }
+        const std::string fewerName = std::to_string(points) + " random inputs with " +
+                                      e.samplesParam + " = " + std::to_string(fewer) + " (" +
+                                      judged.environment + ", uEnvironment " + side + ")";
+        stage(fewerName);
+        const double errorAtFewer = meanError(renderAt(paramsAt(fewer), fewerName).value);
+        // The error at 65536 over the error at 1024 samples.
+        const double fall = errorAtN / std::max(errorAtFewer, 1e-12);
+        const std::string errors = "mean relative error " + number(errorAtFewer, 3) + " at " +
+                                   std::to_string(fewer) + " samples, " + number(errorAtN, 3) +
+                                   " at " + std::to_string(n);
         report.detail =
-            "hard-coded host value (the size of uEnvironment, textureSize): right "
-            "with 256x256, wrong with " +
-            side + "; " + report.detail;
-    record(report);
+            (fall <= kBiasFallLimit
+                 ? hardCoded + " (" + errors + ": it falls as n grows)"
+                 : "a bias that does not shrink as the sample count grows (" + errors +
+                       " on uEnvironment " + side +
+                       "): does a blur or mip choice not follow the sample count (a filtered "
+                       "importance sampling LOD whose solid angle per sample lost n)?") +
+            "; " + report.detail;
+        record(report);
+    }
 }
 
 // EstimatorSpec::scaleTolerance: the overall factor between the value and the converged

@@ -127,9 +127,18 @@ private:
     void gradeCase(const std::string& name, GradeCase::Inputs inputs, const Scene& scene,
                    const ParamValues& params, const std::string& sceneCategory = "scenes");
     void gradeValues(const Scene& scene);
-    // What the host provides graded at other values than its defaults: NUM_LIGHTS, the maps'
-    // mip count (uPrefilterMaxLod) and sizes.
+    // What the host provides graded over what the host can produce: NUM_LIGHTS from 1 to the
+    // most lights a scene may hold, the maps' sizes and mip count (uPrefilterMaxLod) at the ends
+    // of the sizes the host makes.
     void gradeHostValues(const Scene& scene);
+    // Whether the graded step's file (the student's, else the reference solution) queries a
+    // texture's size or mip count (textureSize, textureQueryLevels, textureQueryLod): only such
+    // code can depend on a map's size beyond the sizes graded for every step. True when it
+    // cannot be read.
+    bool codeQueriesTextureSize() const;
+    // Which of `count` lights a step that fails with them ignores, as the message says it
+    // ("ignores light 9 and up: right with NUM_LIGHTS up to 8, wrong from 9"); "" unknown.
+    std::string lightsDiagnosis(const Scene& scene, int count, const Grid& g);
 
     // grading/estimator_band.cpp
     struct PointSet;
