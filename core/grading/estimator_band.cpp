@@ -408,7 +408,7 @@ void StepGrader::gradeSun(const Scene& scene) {
         run.aboveGradedCounts = !e.sampleCounts.empty() && n > e.sampleCounts.back();
         if (!run.report.passed && !cause.empty()) {
             run.report.detail = cause + "; " + run.report.detail;
-            run.cause = cause;
+            if (cleanBefore) run.cause = cause;
         }
         keep(std::move(run));
         if (n > 0) {

@@ -77,8 +77,8 @@ std::vector<Surface> sunFacingSurfaces(const ModuleDesc& d, std::uint64_t seed, 
 constexpr int kSunFacingPoints = 128;
 // Why a check on points facing the sun failed, from the shape of its error: too low nearly
 // everywhere (bright light dropped or limited), too high, or both ways (the sun sampled too
-// coarsely); `rightWithoutSun`: every check without a sun passed, and the message says so.
-// "" when nothing is outside.
+// coarsely), when `rightWithoutSun` (every check without a sun passed: the sun is the cause);
+// else which way the points are off, without a claim. "" when nothing is outside.
 std::string sunCause(const Image& value, const std::vector<Surface>& points, const Band& band,
                      int components, bool rightWithoutSun);
 

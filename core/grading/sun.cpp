@@ -102,7 +102,12 @@ std::string sunCause(const Image& value, const std::vector<Surface>& points, con
     std::nth_element(ratios.begin(), ratios.begin() + long(ratios.size() / 2), ratios.end());
     const double median = ratios.empty() ? 1 : ratios[ratios.size() / 2];
     const std::string where = " of " + std::to_string(judged) + " points facing the sun";
-    const std::string without = rightWithoutSun ? "right on every sky without a sun, " : "";
+    // Its other checks failed too: the sun is not known to be the cause, so the facts only.
+    if (!rightWithoutSun)
+        return "facing the sun, " + std::to_string(low) + " too low and " + std::to_string(high) +
+               " too high" + where + " (median " + number(median, 3) +
+               " x the converged integral there)";
+    const std::string without = "right on every sky without a sun, ";
     // A rule that drops or limits bright light only ever lowers a value; an estimate too
     // coarse for the sun misses it at most points and over-counts it at a few.
     const double few = 0.05 * (low + high);
@@ -147,7 +152,7 @@ void StepGrader::gradeSunValues(const Scene& scene) {
                 sunCause(run.value, run.surfaces, run.band, d_.components, cleanBefore);
             !cause.empty()) {
             run.report.detail = cause + "; " + run.report.detail;
-            run.cause = cause;
+            if (cleanBefore) run.cause = cause;
         }
     keep(std::move(run));
 }
