@@ -147,11 +147,16 @@ TEST_P(VariantTest, CorrectPassesMistakeFailsByAMargin) {
     EXPECT_NE(m.message.find(e), std::string::npos) << "expected \"" << e << "\" in: " << m.message;
     // The estimator's band tested on its own: every check that fails is a values check (the
     // fall, the bias test, the counts used, linearity, finite values and the overall scale
-    // all pass), and one of the bands at the graded counts fails.
+    // all pass), and one of the bands at the graded counts fails. The checks facing a sun and
+    // in the picture, detectors of their own that came after these files, may see it too.
     if (v.file.rfind("mistake_band_", 0) == 0) {
         int failedValues = 0;
         for (const auto& c : m.checks) {
             if (c.value("passed", true) || !c.value("deducted", true)) continue;
+            const std::string name = c.value("name", "");
+            if (name.find("in the picture") != std::string::npos ||
+                name.find("facing the sun") != std::string::npos)
+                continue;
             EXPECT_EQ(c.value("kind", ""), "values")
                 << "not a band: " << c.value("name", "") << ": " << c.value("detail", "");
             failedValues += c.value("kind", "") == "values";

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "assets/procedural.h"
 #include "util/error.h"
@@ -70,6 +71,11 @@ const dvec3 kSunDir = dirFromAzEl(130.0 * kDeg, 35.0 * kDeg);  // behind and rig
 constexpr double kSunRadius = 1.2 * kDeg;
 constexpr double kSunRadiance = 20000.0;
 const dvec3 kSunColour(1.0, 0.96, 0.88);
+// sky-sun's disc: the real sun's angular radius, and a radiance 1e5 times sky-soft's median
+// (a clear day's sun is 1e4 to 1e5 times the sky: the dynamic range estimators meet in real
+// HDRs).
+constexpr double kSunDiscRadius = 0.27 * kDeg;
+constexpr double kSunDiscRadiance = 5e4;
 
 // Irradiance of the sun on a horizontal plane plus an estimate for the sky's, for the ground.
 double groundIrradiance() {
@@ -187,6 +193,63 @@ Image generateSmoothEnvironment(int width) {
     });
 }
 
+// The soft sky with a sun of the real sun's size and a real sky's dynamic range: the sky is
+// sky-soft at 512 upsampled bilinearly (it has no feature under a degree to lose), the disc is
+// antialiased with 8 x 8 sub-samples per texel, so that the cube of grading's size (256, 0.35
+// degrees a texel) still holds it in a few texels at nearly its full radiance.
+Image generateSunSky(int width) {
+    if (width < 512 || width > 8192 || width % 2 != 0)
+        throw Error("sky-sun environment: width " + std::to_string(width) +
+                    " must be even and in [512, 8192]");
+    const Image soft = generateSkyEnvironment(512, true);
+    Image image;
+    image.width = width;
+    image.height = width / 2;
+    image.channels = 3;
+    image.pixels.resize(size_t(image.width) * image.height * 3);
+    const double scale = 512.0 / image.width;
+    const double cosReach = std::cos(2.0 * kSunDiscRadius);  // texels that may hold the disc
+    parallelFor(size_t(image.height), [&](size_t row) {
+        const int y = int(row);
+        const double sy = std::clamp((y + 0.5) * scale - 0.5, 0.0, 255.0);
+        const int y0 = int(sy), y1 = std::min(y0 + 1, 255);
+        const double ty = sy - y0;
+        for (int x = 0; x < image.width; ++x) {
+            // Bilinear, wrapping around in azimuth.
+            const double sx = (x + 0.5) * scale - 0.5;
+            const int fx = int(std::floor(sx));
+            const double tx = sx - fx;
+            const int x0 = (fx + 512) % 512, x1 = (fx + 1) % 512;
+            dvec3 L(0.0);
+            for (int c = 0; c < 3; ++c)
+                L[c] = lerp(lerp(soft.at(x0, y0, c), soft.at(x1, y0, c), tx),
+                            lerp(soft.at(x0, y1, c), soft.at(x1, y1, c), tx), ty);
+            const double phi = ((x + 0.5) / image.width - 0.5) * 2.0 * kPi,
+                         theta = (y + 0.5) / image.height * kPi;
+            const dvec3 centre(std::sin(theta) * std::sin(phi), std::cos(theta),
+                               -std::sin(theta) * std::cos(phi));
+            if (glm::dot(centre, kSunDir) > cosReach) {
+                constexpr int kSub = 8;
+                double disc = 0.0;
+                for (int j = 0; j < kSub; ++j)
+                    for (int i = 0; i < kSub; ++i) {
+                        const double p = ((x + (i + 0.5) / kSub) / image.width - 0.5) * 2.0 * kPi;
+                        const double t = (y + (j + 0.5) / kSub) / image.height * kPi;
+                        const dvec3 d(std::sin(t) * std::sin(p), std::cos(t),
+                                      -std::sin(t) * std::cos(p));
+                        const double gamma = std::acos(std::clamp(glm::dot(d, kSunDir), -1.0, 1.0));
+                        if (gamma >= kSunDiscRadius) continue;
+                        const double r = gamma / kSunDiscRadius;
+                        disc += 1.0 - 0.6 * (1.0 - std::sqrt(1.0 - r * r));  // limb darkening
+                    }
+                L += kSunColour * (kSunDiscRadiance * disc / (kSub * kSub));
+            }
+            for (int c = 0; c < 3; ++c) image.at(x, y, c) = float(L[c]);
+        }
+    });
+    return image;
+}
+
 Image generateHdrLobe(int width) {
     return equirectangular("hdr-lobe", width, [](const dvec3& d) {
         return kSunColour * (1e4 * std::pow(10.0, 0.5 * (1.0 + glm::dot(d, kSunDir))));
@@ -213,7 +276,7 @@ std::pair<std::string, double> splitFactor(const std::string& name) {
 bool isGeneratedEnvironment(const std::string& name) {
     const std::string base = splitFactor(name).first;
     return base == "sky" || base == "sky-soft" || base == "smooth" || base == "hdr-lobe" ||
-           base == "sky-hdr";
+           base == "sky-hdr" || base == "sky-sun";
 }
 
 Image generateEnvironment(const std::string& name) {
@@ -234,11 +297,31 @@ Image generateEnvironment(const std::string& name) {
         // sum of the two environments' texels.
         for (size_t i = 0; i < image.pixels.size(); ++i)
             image.pixels[i] = float(double(image.pixels[i]) + double(lobes.pixels[i]));
-    } else
+    } else if (base == "sky-sun")
+        image = generateSunSky(2048);
+    else
         throw Error("no generated environment is called '" + name + "'");
     if (factor != 1.0)
         for (float& v : image.pixels) v = float(double(v) * factor);
     return image;
+}
+
+Image brightTexels(const Image& environment, double overMedian) {
+    const size_t texels = size_t(environment.width) * size_t(environment.height);
+    const int channels = environment.channels;
+    auto luminance = [&](size_t i) {
+        const float* p = &environment.pixels[i * size_t(channels)];
+        return channels >= 3 ? 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2] : double(p[0]);
+    };
+    std::vector<double> values(texels);
+    for (size_t i = 0; i < texels; ++i) values[i] = luminance(i);
+    std::nth_element(values.begin(), values.begin() + long(texels / 2), values.end());
+    const double threshold = overMedian * values[texels / 2];
+    Image bright = environment;
+    for (size_t i = 0; i < texels; ++i)
+        if (!(luminance(i) > threshold))
+            for (int c = 0; c < channels; ++c) bright.pixels[i * size_t(channels) + size_t(c)] = 0;
+    return bright;
 }
 
 glm::dvec3 skySunDirection() {

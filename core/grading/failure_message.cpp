@@ -102,7 +102,16 @@ void StepGrader::explain() {
                        vec(first->worstLo, d_.components) + " .. " +
                        vec(first->worstHi, d_.components) + ")";
     }
-    if (failed_ && settings_.feedback) {
+    if (failed_ && failed_->cause.empty() && failed_->fromScene && settings_.feedback)
+        failed_->cause = derivativesCauseOf(*failed_);
+    if (failed_ && !failed_->cause.empty()) {
+        // The check that failed found the cause itself (a sun's light dropped, screen-space
+        // derivatives): the patterns below compare points drawn alone on other inputs, where
+        // such a function is right, and would name something else.
+        result_.mistake = failed_->cause;
+        result_.namedBy = "pattern";
+        result_.mistakeGroup = withoutFigures(failed_->cause);
+    } else if (failed_ && settings_.feedback) {
         stage("feedback");
         FeedbackInputs in;
         in.module = &d_;
@@ -204,9 +213,12 @@ void StepGrader::explain() {
     for (const CheckReport& c : result_.checks)
         if (c.deducted && !c.passed && c.kind != "values" && &c != first)
             message += "; " + c.name + ": " + c.detail;
-    result_.message = result_.mistake.empty() || (first && first->kind == "contract")
-                          ? message + (result_.mistake.empty() ? "" : " " + result_.mistake)
-                          : result_.mistake + " " + message;
+    if (!result_.mistake.empty() && message.find(result_.mistake) != std::string::npos)
+        result_.message = message;  // the failed check's own words name it already
+    else
+        result_.message = result_.mistake.empty() || (first && first->kind == "contract")
+                              ? message + (result_.mistake.empty() ? "" : " " + result_.mistake)
+                              : result_.mistake + " " + message;
 }
 
 StepGrader::Sample StepGrader::sample(const ValuesRun& f) {

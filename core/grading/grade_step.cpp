@@ -92,8 +92,10 @@ StepResult StepGrader::run() {
         gradeLinearity(scene);  // before the values: a nonlinearity explains their failures
         if (d_.estimator)
             gradeEstimator(scene);
-        else
+        else {
             gradeValues(scene);
+            gradeSunValues(scene);
+        }
         gradeInvariants(scene);
         gradeCallerInputs(scene);
         if (settings_.robustness) gradeRobustness(scene);

@@ -34,6 +34,9 @@ struct GradeSettings {
     // The bands of the checks' CPU references, kept from grade to grade where one program
     // grades many files (the page's grader): the next file's checks take them from here.
     BandCache* bands = nullptr;
+    // The environment with a sun the environment-reading steps are also graded on (empty: the
+    // step's, EstimatorSpec::sunEnvironment): an instructor's own HDR, a real sky.
+    std::string sunEnvironment;
 };
 
 // What a check is about, for the weights of an assignment (assignment.h): set where each

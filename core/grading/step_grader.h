@@ -58,6 +58,9 @@ struct ValuesRun {
     // candidates at the failing run's count, so it reads such a run only when nothing at the
     // graded counts failed (65536 samples made mc_specular's feedback take 10 s).
     bool aboveGradedCounts = false;
+    // The cause, when the check itself can tell it from its error (a sun's light dropped,
+    // screen-space derivatives): the feedback names it instead of looking for a pattern.
+    std::string cause;
 };
 
 // The report of a values check from its comparison; `probe` or `width` say how its worst
@@ -65,6 +68,23 @@ struct ValuesRun {
 CheckReport reportFor(const std::string& name, const ModuleDesc& d, const Comparison& c,
                       const std::vector<Surface>& surfaces, double outlierFraction,
                       const Probe* probe, int width);
+
+// The direction of the brightest texel of a cube's finest level (grading/sun.cpp).
+glm::dvec3 brightestDirection(const CubeSampler& cube);
+// Random points of the domain turned to face the sun (grading/sun.cpp).
+std::vector<Surface> sunFacingSurfaces(const ModuleDesc& d, std::uint64_t seed, int count,
+                                       const glm::dvec3& sun, double maxRoughness);
+constexpr int kSunFacingPoints = 128;
+// Why a check on points facing the sun failed, from the shape of its error: too low nearly
+// everywhere (bright light dropped or limited), too high, or both ways (the sun sampled too
+// coarsely), when `rightWithoutSun` (every check without a sun passed: the sun is the cause);
+// else which way the points are off, without a claim. "" when nothing is outside.
+std::string sunCause(const Image& value, const std::vector<Surface>& points, const Band& band,
+                     int components, bool rightWithoutSun);
+
+// "depends on screen derivatives: ..." with what the pixels drawn alone measured
+// (grading/derivatives.cpp).
+std::string derivativesCause(int outsideAlone, int comparedAlone);
 
 class StepGrader {
 public:
@@ -80,7 +100,10 @@ public:
     StepResult run();
     // The estimator's statistical checks alone (convergence on every environment, the counts
     // above): what the false-failure measurement repeats per seed (tests/estimator_seeds.cpp).
-    StepResult runEstimatorStatistics();
+    // `parts`: which of them (StatisticsPart bits; all by default), so that a sweep of many
+    // seeds can measure one.
+    enum StatisticsPart : unsigned { Convergence = 1, Sun = 2, Picture = 4 };
+    StepResult runEstimatorStatistics(unsigned parts = Convergence | Sun | Picture);
 
 private:
     struct Stopped {};
@@ -104,18 +127,39 @@ private:
     void gradeCase(const std::string& name, GradeCase::Inputs inputs, const Scene& scene,
                    const ParamValues& params, const std::string& sceneCategory = "scenes");
     void gradeValues(const Scene& scene);
-    // What the host provides graded at other values than its defaults: NUM_LIGHTS, the maps'
-    // mip count (uPrefilterMaxLod) and sizes.
+    // What the host provides graded over what the host can produce: NUM_LIGHTS from 1 to the
+    // most lights a scene may hold, the maps' sizes and mip count (uPrefilterMaxLod) at the ends
+    // of the sizes the host makes.
     void gradeHostValues(const Scene& scene);
+    // Whether the graded step's file (the student's, else the reference solution) queries a
+    // texture's size or mip count (textureSize, textureQueryLevels, textureQueryLod): only such
+    // code can depend on a map's size beyond the sizes graded for every step. True when it
+    // cannot be read.
+    bool codeQueriesTextureSize() const;
+    // Which of `count` lights a step that fails with them ignores, as the message says it
+    // ("ignores light 9 and up: right with NUM_LIGHTS up to 8, wrong from 9"); "" unknown.
+    std::string lightsDiagnosis(const Scene& scene, int count, const Grid& g);
 
     // grading/estimator_band.cpp
     struct PointSet;
     void gradeEstimator(const Scene& scene);
+    std::vector<Estimate> convergedIntegrals(const std::vector<const Surface*>& points,
+                                             const Scene& judged, const ReferenceContext& context,
+                                             std::uint32_t samples);
     void gradeConvergence(const Scene& scene, const std::string& environment, bool first);
+    void gradeSun(const Scene& scene);
+    // grading/sun.cpp
+    void gradeSunValues(const Scene& scene);
+    // grading/derivatives.cpp: a picture's check failed, its pixels drawn alone pass: the
+    // cause (else "").
+    std::string derivativesCauseOf(const ValuesRun& run);
+    void gradePicture(const Scene& scene);
     void gradeHighCounts(const Scene& judged, const PointSet& probe, const PointSet& random);
     void gradeEnvironmentSize(const Scene& judged, const PointSet& random);
+    // `nameConstants`: a failed factor is said as the constant it is near ("off by pi?");
+    // off where a factor is not the likely cause (a sun's light dropped).
     void rescale(const std::string& name, Image& value, const std::vector<Surface>& surfaces,
-                 const std::vector<Estimate>& truth);
+                 const std::vector<Estimate>& truth, bool nameConstants = true);
     void biasTest(const std::vector<PointSet>& sets, int n, const std::string& onEnvironment);
 
     // grading/linearity.cpp: steps that read the environment, on multiples and sums of it
@@ -150,8 +194,9 @@ private:
     std::string stageName_;              // the stage running, and since when
     std::chrono::steady_clock::time_point stageStart_;
     double stageCpuMs_ = 0;
-    bool workShown_ = false;         // a check showed work (noteWork)
-    bool statisticsOnly_ = false;    // runEstimatorStatistics
+    bool workShown_ = false;       // a check showed work (noteWork)
+    bool statisticsOnly_ = false;  // runEstimatorStatistics
+    unsigned statisticsParts_ = Convergence | Sun | Picture;
     std::filesystem::path stubDir_;  // the stub's <id>.glsl, written when first needed
 };
 

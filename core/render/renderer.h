@@ -264,8 +264,10 @@ private:
 int sphereSegments(double radiusPixels);
 
 // Loads an environment: "sky", "sky-soft", "smooth" (generated) or an equirectangular
-// .hdr/.exr file. The generated ones are kept in `cache` (when not empty) after the first time:
-// the sky takes a second to generate, and grading reads it in every child process.
+// .hdr/.exr file; any of them followed by "#bright" is its bright texels alone (brightTexels:
+// the sun of a sky, what grading's sun check needs to know it has resolved). The generated ones are
+// kept in `cache` (when not empty) after the first time: the sky takes a second to generate, and
+// grading reads it in every child process.
 Image loadEnvironmentImage(const std::string& source, const std::filesystem::path& cache = {});
 
 }  // namespace pbrlab

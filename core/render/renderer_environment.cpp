@@ -29,6 +29,9 @@ std::string environmentKey(const Scene& scene, const IblSettings& settings) {
 }  // namespace
 
 Image loadEnvironmentImage(const std::string& source, const fs::path& cache) {
+    if (const size_t hash = source.rfind(kBrightSuffix);
+        hash != std::string::npos && hash + kBrightSuffix.size() == source.size())
+        return brightTexels(loadEnvironmentImage(source.substr(0, hash), cache));
     if (!isGeneratedEnvironment(source)) {
         Image image = readImage(source);
         if (image.width != 2 * image.height || image.channels < 3)

@@ -40,6 +40,8 @@ public:
     int levels() const { return int(mips_.size()); }
     int size() const { return mips_.empty() ? 0 : mips_[0][0].width; }
     glm::dvec3 sample(const glm::dvec3& dir, double lod = 0) const;
+    // mips[level][face], as given.
+    const std::vector<std::vector<Image>>& mips() const { return mips_; }
 
 private:
     glm::dvec3 sampleLevel(const glm::dvec3& dir, int level) const;

@@ -378,6 +378,17 @@ struct EstimatorSpec {
     // lobe of 1e4 to 1e5 on the soft sky (envgen.h), where every correct estimator still
     // converges and a clamp or tone map on radiance is off by orders of magnitude.
     std::string hdrEnvironment = "sky-hdr";
+    // An environment with a real sun ("" none): judged on points facing the sun of roughness
+    // up to sunMaxRoughness, at sunCounts, against the converged integral of sunTruthSamples
+    // samples (docs/grading.md, "A real sun").
+    std::string sunEnvironment = "sky-sun";
+    std::vector<int> sunCounts = {1024, 16384};
+    std::uint32_t sunTruthSamples = 262144;
+    int sunPoints = 128;
+    // Pixels of the module's scene judged in the picture check (docs/grading.md, "Graded in
+    // the picture").
+    int picturePixels = 512;
+    double sunMaxRoughness = 0.5;
     // The converged value and one sample's spread at a point, measured with `truthSamples`
     // samples of the reference's estimator where it is not known in closed form.
     std::function<Estimate(const Surface&, const ReferenceContext&, std::uint32_t truthSamples)>

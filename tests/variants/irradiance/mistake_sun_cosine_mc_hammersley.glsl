@@ -1,6 +1,8 @@
-// correct: cosine-weighted Monte Carlo with 2048 Hammersley points, as the glTF Sample
-// Viewer computes its Lambertian map: with pdf = cos / PI, E / PI is the plain mean of the
-// radiance over the samples
+// mistake (for a sky with a sun): cosine-weighted Monte Carlo with 2048 Hammersley points, as the
+// glTF Sample Viewer computes its Lambertian map: with pdf = cos / PI, E / PI is the plain mean of
+// the radiance over the samples Right on skies without a sun; a sun of a fraction of a degree
+// falls between its samples or nodes, so it is missed at most normals and over-counted at a few.
+// expect: too coarse for a sun
 vec3 irradianceAt(vec3 N)
 {
     const uint n = 2048u;

@@ -1,5 +1,8 @@
-// correct: the classic hemisphere loop in spherical coordinates around N (64 x 256 midpoint
-// grid, weight cos(theta) sin(theta)), reading a mip whose texels match the sample spacing
+// mistake (for a sky with a sun): the classic hemisphere loop in spherical coordinates around N
+// (64 x 256 midpoint grid, weight cos(theta) sin(theta)), reading a mip whose texels match the
+// sample spacing Right on skies without a sun; a sun of a fraction of a degree falls between its
+// samples or nodes, so it is missed at most normals and over-counted at a few.
+// expect: too coarse for a sun
 vec3 irradianceAt(vec3 N)
 {
     const int thetaSteps = 64;

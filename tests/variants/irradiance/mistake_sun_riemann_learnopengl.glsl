@@ -1,6 +1,9 @@
-// correct: LearnOpenGL's Riemann sum over theta and phi at half its resolution (step 0.05 rad
-// instead of 0.025), left end points, normalised by the sample count; a frame that stays
-// defined when N is straight up or down
+// mistake (for a sky with a sun): LearnOpenGL's Riemann sum over theta and phi at half its
+// resolution (step 0.05 rad instead of 0.025), left end points, normalised by the sample count; a
+// frame that stays defined when N is straight up or down Right on skies without a sun; a sun of a
+// fraction of a degree falls between its samples or nodes, so it is missed at most normals and
+// over-counted at a few.
+// expect: too coarse for a sun
 vec3 irradianceAt(vec3 N)
 {
     vec3 up = abs(N.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);

@@ -1,6 +1,9 @@
-// correct: cosine-weighted Monte Carlo with 2048 samples and filtered importance sampling (each
-// sample reads the mip whose texel covers the solid angle 1 / (n pdf) it stands for), an own
-// radical inverse by a loop and another tangent frame
+// mistake (for a sky with a sun): cosine-weighted Monte Carlo with 2048 samples and filtered
+// importance sampling (each sample reads the mip whose texel covers the solid angle 1 / (n pdf) it
+// stands for), an own radical inverse by a loop and another tangent frame Right on skies without a
+// sun; a sun of a fraction of a degree falls between its samples or nodes, so it is missed at most
+// normals and over-counted at a few.
+// expect: too coarse for a sun
 float radicalInverseLoop(uint i)
 {
     float result = 0.0, f = 0.5;
