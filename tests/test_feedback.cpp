@@ -347,19 +347,61 @@ TEST(Feedback, ANaNIsTracedToTheCallThatMadeIt) {
     FeedbackInputs in = inputs(
         d, [](const Surface& s) { return glm::dvec3(ndotl(s)); },
         [](const Surface& s) { return glm::dvec3(s.roughness > 0.9 ? std::nan("") : ndotl(s)); });
-    // The diagnosis build's answer (GL renders it in grading; tests/variants has the whole).
-    in.traceNonFinite = [](const std::vector<Surface>& points) {
-        return FeedbackInputs::NonFiniteOrigin{1, 14, int(points.size()), int(points.size())};
+    // The diagnosis build's answers (GL renders them in grading: tests/variants/brdf_lut has
+    // the whole).
+    auto answer = [&in](TraceSite site, bool confirmed, TraceSite other = {}) {
+        in.traceNonFinite = [=](const std::vector<Surface>& points) {
+            const int n = int(points.size());
+            return FeedbackInputs::NonFiniteOrigin{site, other, site.traced() ? n : 0, n,
+                                                   confirmed};
+        };
+        return classifyError(in);
     };
-    const std::string pow = classifyError(in);
+    const std::string pow = answer({1, 14}, true);
     EXPECT_TRUE(contains(pow, "returns NaN at") &&
-                contains(pow, "comes from pow with a negative base") && contains(pow, "line 14"))
+                contains(pow, "comes from pow with a negative base") &&
+                contains(pow, "line 14 of test.glsl") && contains(pow, "guard or a clamp"))
         << pow;
-    in.traceNonFinite = [](const std::vector<Surface>& points) {
-        return FeedbackInputs::NonFiniteOrigin{0, 0, 0, int(points.size())};
-    };
-    const std::string division = classifyError(in);
-    EXPECT_TRUE(contains(division, "a division 0/0, Inf/Inf or 0 x Inf?")) << division;
+    // Another call made one at those points too: both are said.
+    const std::string two = answer({1, 14}, true, {2, 9});
+    EXPECT_TRUE(contains(two,
+                         "sqrt of a negative number, at line 9 of test.glsl makes one there "
+                         "too"))
+        << two;
+    // pow of a positive base whose result overflows is not called a negative base.
+    const std::string overflow = answer({-1, 14}, true);
+    EXPECT_TRUE(contains(overflow, "comes from pow with a result too large for a float"))
+        << overflow;
+    EXPECT_FALSE(contains(overflow, "negative base")) << overflow;
+    // A call that made one whose result the function drops (the value is NaN without it too) is
+    // not called the cause, nor its guard missing.
+    const std::string dropped = answer({2, 9}, false);
+    EXPECT_TRUE(contains(dropped, "with its result replaced by 0 the value is still not finite") &&
+                contains(dropped, "a division 0/0, Inf/Inf or 0 x Inf elsewhere?"))
+        << dropped;
+    EXPECT_FALSE(contains(dropped, "comes from") || contains(dropped, "guard")) << dropped;
+    const std::string division = answer({}, false);
+    EXPECT_TRUE(contains(division,
+                         "No pow, sqrt, inversesqrt, log, log2, normalize, acos, asin or "
+                         "mod in test.glsl made it from finite arguments there: a "
+                         "division 0/0, Inf/Inf or 0 x Inf?"))
+        << division;
+}
+
+// The diagnosis build's sites, as view_main.frag writes them (a float of call x 65536 + line,
+// negative for the overflow case).
+TEST(Feedback, TraceSitesAreReadAsWritten) {
+    const TraceSite pow = traceSite(1 * 65536 + 31);
+    EXPECT_EQ(pow.call, 1);
+    EXPECT_EQ(pow.line, 31);
+    EXPECT_EQ(pow.what(), "pow with a negative base (or 0 to a power <= 0)");
+    const TraceSite overflow = traceSite(-(1 * 65536 + 7));
+    EXPECT_EQ(overflow.call, -1);
+    EXPECT_EQ(overflow.line, 7);
+    EXPECT_EQ(overflow.what(), "pow with a result too large for a float (an overflow)");
+    EXPECT_EQ(traceSite(0).traced(), nullptr);
+    EXPECT_EQ(traceSite(std::nan("")).traced(), nullptr);
+    EXPECT_EQ(traceSite(double(tracedCalls().size() + 1) * 65536).traced(), nullptr);
 }
 
 // The reference on other inputs (input_fits.h).

@@ -453,18 +453,35 @@ std::string nonFiniteMessage(const FeedbackInputs& in, const std::string& where)
         for (size_t k = 0; k < count; ++k) traced.push_back(points[k * points.size() / count]);
         origin = in.traceNonFinite(traced);
     }
+    // "pow, sqrt, ... or mod": the calls the diagnosis build traces.
+    std::string names;
     const std::vector<TracedCall>& calls = tracedCalls();
-    if (origin.call > 0 && origin.call <= int(calls.size())) {
-        const TracedCall& c = calls[size_t(origin.call - 1)];
-        s += " The first " + what + " there comes from " + c.what + ", at line " +
-             std::to_string(origin.line) + " of your file" +
+    for (size_t k = 0; k < calls.size(); ++k)
+        names += (k == 0 ? "" : k + 1 == calls.size() ? " or " : ", ") + calls[k].builtin;
+    const std::string file = in.module->id + ".glsl";
+    // What else makes one from finite values: as the value is NaN, Inf or both.
+    const std::string arithmetic = infs == 0   ? "a division 0/0, Inf/Inf or 0 x Inf"
+                                   : nans == 0 ? "a division by zero or an overflow"
+                                               : "a division by zero, 0/0 or an overflow";
+    const auto at = [&](const TraceSite& site) {
+        return site.what() + ", at line " + std::to_string(site.line) + " of " + file;
+    };
+    if (origin.site.traced() && origin.confirmed) {
+        s += " The first " + what + " there comes from " + at(origin.site) +
              (origin.points < origin.traced ? " (at " + std::to_string(origin.points) + " of the " +
                                                   std::to_string(origin.traced) + " points traced)"
                                             : "") +
+             (origin.other.traced() ? "; " + at(origin.other) + " makes one there too" : "") +
              ": is a guard or a clamp of its argument missing?";
+    } else if (origin.site.traced()) {
+        // It made one, but the value is not finite without it either: not the cause alone.
+        s += " Your " + at(origin.site) +
+             ", makes one there, but with its result replaced by 0 the value is still not "
+             "finite: " +
+             arithmetic + " elsewhere?";
     } else if (origin.traced > 0) {
-        s += " No pow, sqrt, inversesqrt, log, log2, normalize, acos, asin or mod of yours made it "
-             "from finite arguments there: a division 0/0, Inf/Inf or 0 x Inf?";
+        s += " No " + names + " in " + file +
+             " made it from finite arguments there: " + arithmetic + "?";
     } else {
         s += " (a division by zero or a sqrt/pow of a negative?)";
     }

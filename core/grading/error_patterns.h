@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pbrlab/module.h"
+#include "shader/preprocess.h"
 
 namespace pbrlab {
 
@@ -31,10 +32,14 @@ struct FeedbackInputs {
     // Optional.
     const ReferenceContext* context = nullptr;
     // Where the student's function made its first NaN or Inf at these points (the diagnosis
-    // build, shader/preprocess.h): the traced call (its index in tracedCalls() + 1, 0 none) that
-    // most of them share, its line, at how many points, of how many traced. Optional.
+    // build, shader/preprocess.h): the site (traced call and line) most of them share, another
+    // site that made one there too, at how many points, of how many traced; `confirmed`: with
+    // what those calls made replaced by 0 the value is finite there (the NaN or Inf the student
+    // sees is theirs). Optional.
     struct NonFiniteOrigin {
-        int call = 0, line = 0, points = 0, traced = 0;
+        TraceSite site, other;
+        int points = 0, traced = 0;
+        bool confirmed = false;
     };
     std::function<NonFiniteOrigin(const std::vector<Surface>&)> traceNonFinite;
 };

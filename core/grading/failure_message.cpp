@@ -154,13 +154,25 @@ void StepGrader::explain() {
             } catch (const Error&) {
                 return origin;  // the diagnosis build does not compile: nothing to say
             }
-            std::map<std::pair<int, int>, int> count;
-            for (const glm::dvec3& c : calls)
-                if (c.x >= 1) ++count[{int(c.x), int(c.y)}];
+            // The site most points share, among those where it is the cause (the value finite
+            // with what the traced calls made replaced), else among all.
+            std::map<std::pair<int, int>, int> confirmed, noted;
+            std::map<std::pair<int, int>, TraceSite> other;
+            for (const glm::dvec3& c : calls) {
+                const TraceSite site = traceSite(c.x);
+                if (!site.traced()) continue;
+                const std::pair<int, int> key{site.call, site.line};
+                ++(c.z > 0.5 ? confirmed : noted)[key];
+                if (traceSite(c.y).traced()) other[key] = traceSite(c.y);
+            }
             origin.traced = int(calls.size());
-            for (const auto& [call, points] : count)
-                if (points > origin.points)
-                    origin = {call.first, call.second, points, origin.traced};
+            origin.confirmed = !confirmed.empty();
+            for (const auto& [key, points] : confirmed.empty() ? noted : confirmed)
+                if (points > origin.points) {
+                    origin.site = {key.first, key.second};
+                    origin.other = other.count(key) ? other[key] : TraceSite{};
+                    origin.points = points;
+                }
             return origin;
         };
         // The estimator's bands are not the reference's: the sensitivity test would

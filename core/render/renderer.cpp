@@ -115,6 +115,9 @@ ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentS
         };
         bool fromStudent = !source.dir.empty() && (step->id == d.id || source.cumulative) &&
                            studentPart(source.dir);
+        // The diagnosis build traces the graded step's file only: a line it reports is one of
+        // that file.
+        part.traced = fromStudent && step->id == d.id && source.traceNonFinite;
         // A withheld solution (an assignment's site): the student's own file of that step
         // wherever the solution would be, else its starter.
         if (!fromStudent && solutionWithheld(*step)) {

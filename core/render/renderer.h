@@ -26,7 +26,7 @@ struct StudentSource {
     std::filesystem::path dir;  // empty: reference solutions only
     bool cumulative = false;    // use the student's earlier steps too (default: stepwise)
     // The diagnosis build (kTraceNonFinite, shader/preprocess.h): the view writes which of the
-    // student's calls made the first NaN or Inf, and its line, instead of its value.
+    // graded step's calls made the first NaN or Inf, and its line, instead of its value.
     bool traceNonFinite = false;
 };
 

@@ -1,4 +1,4 @@
-// expect: comes from pow with a negative base (or 0 to a negative power), at line 31 of your file
+// expect: comes from pow with a negative base (or 0 to a power <= 0), at line 31 of brdf_lut.glsl
 // mistake: LearnOpenGL's LUT loop, V.H floored at 0 but not capped at 1: where V.H rounds to
 // 1 + 1 ulp (V = H, roughness near 1, many samples) pow(1.0 - VdotH, 5.0) has a negative base
 float GGX(float NdotV, float k)
