@@ -241,11 +241,10 @@ dvec3 irradiance(const Surface& s, const ReferenceContext& c, const Knobs& k) {
     for (size_t i = 0; i < t.direction.size(); ++i) {
         double cosine = glm::dot(s.normal, t.direction[i]);
         if (k.wholeSphere != 0) cosine = std::abs(cosine);
-        // The solid angle without its sin(theta) (a Riemann sum over dtheta dphi): the
-        // singularity at N is integrable, and the texels nearest N are a fraction of a degree
-        // from it at the sizes graded.
-        // Without it, 1/sin(theta) is averaged over a texel at N as over a disc of the
-        // texel's angular radius r (2/r), not read at the texel's centre.
+        // The solid angle without its sin(theta) (a Riemann sum over dtheta dphi) weighs a
+        // texel by 1/sin(theta): near N that is averaged over the texel as over a disc of its
+        // angular radius r (2/r), as the student's sum over small steps of theta does, not
+        // read at the texel's centre (a fraction of a degree from N at the sizes graded).
         const double radius = std::sqrt(t.solidAngle[i] / kPi);
         const double solidAngle =
             k.sinTheta == 1
