@@ -345,9 +345,8 @@ void StepGrader::gradeSun(const Scene& scene) {
     const ReferenceContext context = referenceContext(renderer_, d_, judged, defaults, kGradingIbl);
     const ReferenceContext sunContext =
         referenceContext(renderer_, d_, sunOnly, defaults, kGradingIbl);
-    const glm::dvec3 sun =
-        brightestDirection(renderer_.environmentInputs(judged, kGradingIbl, false).environment);
-    Grid g = grid(sunFacingSurfaces(d_, settings_.seed, e.sunPoints, sun, e.sunMaxRoughness));
+    Grid g = grid(sunFacingSurfaces(d_, settings_.seed, e.sunPoints, sunDirection(judged),
+                                    e.sunMaxRoughness));
     PointSet set{"points facing the sun", g.surfaces, g.width, g.height, nullptr, {}, {}};
     std::vector<const Surface*> points;
     for (const Surface& surface : set.surfaces) points.push_back(&surface);
@@ -356,9 +355,7 @@ void StepGrader::gradeSun(const Scene& scene) {
     const std::vector<Estimate> sunPart =
         convergedIntegrals(points, sunOnly, sunContext, e.sunTruthSamples);
     // Every check before passed: a failure here is the sun's, and the message may say so.
-    const bool cleanBefore =
-        std::none_of(result_.checks.begin(), result_.checks.end(),
-                     [](const CheckReport& c) { return c.deducted && !c.passed; });
+    const bool cleanBefore = noFailureSoFar();
     const std::vector<int> counts = e.samplesParam.empty() ? std::vector<int>{0} : e.sunCounts;
     for (int n : counts) {
         const ParamValues params =

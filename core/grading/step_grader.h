@@ -154,6 +154,10 @@ private:
     void gradeSun(const Scene& scene);
     // grading/sun.cpp
     void gradeSunValues(const Scene& scene);
+    // The direction of the sun of `judged`'s environment (its brightest texel).
+    glm::dvec3 sunDirection(const Scene& judged);
+    // No deducted check failed so far: a failure from here on is the sun's to explain.
+    bool noFailureSoFar() const;
     // grading/derivatives.cpp: a picture's check failed, its pixels drawn alone pass: the
     // cause (else "").
     std::string derivativesCauseOf(const ValuesRun& run);

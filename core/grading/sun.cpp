@@ -133,17 +133,23 @@ std::string sunCause(const Image& value, const std::vector<Surface>& points, con
 // maps. A limit on bright light that follows the environment's own brightness (a highlight
 // clamped relative to the irradiance) is linear under the scaling checks and invisible on the
 // smooth skies; here the sun's highlight is most of the value.
+glm::dvec3 StepGrader::sunDirection(const Scene& judged) {
+    return brightestDirection(renderer_.environmentInputs(judged, kGradingIbl, false).environment);
+}
+
+bool StepGrader::noFailureSoFar() const {
+    return std::none_of(result_.checks.begin(), result_.checks.end(),
+                        [](const CheckReport& c) { return c.deducted && !c.passed; });
+}
+
 void StepGrader::gradeSunValues(const Scene& scene) {
     if (!(d_.needs & NeedsEnvironment) || !d_.domain || d_.estimator) return;
     Scene judged = scene;
     judged.environment = settings_.sunEnvironment.empty() ? EstimatorSpec{}.sunEnvironment
                                                           : settings_.sunEnvironment;
-    const glm::dvec3 sun =
-        brightestDirection(renderer_.environmentInputs(judged, kGradingIbl, false).environment);
-    const Grid g = grid(sunFacingSurfaces(d_, settings_.seed, kSunFacingPoints, sun, 0.5));
-    const bool cleanBefore =
-        std::none_of(result_.checks.begin(), result_.checks.end(),
-                     [](const CheckReport& c) { return c.deducted && !c.passed; });
+    const Grid g =
+        grid(sunFacingSurfaces(d_, settings_.seed, kSunFacingPoints, sunDirection(judged), 0.5));
+    const bool cleanBefore = noFailureSoFar();
     ValuesRun run =
         runValues("random inputs facing the sun (" + judged.environment + ")", "random", judged,
                   ParamValues(d_.params), &g.surfaces, g.width, g.height, nullptr);
