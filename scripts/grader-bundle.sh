@@ -122,7 +122,8 @@ commit=$(git -C "$source_dir" describe --always --dirty 2>/dev/null || echo unkn
     cat "$manifest"
     echo
     echo "Changed from Debian's files, so that they load on glibc 2.35 (lib/$compat, pbrlab's"
-    echo "own, defines arc4random@GLIBC_2.36 from getrandom):"
+    echo "own, defines arc4random@GLIBC_2.36 from getrandom; glibc 2.35's dynamic linker notes"
+    echo "\"weak version \`GLIBC_2.36' not found\" on stderr once per run, which is that):"
     echo
     sed "s#$out/##" "$stage/optional.txt"
 } > "$out/pbrlab-grader-bundle.txt"
