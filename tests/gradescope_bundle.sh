@@ -1,29 +1,22 @@
 #!/usr/bin/env bash
-# The Gradescope autograder as Gradescope runs it (docs/assignment.md): a Debian package of this
-# build (cpack -G DEB), `pbrlab autograder` bundling it with an assignment of three steps,
-# the zip unpacked into a fake /autograder tree, setup.sh (the .deb unpacked with dpkg-deb -x:
-# no root) and run_autograder on two submissions: the reference solutions (full points) and
-# two planted mistakes: ndf's alpha = roughness (no values check passes: nothing) and fresnel's
-# pow6 (the weights' share of what passed). Each results.json is validated against Gradescope's
-# documented format, and its visibility compared row by row with what the assignment's rules
-# give (step.category, step, category, default). The schedule: the installed kit, by date,
-# hands out what the assignment's release and solutions entries say and writes the due date.
-# Usage: gradescope_bundle.sh BUILD_DIR RESULTS_CHECKER
+# The Gradescope autograder as Gradescope runs it (docs/assignment.md): `pbrlab autograder`
+# zipping the grader bundle (scripts/grader-bundle.sh) with an assignment of three steps, the
+# zip unpacked into a fake /autograder tree, setup.sh (nothing installed: the bundle's pbrlab
+# runs where it is) and run_autograder on two submissions: the reference solutions (full
+# points) and two planted mistakes: ndf's alpha = roughness (no values check passes: nothing)
+# and fresnel's pow6 (the weights' share of what passed). Each results.json is validated
+# against Gradescope's documented format, and its visibility compared row by row with what the
+# assignment's rules give (step.category, step, category, default). The schedule: the bundle's
+# kit, by date, hands out what the assignment's release and solutions entries say and writes the
+# due date. And pbrlab killed: run_autograder still writes a results.json saying so.
+# (grader_bare_system.sh runs the same zip on a system without pbrlab's libraries.)
+# Usage: gradescope_bundle.sh BUNDLE_DIR RESULTS_CHECKER
 set -euo pipefail
-build=$(cd "$1" && pwd)
+bundle=$(cd "$1" && pwd)
 check=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-
-echo "== cpack -G DEB"
-(cd "$work" && cpack -G DEB --config "$build/CPackConfig.cmake" -B "$work/package" > cpack.log)
-deb=$(ls "$work"/package/pbrlab_*_*.deb)
-dpkg-deb -I "$deb" | grep -E '^ (Package|Version|Architecture|Depends):'
-dpkg-deb -c "$deb" > "$work/contents.txt"
-for f in ./usr/bin/pbrlab ./usr/lib/pbrlab/modules/pbrlab-ndf.so ./usr/share/pbrlab/shaders/ \
-         ./usr/include/pbrlab/module.h ./usr/lib/cmake/pbrlab/pbrlabConfig.cmake; do
-    grep -q " $f" "$work/contents.txt" || { echo "not in the package: $f"; exit 1; }
-done
+pbrlab=$bundle/bin/pbrlab
 
 echo "== pbrlab autograder"
 cat > "$work/assignment.json" <<'JSON'
@@ -42,21 +35,24 @@ cat > "$work/assignment.json" <<'JSON'
   "time_limit_seconds": 120
 }
 JSON
-"$build/pbrlab" autograder --assignment "$work/assignment.json" --out "$work/out" --deb "$deb"
+# The bundle's own pbrlab finds the bundle it runs from.
+"$pbrlab" autograder --assignment "$work/assignment.json" --out "$work/out"
 mkdir -p "$work/autograder/source"
 unzip -q "$work/out/autograder.zip" -d "$work/autograder/source"
 test -x "$work/autograder/source/setup.sh"
 test -x "$work/autograder/source/run_autograder"
+test -x "$work/autograder/source/pbrlab/bin/pbrlab"
 cmp "$work/assignment.json" "$work/autograder/source/assignment.json"
+cmp "$bundle/lib/libOSMesa.so.8" "$work/autograder/source/pbrlab/lib/libOSMesa.so.8"
+# Gradescope's default timeout, 600 s, less the margin (gradingBudgetSeconds).
+grep -q -- "--time-budget 540" "$work/autograder/source/run_autograder"
 # Gradescope copies run_autograder to /autograder, and runs setup.sh from the source folder.
 cp "$work/autograder/source/run_autograder" "$work/autograder/run_autograder"
 
-export PBRLAB_AUTOGRADER_ROOT="$work/autograder" PBRLAB_PREFIX="$work/root"
+export PBRLAB_AUTOGRADER_ROOT="$work/autograder"
 echo "== setup.sh"
-(cd "$work/autograder/source" && bash ./setup.sh)
+(cd "$work/autograder/source" && ./setup.sh)
 ls "$work/autograder/source/pbrlab-cache" > /dev/null
-# The installed program (not the build's) grades from now on.
-test -x "$work/root/usr/bin/pbrlab"
 
 grade() {  # SUBMISSION_DIR EXPECTED_SCORE
     rm -rf "$work/autograder/submission" "$work/autograder/results"
@@ -66,12 +62,12 @@ grade() {  # SUBMISSION_DIR EXPECTED_SCORE
 }
 
 echo "== run_autograder: the reference solutions"
-"$work/root/usr/bin/pbrlab" kit --assignment "$work/assignment.json" --with-solutions \
-    --out "$work/solutions" > /dev/null
+"$pbrlab" kit --assignment "$work/assignment.json" --with-solutions --out "$work/solutions" \
+    > /dev/null
 grade "$work/solutions" 5
 echo "== run_autograder: planted mistakes in ndf and fresnel"
 cp -r "$work/solutions" "$work/mistake"
-labs=$work/root/usr/share/pbrlab/labs
+labs=$bundle/share/pbrlab/labs
 cp "$labs/ndf/mistakes/alpha_is_roughness.glsl" "$work/mistake/ndf.glsl"
 cp "$labs/fresnel/mistakes/pow6.glsl" "$work/mistake/fresnel.glsl"
 # ndotl 1 + ndf 0 (its contract and invariants hold, and a stub's would too) + fresnel
@@ -111,9 +107,21 @@ results=$work/autograder/results/results.json
 grep -qF '| ndf |' "$results" || { echo "ndf missing from the summary"; exit 1; }
 if grep -qF '| fresnel |' "$results"; then echo "fresnel (after_due_date) in the summary"; exit 1; fi
 
+echo "== pbrlab killed: run_autograder still writes a results.json, which says so"
+real=$work/autograder/source/pbrlab/bin/pbrlab
+mv "$real" "$real.real"
+printf '#!/bin/sh\nkill -KILL $$\n' > "$real"
+chmod 755 "$real"
+rm -rf "$work/autograder/results"
+(cd "$work/autograder" && ./run_autograder > /dev/null 2>&1)
+mv "$real.real" "$real"
+"$check" "$work/autograder/results/results.json" 0
+grep -q 'Not graded.*exit status 137' "$work/autograder/results/results.json" ||
+    { cat "$work/autograder/results/results.json"; exit 1; }
+
 echo "== the kit by date: release, solutions, due"
 kit() {  # DATE OUT
-    "$work/root/usr/bin/pbrlab" kit --assignment "$work/assignment.json" --date "$1" --out "$2"
+    "$pbrlab" kit --assignment "$work/assignment.json" --date "$1" --out "$2"
 }
 if kit 2026-09-06 "$work/kit-early" > "$work/kit-early.txt" 2>&1; then
     echo "a kit before the first release"; exit 1
@@ -132,5 +140,5 @@ cmp "$work/kit-solutions/ndf.glsl" "$labs/ndf/solution.glsl"
 if cmp -s "$work/kit-solutions/fresnel.glsl" "$labs/fresnel/solution.glsl"; then
     echo "fresnel's solution handed out: solutions go through ndf only"; exit 1
 fi
-echo "autograder bundle: installed from the .deb, results.json valid, scores as the weights" \
-     "say, visibility row by row, the kit by date"
+echo "autograder zip: set up with nothing installed, results.json valid, scores as the" \
+     "weights say, visibility row by row, the kit by date"

@@ -1,10 +1,13 @@
 // Validates a results.json against Gradescope's documented format (autograder specifications,
 // "Output format"): only the documented fields, each of its documented type and values, and
-// the total equal to the sum of the tests' scores. Used by gradescope_bundle.sh.
+// the total equal to the sum of the tests' scores. Used by gradescope_bundle.sh and
+// grader_bare_system.sh.
 // Usage: pbrlab_gradescope_check results.json [expected-score] [--visibility]
+//                                [--same-as OTHER.json]
 // Prints the score (with --visibility, then "<name>: <visibility>" for the result as a whole,
 // named "(result)", and for each test in order, for a test to compare row by row); exit 1 with
-// every problem listed when the file does not validate.
+// every problem listed when the file does not validate. --same-as: also a problem for every
+// difference from OTHER.json but the time grading took (execution_time): the same grade.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -52,8 +55,16 @@ int main(int argc, char** argv) {
     const auto flag = std::find(args.begin(), args.end(), "--visibility");
     const bool listVisibility = flag != args.end();
     if (listVisibility) args.erase(flag);
+    std::string sameAs;
+    if (const auto at = std::find(args.begin(), args.end(), "--same-as");
+        at != args.end() && at + 1 != args.end()) {
+        sameAs = *(at + 1);
+        args.erase(at, at + 2);
+    }
     if (args.empty() || args.size() > 2) {
-        std::fprintf(stderr, "usage: %s results.json [expected-score] [--visibility]\n", argv[0]);
+        std::fprintf(stderr,
+                     "usage: %s results.json [expected-score] [--visibility] [--same-as OTHER]\n",
+                     argv[0]);
         return 2;
     }
     std::ifstream in(args[0]);
@@ -120,6 +131,23 @@ int main(int argc, char** argv) {
     if (args.size() > 1 &&
         std::abs(total - std::stod(args[1])) > 1e-9 * std::max(1.0, std::abs(total)))
         problem("results.score", std::to_string(total) + ", expected " + args[1]);
+    if (!sameAs.empty()) {
+        std::ifstream otherIn(sameAs);
+        json other;
+        try {
+            other = json::parse(otherIn);
+        } catch (const std::exception& e) {
+            problem(sameAs, std::string("not JSON: ") + e.what());
+        }
+        json mine = r;
+        mine.erase("execution_time");
+        other.erase("execution_time");
+        // Every difference as a JSON patch operation, the value it would take shortened.
+        for (const json& op : json::diff(other, mine))
+            problem("--same-as " + sameAs,
+                    op.value("op", std::string()) + " " + op.value("path", std::string()) +
+                        (op.contains("value") ? ": " + op["value"].dump().substr(0, 160) : ""));
+    }
     for (const std::string& p : problems)
         std::fprintf(stderr, "%s: %s\n", args[0].c_str(), p.c_str());
     std::printf("%.9g\n", total);

@@ -214,6 +214,49 @@ TEST(Grade, ATimeLimitKillsTheModuleAndTheReportStillComesOut) {
     EXPECT_EQ(gs["tests"].size(), 2u);
 }
 
+TEST(Grade, ATimeBudgetForTheWholeSubmissionEndsItAndSaysWhichStepsItCut) {
+    // run_autograder's budget (Gradescope's timeout less a margin): the step grading when it
+    // runs out is killed, the steps after it are not started, and the report still comes out
+    // with each of them at 0, saying why; the steps before it keep their grades.
+    Grader g;
+    fs::path kit = g.kit(true);
+    GradeOptions o;
+    o.submission = fs::canonical(kit);
+    o.modules = {"ndotl", "g1", "smith"};
+    o.timeoutSeconds = 300;
+    o.jobs = 1;
+    o.budgetSeconds = 0.05;
+    GradeReport r = gradeSubmission(g.modules, g.paths, o);
+    ASSERT_EQ(r.modules.size(), 3u);
+    const ModuleGrade& first = Grader::find(r, "ndotl");
+    EXPECT_EQ(first.status, "timeout");
+    EXPECT_TRUE(contains(first.message, "may take 0 s, and that ran out during")) << first.message;
+    for (const char* id : {"g1", "smith"}) {
+        const ModuleGrade& m = Grader::find(r, id);
+        EXPECT_EQ(m.status, "timeout") << id;
+        EXPECT_EQ(m.score, 0) << id;
+        EXPECT_TRUE(contains(m.message, "not graded: grading the whole submission may take"))
+            << id << ": " << m.message;
+    }
+    EXPECT_LT(r.seconds, 30) << "the budget did not end the grading";
+    // A budget that does not run out changes nothing.
+    o.modules = {"ndotl"};
+    o.budgetSeconds = 600;
+    EXPECT_EQ(gradeSubmission(g.modules, g.paths, o).modules.at(0).status, "passed");
+}
+
+TEST(Grade, ACpuQuotaSetsHowManyProcessesGradeAtOnce) {
+    // Gradescope's containers see every processor of the host but may use half of one: the
+    // grading processes follow the quota (rounded up), never more than the processors.
+    EXPECT_EQ(cpusOfQuota("max 100000", -1, -1, 8), 8);
+    EXPECT_EQ(cpusOfQuota("50000 100000", -1, -1, 64), 1);
+    EXPECT_EQ(cpusOfQuota("150000 100000", -1, -1, 64), 2);
+    EXPECT_EQ(cpusOfQuota("400000 100000", -1, -1, 2), 2);
+    EXPECT_EQ(cpusOfQuota("", 50000, 100000, 64), 1);  // cgroup v1
+    EXPECT_EQ(cpusOfQuota("", -1, 100000, 4), 4);      // v1, no quota
+    EXPECT_EQ(cpusOfQuota("", -1, -1, 0), 1);          // no processor count: one
+}
+
 TEST(Grade, ReportsHaveTheFieldsGradescopeReads) {
     Grader g;
     GradeReport r = g.grade(g.kit(true), {"ndotl"});

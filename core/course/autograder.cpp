@@ -8,16 +8,19 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <thread>
 
 #include "gl/context.h"
 #include "grading/stability.h"
 #include "render/display.h"
 #include "steps/contract.h"
 #include "util/error.h"
+#include "util/log.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -125,6 +128,7 @@ struct Child {
     std::chrono::steady_clock::time_point deadline;
     std::string text;  // what it wrote so far
     bool timedOut = false;
+    bool outOfBudget = false;  // killed when the submission's time budget ran out
 };
 
 // Forks and grades one module in the child, which tells each stage it starts ("stage ...")
@@ -149,6 +153,11 @@ Child startChild(const LoadedModule& m, const DataPaths& paths, const GradeOptio
         };
         std::string out;
         try {
+            // llvmpipe starts a rendering thread per processor it sees; under a CPU quota (a
+            // container's) only the quota's worth can run.
+            if (const int cpus = usableCpus();
+                cpus < int(std::thread::hardware_concurrency()) && !std::getenv("LP_NUM_THREADS"))
+                setenv("LP_NUM_THREADS", std::to_string(cpus).c_str(), 1);
             auto context = createHeadlessContext();
             LabRenderer renderer(paths);
             GradeOptions options = o;
@@ -202,6 +211,14 @@ ModuleGrade finishChild(Child& c, const GradeOptions& o) {
         }
     }
     const bool compiling = stage.size() >= 7 && stage.compare(stage.size() - 7, 7, "compile") == 0;
+    if (c.timedOut && c.outOfBudget) {
+        g.status = "timeout";
+        g.message = "not finished: grading the whole submission may take " +
+                    std::to_string(int(o.budgetSeconds)) + " s, and that ran out during " +
+                    (stage.empty() ? std::string("this step") : stage) +
+                    " (the steps graded before it took that time)";
+        return g;
+    }
     if (c.timedOut) {
         g.status = "timeout";
         g.message = "killed after " + std::to_string(int(o.timeoutSeconds)) + " s" +
@@ -241,15 +258,44 @@ void gradeInChildren(const std::vector<GradeJob>& work, const DataPaths& paths,
                      const GradeOptions& o, std::vector<ModuleGrade>& grades) {
     if (!work.empty()) preloadHeadlessLibrary();  // inherited by every child
     const size_t jobs = size_t(std::max(1, o.jobs));
+    logLine(
+        "grade",
+        std::to_string(work.size()) + " steps, " + std::to_string(jobs) + " at once" +
+            (o.budgetSeconds > 0 ? ", within " + std::to_string(int(o.budgetSeconds)) + " s" : ""));
+    using Clock = std::chrono::steady_clock;
+    const bool budgeted = o.budgetSeconds > 0;
+    const Clock::time_point budgetEnd =
+        Clock::now() + std::chrono::milliseconds(long(o.budgetSeconds * 1000));
     std::vector<Child> running;
     size_t next = 0;
     while (next < work.size() || !running.empty()) {
         while (running.size() < jobs && next < work.size()) {
+            if (budgeted && Clock::now() >= budgetEnd) {
+                // Not started: said as such, in the order of the jobs.
+                for (; next < work.size(); ++next) {
+                    ModuleGrade& g = grades[next];
+                    g.id = work[next].module->desc->id;
+                    g.title = work[next].module->desc->title;
+                    g.status = "timeout";
+                    g.message = "not graded: grading the whole submission may take " +
+                                std::to_string(int(o.budgetSeconds)) +
+                                " s, and that ran out before this step (the steps graded "
+                                "before it took that time)";
+                    if (o.progress) o.progress(g);
+                }
+                break;
+            }
             GradeOptions each = o;
             each.submission = work[next].submission;
-            running.push_back(startChild(*work[next].module, paths, each, next));
+            Child c = startChild(*work[next].module, paths, each, next);
+            if (budgeted && budgetEnd < c.deadline) {
+                c.deadline = budgetEnd;
+                c.outOfBudget = true;  // meaningful only if it times out
+            }
+            running.push_back(std::move(c));
             ++next;
         }
+        if (running.empty()) break;  // the budget ran out with nothing left running
         std::vector<pollfd> fds;
         for (const Child& c : running) fds.push_back({c.fd, POLLIN, 0});
         const auto now = std::chrono::steady_clock::now();
@@ -284,6 +330,63 @@ void gradeInChildren(const std::vector<GradeJob>& work, const DataPaths& paths,
 // What a compiler message means in the contract's terms, where it can tell.
 
 }  // namespace
+
+int cpusOfQuota(const std::string& cgroup2CpuMax, long cgroup1Quota, long cgroup1Period,
+                int processors) {
+    double quota = -1, period = -1;
+    if (!cgroup2CpuMax.empty()) {
+        std::istringstream in(cgroup2CpuMax);  // "max 100000" or "50000 100000"
+        std::string q;
+        in >> q >> period;
+        if (q != "max" && in) quota = std::atof(q.c_str());
+    } else if (cgroup1Quota > 0 && cgroup1Period > 0) {
+        quota = double(cgroup1Quota), period = double(cgroup1Period);
+    }
+    processors = std::max(1, processors);
+    if (quota <= 0 || period <= 0) return processors;
+    return std::clamp(int(std::ceil(quota / period)), 1, processors);
+}
+
+int usableCpus() {
+    auto read = [](const std::string& file) {
+        std::ifstream in(file);
+        std::string text;
+        std::getline(in, text);
+        return text;
+    };
+    auto number = [&](const std::string& file) {
+        const std::string text = read(file);
+        return text.empty() ? -1L : std::atol(text.c_str());
+    };
+    // This process's cgroup ("0::/a/b" under cgroup v2, "N:cpu,cpuacct:/a/b" under v1; "/" in
+    // a container that has a cgroup namespace) and each above it: the smallest quota counts.
+    std::string v2 = "/", v1 = "/";
+    {
+        std::ifstream in("/proc/self/cgroup");
+        for (std::string line; std::getline(in, line);) {
+            const size_t a = line.find(':'), b = line.find(':', a + 1);
+            if (a == std::string::npos || b == std::string::npos) continue;
+            const std::string controllers = "," + line.substr(a + 1, b - a - 1) + ",";
+            if (controllers == ",,") v2 = line.substr(b + 1);
+            if (controllers.find(",cpu,") != std::string::npos) v1 = line.substr(b + 1);
+        }
+    }
+    const int processors = int(std::thread::hardware_concurrency());
+    int cpus = std::max(1, processors);
+    for (fs::path dir = v2;; dir = dir.parent_path()) {
+        const std::string d = dir.string() == "/" ? "" : dir.string();
+        cpus = std::min(cpus,
+                        cpusOfQuota(read("/sys/fs/cgroup" + d + "/cpu.max"), -1, -1, processors));
+        if (dir == dir.parent_path()) break;
+    }
+    for (fs::path dir = v1;; dir = dir.parent_path()) {
+        const std::string d = "/sys/fs/cgroup/cpu" + (dir.string() == "/" ? "" : dir.string());
+        cpus = std::min(cpus, cpusOfQuota("", number(d + "/cpu.cfs_quota_us"),
+                                          number(d + "/cpu.cfs_period_us"), processors));
+        if (dir == dir.parent_path()) break;
+    }
+    return cpus;
+}
 
 std::string jsonText(const json& report) {
     return dumpJson(report, 2);

@@ -21,7 +21,11 @@ struct GradeOptions {
     std::filesystem::path submission;
     std::vector<std::string> modules;  // empty: all loaded modules
     bool cumulative = false;
-    double timeoutSeconds = 60;        // per module, wall clock
+    double timeoutSeconds = 60;  // per module, wall clock
+    // The whole submission's wall clock (0: none): a step still grading when it runs out is
+    // killed, one not started is not graded; both score 0 and say why (status "timeout"). So
+    // that a grader with a time limit of its own (Gradescope's) still writes its results.
+    double budgetSeconds = 0;
     std::size_t memoryLimitMb = 8192;  // per module, address space (llvmpipe reserves a lot)
     int jobs = 2;                      // modules graded at once (one child process each)
     std::filesystem::path html;        // folder for the HTML report and its images, or empty
@@ -57,6 +61,17 @@ std::vector<ModuleGrade> gradeJobs(const std::vector<GradeJob>& jobs, const Data
 // whatever is wrong with one file is that step's status and message.
 GradeReport gradeSubmission(const ModuleRegistry& modules, const DataPaths& paths,
                             const GradeOptions& options);
+
+// The processors this process may keep busy: those it may run on, fewer under a CPU quota
+// (a container's cgroup, as Gradescope's: half a processor by default shows every processor of
+// the host). The default number of grading processes, and of llvmpipe's threads in each under
+// a quota.
+int usableCpus();
+// The rule, from cgroup v2's cpu.max line ("max 100000", "50000 100000"; empty: none) or else
+// cgroup v1's quota and period (-1: none), and the processors it may run on: the quota rounded
+// up, at least 1, at most the processors.
+int cpusOfQuota(const std::string& cgroup2CpuMax, long cgroup1Quota, long cgroup1Period,
+                int processors);
 
 // Points as every report gives them (docs/assignment.md, "Rounding"): whole micro-points.
 // A score is a whole number of millionths of a point, held as the double nearest that decimal

@@ -1,9 +1,11 @@
 #include "course/gradescope.h"
 
-#include <array>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <algorithm>
 #include <cstdint>
 #include <fstream>
-#include <iterator>
 
 #include "steps/contract.h"
 #include "steps/paths.h"
@@ -118,124 +120,146 @@ json toGradescope(const GradeReport& r, const Assignment& a) {
             {"tests", tests}};
 }
 
-std::string zipArchive(const std::vector<ZipEntry>& entries) {
-    static const std::array<std::uint32_t, 256> table = [] {
-        std::array<std::uint32_t, 256> t{};
-        for (std::uint32_t n = 0; n < 256; ++n) {
-            std::uint32_t c = n;
-            for (int k = 0; k < 8; ++k) c = c & 1 ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-            t[n] = c;
-        }
-        return t;
-    }();
-    auto crc32 = [&](const std::string& data) {
-        std::uint32_t c = 0xFFFFFFFFu;
-        for (unsigned char b : data) c = table[(c ^ b) & 0xFF] ^ (c >> 8);
-        return c ^ 0xFFFFFFFFu;
-    };
-    std::string out, directory;
+void writeZip(const fs::path& zip, const std::vector<ZipEntry>& entries) {
+    if (zip.has_parent_path()) fs::create_directories(zip.parent_path());
+    fs::path tmp = zip;
+    tmp += ".tmp" + std::to_string(getpid());
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) throw Error(tmp.string() + ": cannot write");
     auto u16 = [](std::string& s, std::uint32_t v) {
         s += char(v & 0xFF), s += char((v >> 8) & 0xFF);
     };
     auto u32 = [&](std::string& s, std::uint32_t v) { u16(s, v & 0xFFFF), u16(s, v >> 16); };
+    std::string directory;
+    std::uint64_t offset = 0;
     for (const ZipEntry& e : entries) {
-        if (e.data.size() >= 0xFFFFFFFFu || out.size() >= 0xFFFFFFFFu)
-            throw Error("zip: " + e.name + ": larger than 4 GB (no ZIP64 here)");
-        const std::uint32_t crc = crc32(e.data), offset = std::uint32_t(out.size()),
-                            size = std::uint32_t(e.data.size());
-        // Local header: version 1.0, no flags, stored, time 00:00 1 Jan 1980 (reproducible).
-        u32(out, 0x04034b50), u16(out, 10), u16(out, 0), u16(out, 0), u16(out, 0), u16(out, 0x21);
-        u32(out, crc), u32(out, size), u32(out, size), u16(out, std::uint32_t(e.name.size())),
-            u16(out, 0);
-        out += e.name + e.data;
+        const std::string data = e.data.empty() && !e.file.empty() ? readWholeFile(e.file) : e.data;
+        if (data.size() >= 0xFFFFFFFFu || offset >= 0xFFFFFFFFu)
+            throw Error("zip: " + e.name + ": past 4 GB (no ZIP64 here)");
+        const std::uint32_t crc =
+            std::uint32_t(crc32(0, reinterpret_cast<const Bytef*>(data.data()), uInt(data.size())));
+        // Raw deflate (no zlib header), as ZIP's method 8 wants it.
+        std::string packed(deflateBound(nullptr, uLong(data.size())) + 64, '\0');
+        z_stream z{};
+        if (deflateInit2(&z, 6, Z_DEFLATED, -MAX_WBITS, 8, Z_DEFAULT_STRATEGY) != Z_OK)
+            throw Error("zip: zlib's deflateInit2 failed");
+        z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+        z.avail_in = uInt(data.size());
+        z.next_out = reinterpret_cast<Bytef*>(packed.data());
+        z.avail_out = uInt(packed.size());
+        const int done = deflate(&z, Z_FINISH);
+        packed.resize(z.total_out);
+        deflateEnd(&z);
+        if (done != Z_STREAM_END) throw Error("zip: " + e.name + ": deflate failed");
+        const bool deflated = packed.size() < data.size();
+        const std::string& stored = deflated ? packed : data;
+        const std::uint32_t method = deflated ? 8 : 0, version = deflated ? 20 : 10,
+                            size = std::uint32_t(data.size()), csize = std::uint32_t(stored.size()),
+                            at = std::uint32_t(offset);
+        // Local header: no flags, time 00:00 1 Jan 1980 (reproducible).
+        std::string header;
+        u32(header, 0x04034b50), u16(header, version), u16(header, 0), u16(header, method),
+            u16(header, 0), u16(header, 0x21);
+        u32(header, crc), u32(header, csize), u32(header, size),
+            u16(header, std::uint32_t(e.name.size())), u16(header, 0);
+        header += e.name;
+        out.write(header.data(), std::streamsize(header.size()));
+        out.write(stored.data(), std::streamsize(stored.size()));
+        offset += header.size() + stored.size();
         // Central directory entry, made by Unix (3): the mode is in the external attributes,
-        // so that unzip restores run_autograder's execute bit.
+        // so that unzip restores the scripts' execute bit.
         const std::uint32_t mode = e.executable ? 0100755 : 0100644;
-        u32(directory, 0x02014b50), u16(directory, 0x0300 | 10), u16(directory, 10),
-            u16(directory, 0), u16(directory, 0), u16(directory, 0), u16(directory, 0x21);
-        u32(directory, crc), u32(directory, size), u32(directory, size),
+        u32(directory, 0x02014b50), u16(directory, 0x0300 | version), u16(directory, version),
+            u16(directory, 0), u16(directory, method), u16(directory, 0), u16(directory, 0x21);
+        u32(directory, crc), u32(directory, csize), u32(directory, size),
             u16(directory, std::uint32_t(e.name.size())), u16(directory, 0), u16(directory, 0),
-            u16(directory, 0), u16(directory, 0), u32(directory, mode << 16),
-            u32(directory, offset);
+            u16(directory, 0), u16(directory, 0), u32(directory, mode << 16), u32(directory, at);
         directory += e.name;
     }
-    const std::uint32_t at = std::uint32_t(out.size());
-    out += directory;
-    u32(out, 0x06054b50), u16(out, 0), u16(out, 0), u16(out, std::uint32_t(entries.size())),
-        u16(out, std::uint32_t(entries.size())), u32(out, std::uint32_t(directory.size())),
-        u32(out, at), u16(out, 0);
-    return out;
+    if (offset + directory.size() >= 0xFFFFFFFFu) throw Error("zip: past 4 GB (no ZIP64 here)");
+    std::string end;
+    u32(end, 0x06054b50), u16(end, 0), u16(end, 0), u16(end, std::uint32_t(entries.size())),
+        u16(end, std::uint32_t(entries.size())), u32(end, std::uint32_t(directory.size())),
+        u32(end, std::uint32_t(offset)), u16(end, 0);
+    out.write(directory.data(), std::streamsize(directory.size()));
+    out.write(end.data(), std::streamsize(end.size()));
+    out.close();
+    if (!out) throw Error(tmp.string() + ": cannot write");
+    fs::rename(tmp, zip);
 }
 
 namespace {
 
-const char* const kSetup = R"(#!/usr/bin/env bash
-# Gradescope runs this once, as root, when it builds the autograder image (written by
-# `pbrlab autograder`): install pbrlab from the Debian package beside this file, then fill the
-# caches every grade reads by grading the reference solutions of the assignment's steps, so
-# that no submission pays for them.
-#   PBRLAB_AUTOGRADER_ROOT  instead of /autograder
-#   PBRLAB_PREFIX           unpack the package there (dpkg-deb -x) instead of installing it
-#                           with apt-get: no root needed (tests)
-set -euo pipefail
+// The scripts hold to what the bundle needs of the system: /bin/sh and the tools of every base
+// image (mkdir, rm, chmod, cat). BUDGET in run_autograder becomes gradingBudgetSeconds()'s
+// seconds.
+const char* const kSetup = R"(#!/bin/sh
+# Gradescope runs this once, as root, when it builds the autograder's image (written by
+# `pbrlab autograder`, docs/assignment.md). It installs nothing: pbrlab/ beside it is the grader
+# bundle, which needs only glibc >= 2.35. It grades the reference solutions of the
+# assignment's steps once: that fills the caches every grade reads, so that no submission pays
+# for them, and proves that the bundle grades on this image. A step that does not pass fails
+# the build, so that "Update autograder" shows it, not the students.
+#   PBRLAB_AUTOGRADER_ROOT  instead of /autograder (tests)
+set -eu
 root=${PBRLAB_AUTOGRADER_ROOT:-/autograder}
 source_dir=$root/source
-debs=("$source_dir"/pbrlab_*.deb)
-if [ ! -f "${debs[0]}" ]; then
-    echo "setup.sh: no pbrlab_*.deb in $source_dir" >&2
-    exit 1
-fi
-if [ -n "${PBRLAB_PREFIX:-}" ]; then
-    dpkg-deb -x "${debs[0]}" "$PBRLAB_PREFIX"
-    pbrlab=$PBRLAB_PREFIX/usr/bin/pbrlab
-else
-    apt-get update
-    DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${debs[0]}"
-    pbrlab=/usr/bin/pbrlab
-fi
-export PBRLAB_CACHE=$source_dir/pbrlab-cache
-reference=$(mktemp -d)
-trap 'rm -rf "$reference"' EXIT
-"$pbrlab" kit --assignment "$source_dir/assignment.json" --with-solutions --out "$reference/kit"
-"$pbrlab" grade "$reference/kit" --assignment "$source_dir/assignment.json" > /dev/null
-echo "setup.sh: pbrlab installed, caches filled in $PBRLAB_CACHE"
+pbrlab=$source_dir/pbrlab/bin/pbrlab
+chmod 755 "$pbrlab" "$source_dir/run_autograder"  # in case the unzip dropped the modes
+export PBRLAB_CACHE="$source_dir/pbrlab-cache" MESA_SHADER_CACHE_DIR="$source_dir/mesa-cache"
+reference=$source_dir/reference-solutions
+rm -rf "$reference"
+"$pbrlab" kit --assignment "$source_dir/assignment.json" --with-solutions --out "$reference"
+# No time limit of the assignment's here: these are the reference solutions, and the first
+# grade of some steps computes the converged integrals that every later grade reads (minutes
+# on half a processor).
+"$pbrlab" grade "$reference" --assignment "$source_dir/assignment.json" --fail-unless-passed \
+    --timeout 3600
+rm -rf "$reference"
+echo "setup.sh: the grader bundle grades here; caches filled in $PBRLAB_CACHE"
 )";
 
-const char* const kRunAutograder = R"(#!/usr/bin/env bash
+const char* const kRunAutograder = R"(#!/bin/sh
 # Gradescope runs this for every submission (written by `pbrlab autograder`): grade
-# /autograder/submission by the assignment into /autograder/results/results.json. pbrlab
-# exits 0 whenever grading ran, whatever the score. The same variables as setup.sh.
-set -euo pipefail
+# /autograder/submission by the assignment into /autograder/results/results.json, within
+# BUDGET s of wall clock (the assignment's Gradescope timeout less a margin: a step still
+# grading then, or not started, scores 0 and says so). pbrlab exits 0 whenever grading ran,
+# whatever the score; should it not run to the end at all (killed for memory, say), a
+# results.json still says what happened. The same variable as setup.sh.
 root=${PBRLAB_AUTOGRADER_ROOT:-/autograder}
-if [ -n "${PBRLAB_PREFIX:-}" ]; then
-    pbrlab=$PBRLAB_PREFIX/usr/bin/pbrlab
-else
-    pbrlab=/usr/bin/pbrlab
-fi
+source_dir=$root/source
+results=$root/results/results.json
 mkdir -p "$root/results"
-export PBRLAB_CACHE=$root/source/pbrlab-cache
-"$pbrlab" grade "$root/submission" --assignment "$root/source/assignment.json" \
-    --gradescope "$root/results/results.json"
+rm -f "$results"
+export PBRLAB_CACHE="$source_dir/pbrlab-cache" MESA_SHADER_CACHE_DIR="$source_dir/mesa-cache"
+"$source_dir/pbrlab/bin/pbrlab" grade "$root/submission" \
+    --assignment "$source_dir/assignment.json" --gradescope "$results" --time-budget BUDGET
+status=$?
+if [ ! -s "$results" ]; then
+    cat > "$results" <<RESULTS
+{"score": 0, "output_format": "md", "stdout_visibility": "hidden", "tests": [],
+ "output": "**Not graded.** The autograder stopped (exit status $status) before it could grade this submission: this says nothing of your work. Your instructor sees what happened and can grade it again."}
+RESULTS
+fi
+exit 0
 )";
+
+bool isGraderBundle(const fs::path& dir) {
+    std::error_code ec;
+    return fs::is_regular_file(dir / kGraderBundleMarker, ec) &&
+           fs::is_regular_file(dir / "bin" / "pbrlab", ec);
+}
 
 }  // namespace
 
-fs::path findDebianPackage() {
-    std::vector<fs::path> found;
-    const std::vector<fs::path> places = {fs::current_path(), executableDir()};
-    for (const fs::path& place : places) {
-        std::error_code ec;
-        for (const auto& e : fs::directory_iterator(place, ec)) {
-            const std::string name = e.path().filename().string();
-            if (name.rfind("pbrlab_", 0) == 0 && e.path().extension() == ".deb")
-                found.push_back(e.path());
-        }
-        if (!found.empty()) break;
-    }
-    if (found.size() == 1) return found.front();
-    throw Error(std::string(found.empty() ? "no" : "more than one") + " pbrlab_*.deb in " +
-                places[0].string() + " or " + places[1].string() +
-                ": build it with `cpack -G DEB` in the build folder, or give --deb FILE");
+fs::path findGraderBundle() {
+    const fs::path exe = executableDir();
+    if (isGraderBundle(exe.parent_path())) return exe.parent_path();
+    if (isGraderBundle(exe / "grader-bundle")) return exe / "grader-bundle";
+    throw Error("no grader bundle: this pbrlab runs from none, and there is no " +
+                (exe / "grader-bundle").string() +
+                "; make it with `bash scripts/grader-bundle.sh` in pbrlab's source folder, or "
+                "give --bundle DIR");
 }
 
 std::optional<Assignment> gradeAssignment(const std::string& file, const ModuleRegistry& modules,
@@ -250,20 +274,51 @@ json gradescopeResults(const GradeReport& report, const std::optional<Assignment
     return a ? toGradescope(report, *a) : toGradescope(report);
 }
 
+double gradingBudgetSeconds(double gradescopeTimeoutSeconds) {
+    // A tenth of the timeout, at least 30 s, for the container's and pbrlab's start and
+    // writing results.json; never below half the timeout.
+    return std::max(0.5 * gradescopeTimeoutSeconds,
+                    gradescopeTimeoutSeconds - std::max(30.0, 0.1 * gradescopeTimeoutSeconds));
+}
+
 fs::path writeAutograderBundle(AutograderOptions o, const ModuleRegistry& modules) {
-    loadAssignment(o.assignment, stepIds(modules));  // a broken file is refused here, not on
-                                                     // Gradescope
-    if (o.deb.empty()) o.deb = findDebianPackage();
-    const std::string debName = o.deb.filename().string();
-    if (debName.rfind("pbrlab_", 0) != 0 || o.deb.extension() != ".deb")
-        throw Error(o.deb.string() + ": not a pbrlab_*.deb (cpack -G DEB in the build folder)");
-    const std::vector<ZipEntry> entries = {{"setup.sh", kSetup, true},
-                                           {"run_autograder", kRunAutograder, true},
-                                           {"assignment.json", readWholeFile(o.assignment), false},
-                                           {debName, readWholeFile(o.deb), false}};
+    // A broken file is refused here, not on Gradescope.
+    const Assignment a = loadAssignment(o.assignment, stepIds(modules));
+    if (o.gradescopeTimeoutSeconds < 60)
+        throw Error("--gradescope-timeout: at least 60 s (Gradescope's default is 600)");
+    if (o.bundle.empty()) o.bundle = findGraderBundle();
+    if (!isGraderBundle(o.bundle))
+        throw Error(o.bundle.string() + ": not a grader bundle (no " + kGraderBundleMarker +
+                    " and bin/pbrlab; scripts/grader-bundle.sh makes one)");
+    for (const std::string& id : a.steps)
+        if (!fs::exists(o.bundle / "lib" / "pbrlab" / "modules" / ("pbrlab-" + id + ".so")))
+            throw Error(o.bundle.string() + ": has no plugin for step " + id +
+                        " of the assignment (a bundle of another build?)");
+    std::string run = kRunAutograder;
+    const std::string budget =
+        std::to_string(int(gradingBudgetSeconds(o.gradescopeTimeoutSeconds)));
+    for (size_t at; (at = run.find("BUDGET")) != std::string::npos;) run.replace(at, 6, budget);
+    std::vector<ZipEntry> entries = {{"setup.sh", kSetup, {}, true},
+                                     {"run_autograder", run, {}, true},
+                                     {"assignment.json", readWholeFile(o.assignment), {}, false}};
+    // The bundle's files in a fixed order: the same bundle makes the same zip.
+    std::vector<fs::path> files;
+    for (const auto& e : fs::recursive_directory_iterator(o.bundle)) {
+        if (e.is_symlink())
+            throw Error(e.path().string() +
+                        ": a symbolic link in the grader bundle (it holds "
+                        "copies: not every unzip keeps links)");
+        if (e.is_regular_file()) files.push_back(e.path());
+    }
+    std::sort(files.begin(), files.end());
+    for (const fs::path& f : files) {
+        const bool executable =
+            (fs::status(f).permissions() & fs::perms::owner_exec) != fs::perms::none;
+        entries.push_back(
+            {"pbrlab/" + f.lexically_relative(o.bundle).generic_string(), "", f, executable});
+    }
     const fs::path zip = o.out / "autograder.zip";
-    fs::create_directories(o.out);
-    writeFileAtomically(zip, zipArchive(entries));
+    writeZip(zip, entries);
     return zip;
 }
 

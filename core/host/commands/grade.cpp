@@ -5,7 +5,6 @@
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <thread>
 
 #include "course/autograder.h"
 #include "course/batch.h"
@@ -26,7 +25,7 @@ namespace pbrlab {
 namespace {
 
 int defaultJobs() {
-    return int(std::max(1u, std::thread::hardware_concurrency()));
+    return usableCpus();
 }
 
 class GradeCommand : public Command {
@@ -57,10 +56,15 @@ public:
         cmd.add_option("--gradescope", gradescopeFile_, "Write Gradescope's results.json here");
         cmd.add_option("--html", options_.html, "Write an HTML report with images here");
         cmd.add_flag("--cumulative", options_.cumulative, help::cumulative);
-        cmd.add_option("--timeout", options_.timeoutSeconds, "Seconds per module (60)");
+        timeoutOption_ = cmd.add_option("--timeout", options_.timeoutSeconds,
+                                        "Seconds per module (60; given, it wins over the "
+                                        "assignment's time_limit_seconds)");
         cmd.add_option("--jobs", options_.jobs,
-                       "Grading processes at once (default: one per core; --batch shares them "
-                       "between submissions)");
+                       "Grading processes at once (default: one per core, or per core of a CPU "
+                       "quota; --batch shares them between submissions)");
+        cmd.add_option("--time-budget", options_.budgetSeconds,
+                       "Seconds for the whole submission: steps unfinished then score 0 and "
+                       "say so (run_autograder: within Gradescope's timeout)");
         cmd.add_option("--seed", options_.settings.seed,
                        "Seed of the random domain points (default 1: instructors may keep "
                        "their own)");
@@ -79,7 +83,9 @@ private:
         if (options_.submission.empty())
             throw Error("grade: give a SUBMISSION folder, or --batch DIR --out DIR");
         Session session(global, false);  // no GL in the parent: each module forks its own
+        const double timeout = options_.timeoutSeconds;
         const auto assignment = gradeAssignment(assignmentFile_, *session.modules, options_);
+        if (timeoutOption_->count() > 0) options_.timeoutSeconds = timeout;
         if (!fs::is_directory(options_.submission))
             throw Error(options_.submission.string() + ": not a directory");
         options_.submission = fs::canonical(options_.submission);
@@ -114,7 +120,9 @@ private:
         BatchOptions batch;
         batch.batch = batchDir_;
         batch.out = batchOut_;
+        const double timeout = options_.timeoutSeconds;
         batch.assignment = gradeAssignment(assignmentFile_, *session.modules, options_);
+        if (timeoutOption_->count() > 0) options_.timeoutSeconds = timeout;
         batch.grade = options_;
         if (!batchShard_.empty()) std::tie(batch.shard, batch.shards) = parseShard(batchShard_);
         BatchSummary done = gradeBatch(*session.modules, session.paths, batch);
@@ -125,6 +133,7 @@ private:
     }
 
     GradeOptions options_;
+    CLI::Option* timeoutOption_ = nullptr;
     std::string batchDir_, batchOut_, jsonFile_, gradescopeFile_, batchShard_, assignmentFile_;
     std::vector<std::string> mergeDirs_;
     bool failUnlessPassed_ = false;
@@ -212,13 +221,16 @@ public:
     AutograderCommand()
         : Command("autograder",
                   "Write Gradescope's autograder.zip: setup.sh, run_autograder, the assignment "
-                  "and pbrlab's .deb (docs/assignment.md)") {}
+                  "and the grader bundle (docs/assignment.md)") {}
     void declare(CLI::App& cmd) override {
         cmd.add_option("--assignment", options_.assignment, "The assignment file")->required();
         cmd.add_option("--out", options_.out, "Folder for autograder.zip")->required();
-        cmd.add_option("--deb", options_.deb,
-                       "pbrlab_*.deb (default: the one cpack -G DEB wrote in the current folder "
-                       "or beside pbrlab)");
+        cmd.add_option("--bundle", options_.bundle,
+                       "The grader bundle (default: the one this pbrlab runs from, else "
+                       "grader-bundle/ beside it: scripts/grader-bundle.sh)");
+        cmd.add_option("--gradescope-timeout", options_.gradescopeTimeoutSeconds,
+                       "The assignment's autograder timeout on Gradescope in seconds (600, "
+                       "Gradescope's default): grading stops in time to write results.json");
     }
     int run(const GlobalOptions& global) override {
         Session session(global, false);
