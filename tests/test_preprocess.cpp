@@ -220,6 +220,27 @@ TEST(Preprocessor, AStudentsFileCannotRedefineOrUndefineTheHostsMacros) {
     EXPECT_EQ(p.refusal("float step(float x) { return x * float(NUM_LIGHTS); }\n"), "");
 }
 
+// The host's own macros say how it draws (points alone, a sky behind): a function that read
+// them could be right where it is graded and wrong in the lab's pictures.
+TEST(Preprocessor, AStudentsFileCannotNameTheHostsOwnMacros) {
+    StudentProgram p;
+    for (const std::string line :
+         {"#ifdef PBRLAB_PROBE", "#if defined(PBRLAB_SKY)", "#ifndef PBRLAB_ANY_FUTURE_NAME"}) {
+        const std::string why =
+            p.refusal(line +
+                      "\nfloat step(float x) { return x; }\n#else\nfloat step(float x) "
+                      "{ return 2.0 * x; }\n#endif\n");
+        EXPECT_NE(why.find("step.glsl:1: error: PBRLAB_"), std::string::npos)
+            << line << ": " << why;
+        EXPECT_NE(why.find("is one of the host's own macros"), std::string::npos) << why;
+    }
+    EXPECT_NE(p.refusal("float step(float x) { return x; }\n\n#define PBRLAB_MINE 1\n")
+                  .find("step.glsl:3: error: PBRLAB_MINE"),
+              std::string::npos);
+    // In a comment it is no name.
+    EXPECT_EQ(p.refusal("// not PBRLAB_PROBE\nfloat step(float x) { return x; }\n"), "");
+}
+
 TEST(Preprocessor, AStudentsFileCannotLeaveACommentOpen) {
     StudentProgram p;
     const std::string why = p.refusal("float step(float x) { return x; }\n\n/* the rest\n");

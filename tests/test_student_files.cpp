@@ -166,6 +166,12 @@ TEST(StudentFiles, CompileErrorsCausedByTheStudentsFilePointIntoIt) {
          "pbrlab_definedPow"},
         {"pow redefined", with("#define pow(x, y) x\n", "", ""),
          "ndotl.glsl:1:", "#define pow: pow is a macro of the host's", "", "pbrlab_definedPow"},
+        // Right where the grader draws points alone, half Lambert in every picture: the host's
+        // own macros say how it draws, so no file may test them.
+        {"host's macro tested",
+         "float lambertCosine(vec3 N, vec3 L)\n{\n#ifdef PBRLAB_PROBE\n"
+         "    return max(dot(N, L), 0.0);\n#else\n    return 0.5 * dot(N, L) + 0.5;\n#endif\n}\n",
+         "ndotl.glsl:3:", "PBRLAB_PROBE is one of the host's own macros", "", "recursion"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.name);

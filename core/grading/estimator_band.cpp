@@ -405,7 +405,9 @@ void StepGrader::gradeSun(const Scene& scene) {
         judgedSet.last = r.value;
         ValuesRun run = estimatorRun(name, d_, c, judgedPoints, std::move(r.value), std::move(band),
                                      judged, params, nullptr, set.width, set.height);
-        run.aboveGradedCounts = !e.sampleCounts.empty() && n > e.sampleCounts.back();
+        run.tier = !e.sampleCounts.empty() && n > e.sampleCounts.back()
+                       ? ValuesRun::Tier::AboveGradedCounts
+                       : ValuesRun::Tier::LabUse;
         if (!run.report.passed && !cause.empty()) {
             run.report.detail = cause + "; " + run.report.detail;
             if (cleanBefore) run.cause = cause;
@@ -469,6 +471,7 @@ void StepGrader::gradePicture(const Scene& scene) {
     ValuesRun run =
         estimatorRun(name, d_, c, pixels, r.value, band, judged, params, nullptr, side, side);
     run.fromScene = true;
+    run.tier = ValuesRun::Tier::LabUse;
     if (!run.report.passed) {
         // The same pixels, each drawn alone (zero derivatives).
         const Grid alone = grid(std::vector<Surface>(pixels));
@@ -660,7 +663,7 @@ void StepGrader::gradeHighCounts(const Scene& judged, const PointSet& probe,
                              ((d_.needs & NeedsEnvironment) ? " (" + judged.environment + ")" : ""),
                          d_, c, g.surfaces, std::move(r.value), std::move(band), judged, params,
                          nullptr, g.width, g.height, &systematic);
-        run.aboveGradedCounts = true;
+        run.tier = ValuesRun::Tier::AboveGradedCounts;
         keep(std::move(run));
         // The lowest count it ignores is said; the counts above say nothing more.
         if (!changes.passed) break;

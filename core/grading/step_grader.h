@@ -54,10 +54,14 @@ struct ValuesRun {
     int width = 0, height = 0;
     int worstIndex = -1;         // the point outside the band by most
     double outlierFraction = 0;  // of the band (Tolerance::outlierFraction)
-    // At a count above the graded ones (StepGrader::gradeHighCounts): the feedback renders its
-    // candidates at the failing run's count, so it reads such a run only when nothing at the
-    // graded counts failed (65536 samples made mc_specular's feedback take 10 s).
-    bool aboveGradedCounts = false;
+    // Which failed run the feedback reads (StepGrader::keep), in this order. The patterns and
+    // term fits are measured on points drawn alone on the ordinary skies, so a run there comes
+    // first. A sun or the picture come next: they carry their own cause, and a mistake that is
+    // wrong everywhere is only blurred there by the sun or the derivatives (|N.L| at a coarse
+    // mip went unnamed). A count above the graded ones comes last: the feedback renders its
+    // candidates at the failing run's count (65536 samples made mc_specular's feedback take 10 s).
+    enum class Tier { Ordinary, LabUse, AboveGradedCounts };
+    Tier tier = Tier::Ordinary;
     // The cause, when the check itself can tell it from its error (a sun's light dropped,
     // screen-space derivatives): the feedback names it instead of looking for a pattern.
     std::string cause;

@@ -154,6 +154,7 @@ void StepGrader::gradeSunValues(const Scene& scene) {
             run.report.detail = cause + "; " + run.report.detail;
             if (cleanBefore) run.cause = cause;
         }
+    run.tier = ValuesRun::Tier::LabUse;
     keep(std::move(run));
 }
 

@@ -317,9 +317,9 @@ void StepGrader::noteWork(ValuesRun& run) {
 void StepGrader::keep(ValuesRun&& run) {
     noteWork(run);
     const CheckReport report = run.report;
-    // The worst failure, a failure at the graded counts before one above them.
-    const bool better = !failed_ || (failed_->aboveGradedCounts != run.aboveGradedCounts
-                                         ? failed_->aboveGradedCounts
+    // The worst failure of the first tier that has one (ValuesRun::tier).
+    const bool better = !failed_ || (failed_->tier != run.tier
+                                         ? run.tier < failed_->tier
                                          : run.report.worstExcess > failed_->report.worstExcess);
     if (!run.report.passed && run.report.deducted && better)
         failed_ = std::make_unique<ValuesRun>(std::move(run));

@@ -262,6 +262,17 @@ struct Expander {
                        "token pasting (##) is not allowed in a step's file: it can form a name "
                        "the file does not write, such as a private helper of pbrlab's");
             forEachIdentifier(l.code, [&](const std::string& identifier, size_t at) {
+                // The host's own macros say how it draws (PBRLAB_PROBE: points drawn alone,
+                // as the grader draws them; PBRLAB_SKY: a picture with the sky behind): a
+                // function that tested them could be right where it is graded and wrong in
+                // the lab. The contract's macros (PI, NUM_LIGHTS) carry no such prefix.
+                if (identifier.rfind("PBRLAB_", 0) == 0)
+                    refuse(l.lineAt(at),
+                           identifier +
+                               " is one of the host's own macros (PBRLAB_...), which say how "
+                               "the host draws your function, not what it computes: a step's "
+                               "file may not name them. Your function must give the same "
+                               "values wherever it is drawn.");
                 auto helper = privateHelpers.find(identifier);
                 if (helper != privateHelpers.end())
                     refuse(l.lineAt(at),
