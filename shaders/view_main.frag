@@ -24,5 +24,16 @@ void main()
         return;
     }
 #endif
+#ifdef PBRLAB_TRACE_NONFINITE
+    // The diagnosis build (core/shader/preprocess.h): which of the student's calls made the
+    // first NaN or Inf, another that made one, and whether the value is finite with what they
+    // made replaced, in place of the value.
+    if (s.covered) {
+        vec3 repaired = view(s);
+        outValue = vec4(float(pbrlab_traceSite), float(pbrlab_traceOther),
+                        pbrlab_finite(repaired) ? 1.0 : 0.0, 1.0);
+        return;
+    }
+#endif
     outValue = s.covered ? vec4(view(s), 1.0) : vec4(0.0);
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "grading/error_patterns.h"
+#include "grading/input_fits.h"
 #include "grading/term_fits.h"
 #include "shader/code_facts.h"
 
@@ -273,4 +274,212 @@ TEST(Feedback, NoTermIsNamedWhenNoneExplainsTheError) {
     // The reference itself: nothing to explain.
     EXPECT_EQ(nameTerm(stepInputs(d, "specular", highlightDomain, context, specular, specular)),
               "");
+}
+
+// Where an error lies is said by what the step's function receives (ModuleDesc::inputAxes), and
+// what is said after it follows what the two functions do there.
+namespace {
+
+// ndf's shape: a function of N.H = N.H' (H = halfway(L, V)) and roughness, on inputs where V and
+// L differ (as in the lesson's scenes).
+ModuleDesc halfVectorStep() {
+    ModuleDesc d;
+    d.id = "test";
+    d.components = 1;
+    d.domain = [](DomainRandom& r) {
+        Surface s;
+        s.normal = r.direction();
+        s.view = r.direction();
+        s.light = r.direction();
+        s.roughness = r.range(0.05, 1);
+        return s;
+    };
+    d.inputAxes = {
+        {"N.H",
+         [](const Surface& s) { return glm::dot(s.normal, ref::halfwayVector(s.light, s.view)); },
+         nullptr},
+        {"roughness", [](const Surface& s) { return s.roughness; }, nullptr}};
+    return d;
+}
+
+glm::dvec3 ggx(const Surface& s) {
+    return glm::dvec3(
+        ref::distributionGGX(s.normal, ref::halfwayVector(s.light, s.view), s.roughness));
+}
+
+}  // namespace
+
+TEST(Feedback, TheAxisIsWhatTheFunctionReceivesAndACutOffIsNotCalledAMissingGuard) {
+    const ModuleDesc d = halfVectorStep();
+    // D = 0 where N.H <= 0 (Walter et al.'s characteristic function): the reference is not 0
+    // there, the student's is. Before: "wrong only where N.V < 0: is a max(..., 0.0) or a guard
+    // for negative N.V missing?", the axis the function does not receive and the reverse of
+    // what the code does.
+    const std::string cut = classifyError(inputs(d, ggx, [](const Surface& s) {
+        return glm::dot(s.normal, ref::halfwayVector(s.light, s.view)) <= 0 ? glm::dvec3(0)
+                                                                            : ggx(s);
+    }));
+    EXPECT_TRUE(contains(cut, "wrong only where N.H < 0") &&
+                contains(cut, "yours is 0 where N.H < 0, the reference is not"))
+        << cut;
+    EXPECT_FALSE(contains(cut, "missing") || contains(cut, "N.V")) << cut;
+    DomainRandom random(1);
+    EXPECT_EQ(describeInputs(d, d.domain(random)).rfind("N.H ", 0), 0u);
+    // The clamp dropped (the student's varies where the reference is 0): the guard is missing.
+    const ModuleDesc generic = module(1);
+    const std::string noClamp = classifyError(inputs(
+        generic, [](const Surface& s) { return glm::dvec3(ndotl(s)); },
+        [](const Surface& s) { return glm::dvec3(glm::dot(s.normal, s.light)); }));
+    EXPECT_TRUE(contains(noClamp, "guard for negative N.L missing")) << noClamp;
+    // Both vary there (another formula on one side): no advice either way.
+    const std::string other = classifyError(inputs(
+        generic, [](const Surface& s) { return glm::dvec3(glm::dot(s.normal, s.light) + 1); },
+        [](const Surface& s) {
+            const double c = glm::dot(s.normal, s.light);
+            return glm::dvec3(c > 0 ? c + 1 : 1 + 2 * c + 0.3 * c * c);
+        }));
+    EXPECT_TRUE(contains(other, "wrong only where N.L < 0")) << other;
+    EXPECT_FALSE(contains(other, "missing?") || contains(other, "cut-off")) << other;
+}
+
+TEST(Feedback, ANaNIsTracedToTheCallThatMadeIt) {
+    const ModuleDesc d = module(1);
+    FeedbackInputs in = inputs(
+        d, [](const Surface& s) { return glm::dvec3(ndotl(s)); },
+        [](const Surface& s) { return glm::dvec3(s.roughness > 0.9 ? std::nan("") : ndotl(s)); });
+    // The diagnosis build's answers (GL renders them in grading: tests/variants/brdf_lut has
+    // the whole).
+    auto answer = [&in](TraceSite site, bool confirmed, TraceSite other = {}) {
+        in.traceNonFinite = [=](const std::vector<Surface>& points) {
+            const int n = int(points.size());
+            return FeedbackInputs::NonFiniteOrigin{site, other, site.traced() ? n : 0, n,
+                                                   confirmed};
+        };
+        return classifyError(in);
+    };
+    const std::string pow = answer({1, 14}, true);
+    EXPECT_TRUE(contains(pow, "returns NaN at") &&
+                contains(pow, "comes from pow with a negative base") &&
+                contains(pow, "line 14 of test.glsl") && contains(pow, "guard or a clamp"))
+        << pow;
+    // Another call made one at those points too: both are said.
+    const std::string two = answer({1, 14}, true, {2, 9});
+    EXPECT_TRUE(contains(two,
+                         "sqrt of a negative number, at line 9 of test.glsl makes one there "
+                         "too"))
+        << two;
+    // pow of a positive base whose result overflows is not called a negative base.
+    const std::string overflow = answer({-1, 14}, true);
+    EXPECT_TRUE(contains(overflow, "comes from pow with a result too large for a float"))
+        << overflow;
+    EXPECT_FALSE(contains(overflow, "negative base")) << overflow;
+    // A call that made one whose result the function drops (the value is NaN without it too) is
+    // not called the cause, nor its guard missing.
+    const std::string dropped = answer({2, 9}, false);
+    EXPECT_TRUE(contains(dropped, "with its result replaced by 0 the value is still not finite") &&
+                contains(dropped, "a division 0/0, Inf/Inf or 0 x Inf elsewhere?"))
+        << dropped;
+    EXPECT_FALSE(contains(dropped, "comes from") || contains(dropped, "guard")) << dropped;
+    const std::string division = answer({}, false);
+    EXPECT_TRUE(contains(division,
+                         "No pow, sqrt, inversesqrt, log, log2, normalize, acos, asin or "
+                         "mod in test.glsl made it from finite arguments there: a "
+                         "division 0/0, Inf/Inf or 0 x Inf?"))
+        << division;
+}
+
+// The diagnosis build's sites, as view_main.frag writes them (a float of call x 65536 + line,
+// negative for the overflow case).
+TEST(Feedback, TraceSitesAreReadAsWritten) {
+    const TraceSite pow = traceSite(1 * 65536 + 31);
+    EXPECT_EQ(pow.call, 1);
+    EXPECT_EQ(pow.line, 31);
+    EXPECT_EQ(pow.what(), "pow with a negative base (or 0 to a power <= 0)");
+    const TraceSite overflow = traceSite(-(1 * 65536 + 7));
+    EXPECT_EQ(overflow.call, -1);
+    EXPECT_EQ(overflow.line, 7);
+    EXPECT_EQ(overflow.what(), "pow with a result too large for a float (an overflow)");
+    EXPECT_EQ(traceSite(0).traced(), nullptr);
+    EXPECT_EQ(traceSite(std::nan("")).traced(), nullptr);
+    EXPECT_EQ(traceSite(double(tracedCalls().size() + 1) * 65536).traced(), nullptr);
+}
+
+// The reference on other inputs (input_fits.h).
+TEST(Feedback, AnInputUsedInAnothersPlaceIsNamed) {
+    ModuleDesc d = module(1);
+    d.reference = [](const Surface& s, const ReferenceContext&) { return glm::dvec3(ndotl(s)); };
+    const ParamValues params;
+    const ReferenceContext context{params, {}, glm::dvec3(0), nullptr};
+    auto reference = [&](const Surface& s) { return d.reference(s, context); };
+    FeedbackInputs flipped = inputs(d, reference, [](const Surface& s) {
+        return glm::dvec3(std::max(glm::dot(s.normal, -s.light), 0.0));
+    });
+    flipped.context = &context;
+    const std::string light = classifyError(flipped);
+    EXPECT_TRUE(contains(light, "with -L in place of L")) << light;
+    // Two inputs of the same range swapped; an input squared.
+    ModuleDesc lut = module(1);
+    lut.domain = [](DomainRandom& r) {
+        Surface s;
+        s.view = {std::sqrt(1 - 0.25), 0, 0.5};
+        s.view = atCosine(s.normal, s.view, r.uniform());
+        s.roughness = r.range(0.05, 1);
+        return s;
+    };
+    auto f = [](double nv, double r) { return nv * nv * (1 - r) + 0.3 * r * r * r; };
+    lut.reference = [f](const Surface& s, const ReferenceContext&) {
+        return glm::dvec3(f(glm::dot(s.normal, s.view), s.roughness));
+    };
+    auto lutReference = [&](const Surface& s) { return lut.reference(s, context); };
+    FeedbackInputs swapped = inputs(lut, lutReference, [f](const Surface& s) {
+        return glm::dvec3(f(s.roughness, glm::dot(s.normal, s.view)));
+    });
+    swapped.context = &context;
+    const std::string axes = classifyError(swapped);
+    EXPECT_TRUE(contains(axes, "N.V and roughness swapped") &&
+                contains(axes, "the two inputs used the wrong way round"))
+        << axes;
+    FeedbackInputs squared = inputs(lut, lutReference, [f](const Surface& s) {
+        return glm::dvec3(f(glm::dot(s.normal, s.view), s.roughness * s.roughness));
+    });
+    squared.context = &context;
+    const std::string square = classifyError(squared);
+    EXPECT_TRUE(contains(square, "roughness^2 in place of roughness")) << square;
+    // A change no input explains is not named by one.
+    FeedbackInputs ripple = inputs(lut, lutReference, [f](const Surface& s) {
+        return glm::dvec3(f(glm::dot(s.normal, s.view), s.roughness) *
+                          (1 + 0.2 * std::sin(9 * s.roughness)));
+    });
+    ripple.context = &context;
+    EXPECT_EQ(nameSubstitution(ripple), "");
+}
+
+TEST(Feedback, ADirectionAtAnotherLengthAndCurvesOfOneInputAreNamed) {
+    ModuleDesc d = module(3);
+    auto half = [](const Surface& s) { return ref::halfwayVector(s.light, s.view); };
+    const std::string average =
+        classifyError(inputs(d, half, [](const Surface& s) { return (s.light + s.view) * 0.5; }));
+    EXPECT_TRUE(contains(average,
+                         "Your value is (L + V) / 2, where the reference is "
+                         "normalize(L + V)"))
+        << average;
+    // A wrap in N.L where the reference clamps it.
+    const ModuleDesc one = module(1);
+    const std::string wrap = classifyError(inputs(
+        one, [](const Surface& s) { return glm::dvec3(ndotl(s)); },
+        [](const Surface& s) { return glm::dvec3(0.5 + 0.5 * glm::dot(s.normal, s.light)); }));
+    EXPECT_TRUE(contains(wrap, "Your value is 0.5 + 0.5 x N.L at every point")) << wrap;
+    // A polynomial falloff where the reference has the inverse square.
+    ModuleDesc light = module(3);
+    light.domain = radianceDomain;
+    const std::string falloff = classifyError(inputs(
+        light,
+        [](const Surface& s) {
+            return ref::pointLightRadiance(s.lightColor, s.lightPosition, s.position);
+        },
+        [](const Surface& s) {
+            const double x = glm::length(s.lightPosition - s.position);
+            return s.lightColor / (1 + 0.09 * x + 0.032 * x * x);
+        }));
+    EXPECT_TRUE(contains(falloff, "the light's colour / (1 + 0.09 d + 0.032 d^2)")) << falloff;
 }

@@ -220,6 +220,39 @@ TEST(Preprocessor, AStudentsFileCannotRedefineOrUndefineTheHostsMacros) {
     EXPECT_EQ(p.refusal("float step(float x) { return x * float(NUM_LIGHTS); }\n"), "");
 }
 
+// The diagnosis build (kTraceNonFinite) traces the graded step's own file: a line it reports is
+// one of that file, not of a file it includes nor of an earlier step's.
+TEST(Preprocessor, TheDiagnosisBuildTracesTheGradedFilesOwnCallsOnly) {
+    TempDir dir;
+    dir.write("student/lib.glsl", "float helper(float x) { return sqrt(x); }\n");
+    ShaderPart graded(dir.write("student/step.glsl",
+                                "#include \"lib.glsl\"\nfloat own(float x) { return sqrt(x); }\n"
+                                "float after(float x) { return sqrt(helper(x)); }\n"));
+    graded.studentFolder = dir.path / "student";
+    graded.traced = true;
+    ShaderPart earlier(dir.write("earlier/earlier.glsl", "float g(float x) { return sqrt(x); }\n"));
+    earlier.studentFolder = dir.path / "earlier";
+    const ShaderPreprocessor pre({dir.path});
+    const ExpandedShader s = pre.expand({earlier, graded}, {{kTraceNonFinite, "1"}});
+    // The definition of sqrt in force at a line of the expanded text ("": none).
+    auto sqrtAt = [&](const std::string& needle) {
+        const size_t at = s.text.find(needle);
+        EXPECT_NE(at, std::string::npos) << needle;
+        const size_t define = s.text.rfind("#define sqrt", at),
+                     undo = s.text.rfind("#undef sqrt", at);
+        if (define == std::string::npos || (undo != std::string::npos && undo > define))
+            return std::string();
+        return s.text.substr(define, s.text.find('\n', define) - define);
+    };
+    const std::string traced = "#define sqrt(x) pbrlab_trace_sqrt(x, __LINE__)";
+    EXPECT_EQ(sqrtAt("float own("), traced);
+    EXPECT_EQ(sqrtAt("float after("), traced);
+    EXPECT_EQ(sqrtAt("float helper("), "");
+    EXPECT_EQ(sqrtAt("float g("), "");
+    // The build without it traces nothing.
+    EXPECT_EQ(pre.expand({earlier, graded}, {}).text.find("pbrlab_trace_"), std::string::npos);
+}
+
 // The host's own macros say how it draws (points alone, a sky behind): a function that read
 // them could be right where it is graded and wrong in the lab's pictures.
 TEST(Preprocessor, AStudentsFileCannotNameTheHostsOwnMacros) {

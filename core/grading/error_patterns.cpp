@@ -4,12 +4,16 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <map>
+#include <mutex>
 #include <numbers>
 #include <regex>
 #include <sstream>
 
+#include "grading/input_fits.h"
 #include "grading/term_fits.h"
 #include "shader/code_facts.h"
+#include "shader/preprocess.h"
 
 namespace pbrlab {
 
@@ -49,6 +53,56 @@ struct Entry {
     double value, expected, slack;
 };
 
+// The generic inputs of a step that declares none (InputAxis): the cosines between its
+// directions and the fields of the surface, each settable where that means one thing.
+const std::vector<InputAxis>& genericAxes(const std::string& extra) {
+    // One list per name of the extra inputs (ModuleDesc::extraName), kept for the program's
+    // life: the substitution fits hold on to its elements.
+    static std::map<std::string, std::vector<InputAxis>> lists;
+    static std::mutex guard;
+    const std::lock_guard<std::mutex> lock(guard);
+    auto found = lists.find(extra);
+    if (found != lists.end()) return found->second;
+    return lists[extra] = [&extra] {
+        auto field = [](double Surface::*f) -> std::function<void(Surface&, double)> {
+            return [f](Surface& s, double v) { s.*f = v; };
+        };
+        auto get = [](double Surface::*f) -> std::function<double(const Surface&)> {
+            return [f](const Surface& s) { return s.*f; };
+        };
+        return std::vector<InputAxis>{
+            {"N.V", [](const Surface& s) { return glm::dot(s.normal, s.view); },
+             [](Surface& s, double v) { s.view = atCosine(s.normal, s.view, v); }},
+            {"N.L", [](const Surface& s) { return glm::dot(s.normal, s.light); },
+             [](Surface& s, double v) {
+                 // The light moves with its direction, at the same distance.
+                 const double d = glm::length(s.lightPosition - s.position);
+                 s.light = atCosine(s.normal, s.light, v);
+                 s.lightPosition = s.position + s.light * d;
+             }},
+            {"V.L", [](const Surface& s) { return glm::dot(s.view, s.light); }, nullptr},
+            {"roughness", get(&Surface::roughness), field(&Surface::roughness)},
+            {"metallic", get(&Surface::metallic), field(&Surface::metallic)},
+            {"ao", get(&Surface::ao), field(&Surface::ao)},
+            {"albedo (mean)",
+             [](const Surface& s) { return (s.albedo.x + s.albedo.y + s.albedo.z) / 3; }, nullptr},
+            {"the light's distance d",
+             [](const Surface& s) { return glm::length(s.lightPosition - s.position); },
+             [](Surface& s, double v) {
+                 s.lightPosition =
+                     s.position +
+                     ref::safeNormalize(s.lightPosition - s.position, glm::dvec3(0, 0, 1)) * v;
+             }},
+            {extra + ".x", [](const Surface& s) { return s.extra.x; },
+             [](Surface& s, double v) { s.extra.x = v; }},
+            {extra + ".y", [](const Surface& s) { return s.extra.y; },
+             [](Surface& s, double v) { s.extra.y = v; }},
+            {"tangent.w", [](const Surface& s) { return s.tangent.w; },
+             [](Surface& s, double v) { s.tangent.w = v; }},
+        };
+    }();
+}
+
 // Every finite (value, expected) component pair.
 std::vector<Entry> entries(const FeedbackInputs& in) {
     std::vector<Entry> out;
@@ -60,39 +114,23 @@ std::vector<Entry> entries(const FeedbackInputs& in) {
     return out;
 }
 
-// Features of a point that errors may be confined to, with their names.
-struct Feature {
-    const char* name;
-    double (*of)(const Surface&);
-};
-
-double dotNV(const Surface& s) {
-    return glm::dot(s.normal, s.view);
-}
-double dotNL(const Surface& s) {
-    return glm::dot(s.normal, s.light);
-}
-double dotVL(const Surface& s) {
-    return glm::dot(s.view, s.light);
+// The value of each component the same at every one of `points` (within 1e-7, relative).
+bool flat(const std::vector<glm::dvec3>& v, const std::vector<size_t>& points, int n) {
+    for (int c = 0; c < n; ++c)
+        for (size_t i : points)
+            if (!(std::abs(v[i][c] - v[points[0]][c]) <=
+                  1e-7 * std::max(1.0, std::abs(v[points[0]][c]))))
+                return false;
+    return true;
 }
 
-const Feature kFeatures[] = {
-    {"N.V", dotNV},
-    {"N.L", dotNL},
-    {"V.L", dotVL},
-    {"roughness", [](const Surface& s) { return s.roughness; }},
-    {"metallic", [](const Surface& s) { return s.metallic; }},
-    {"ao", [](const Surface& s) { return s.ao; }},
-    {"albedo (mean)", [](const Surface& s) { return (s.albedo.x + s.albedo.y + s.albedo.z) / 3; }},
-    {"light distance", [](const Surface& s) { return glm::length(s.lightPosition - s.position); }},
-    {"extra.x", [](const Surface& s) { return s.extra.x; }},
-    {"extra.y", [](const Surface& s) { return s.extra.y; }},
-    {"tangent.w", [](const Surface& s) { return s.tangent.w; }},
-};
-
-// Whether the wrong points lie on one side of a threshold of one feature while the other side
-// is right: "wrong only where N.L < 0".
-std::string region(const FeedbackInputs& in) {
+// Whether the wrong points lie on one side of a threshold of one input while the other side
+// is right: "wrong only where N.L < 0". The inputs are the step's own (InputAxis) or the
+// generic ones. What is said after it follows what the two functions do on that side: a
+// clamp or guard the student's lacks (the reference constant there, the student's not), a
+// cut-off the contract does not have (the student's constant there, the reference's not).
+std::string region(const FeedbackInputs& in, bool* hinted = nullptr) {
+    if (hinted) *hinted = false;
     const int n = in.module->components;
     std::vector<bool> bad;
     int badCount = 0;
@@ -107,15 +145,16 @@ std::string region(const FeedbackInputs& in) {
     if (badCount == 0 || badCount > 0.8 * total) return "";
     std::string best;
     double bestScore = 0;
-    for (const Feature& f : kFeatures) {
-        std::vector<std::pair<double, bool>> xs;
-        for (size_t i = 0; i < bad.size(); ++i) xs.push_back({f.of(in.surfaces[i]), bad[i]});
+    const std::vector<InputAxis>& axes = inputAxes(*in.module);
+    for (const InputAxis& f : axes) {
+        std::vector<std::pair<double, size_t>> xs;
+        for (size_t i = 0; i < bad.size(); ++i) xs.push_back({f.value(in.surfaces[i]), i});
         std::sort(xs.begin(), xs.end());
         if (xs.front().first == xs.back().first) continue;
         // Thresholds between distinct values; the side holding the wrong points.
         int badBelow = 0;
         for (size_t k = 0; k + 1 < xs.size(); ++k) {
-            badBelow += xs[k].second;
+            badBelow += bad[xs[k].second];
             if (xs[k].first == xs[k + 1].first) continue;
             const int below = int(k + 1), above = total - below;
             const int badAbove = badCount - badBelow;
@@ -131,32 +170,54 @@ std::string region(const FeedbackInputs& in) {
                 // Purity of the wrong side; among equally pure splits, the one holding more
                 // of the wrong points.
                 const double score = double(inBad) / sideSize + 1e-6 * inBad;
-                if (score > bestScore) {
-                    bestScore = score;
-                    // A threshold between the two neighbours; 0 when 0 lies between them
-                    // (where clamps and guards sit).
-                    const double a = xs[k].first, b = xs[k + 1].first;
-                    const double shown = a <= 0 && b >= 0 ? 0.0 : 0.5 * (a + b);
-                    // As many digits as it takes to lie between them: the roughness 0.995
-                    // between 0.99 and 1 is not "> 1".
-                    std::string threshold = num(shown, 2);
-                    for (int digits = 3; digits <= 6 && shown != 0.0; ++digits) {
-                        const double written = std::stod(threshold);
-                        if (written > a && written < b) break;
-                        threshold = num(shown, digits);
-                    }
-                    best = std::string("wrong only where ") + f.name + (side == 0 ? " < " : " > ") +
-                           threshold + " (" + std::to_string(inBad) + " of " +
-                           std::to_string(sideSize) + " points there), right elsewhere";
-                    if (shown == 0 && side == 0)
-                        best += ": is a max(..., 0.0) or a guard for negative " +
-                                std::string(f.name) + " missing?";
-                    else
-                        best += ".";
+                if (score <= bestScore) continue;
+                bestScore = score;
+                // A threshold between the two neighbours; 0 when 0 lies between them
+                // (where clamps and guards sit).
+                const double a = xs[k].first, b = xs[k + 1].first;
+                const double shown = a <= 0 && b >= 0 ? 0.0 : 0.5 * (a + b);
+                // As many digits as it takes to lie between them: the roughness 0.995
+                // between 0.99 and 1 is not "> 1".
+                std::string threshold = num(shown, 2);
+                for (int digits = 3; digits <= 6 && shown != 0.0; ++digits) {
+                    const double written = std::stod(threshold);
+                    if (written > a && written < b) break;
+                    threshold = num(shown, digits);
+                }
+                // "<= 0" where the wrong side holds points at 0 itself (a probe's end).
+                const bool atZero = shown == 0 && (side == 0 ? a == 0 : b == 0);
+                const std::string where =
+                    f.name + (side == 0 ? (atZero ? " <= " : " < ") : (atZero ? " >= " : " > ")) +
+                    threshold;
+                best = "wrong only where " + where + " (" + std::to_string(inBad) + " of " +
+                       std::to_string(sideSize) + " points there), right elsewhere";
+                // The wrong points of that side (finite ones: a NaN says nothing of a shape).
+                std::vector<size_t> wrongThere;
+                for (size_t j = side == 0 ? 0 : k + 1; j < (side == 0 ? k + 1 : xs.size()); ++j)
+                    if (bad[xs[j].second] && finite(in.values[xs[j].second], n))
+                        wrongThere.push_back(xs[j].second);
+                const bool enough = wrongThere.size() >= 2;
+                const bool studentFlat = enough && flat(in.values, wrongThere, n);
+                const bool referenceFlat = enough && flat(in.expected, wrongThere, n);
+                if (studentFlat && !referenceFlat) {
+                    std::string value;
+                    for (int c = 0; c < n; ++c)
+                        value += (c ? ", " : "") + num(in.values[wrongThere[0]][c], 4);
+                    if (n > 1) value = "(" + value + ")";
+                    best += ": yours is " + value + " where " + where +
+                            ", the reference is not: a cut-off the contract does not have?";
+                    if (hinted) *hinted = true;
+                } else if (referenceFlat && !studentFlat && shown == 0 && side == 0) {
+                    best += ": is a max(..., 0.0) or a guard for negative " + f.name + " missing?";
+                    if (hinted) *hinted = true;
+                } else {
+                    best += ".";
+                    if (hinted) *hinted = false;
                 }
             }
         }
     }
+    if (bestScore < 0.3 && hinted) *hinted = false;
     return bestScore >= 0.3 ? best : "";
 }
 
@@ -366,7 +427,117 @@ std::string componentPattern(const FeedbackInputs& in, bool& exact) {
            std::to_string(offsets.size()) + " points; the others are right.";
 }
 
+// Where the values are NaN or Inf, and, when the evaluation can tell, the call that made the
+// first one there.
+std::string nonFiniteMessage(const FeedbackInputs& in, const std::string& where) {
+    const int n = in.module->components;
+    std::vector<Surface> points;
+    int nans = 0, infs = 0;
+    for (size_t i = 0; i < in.values.size(); ++i) {
+        if (finite(in.values[i], n)) continue;
+        bool nan = false;
+        for (int c = 0; c < n; ++c) nan = nan || std::isnan(in.values[i][c]);
+        ++(nan ? nans : infs);
+        points.push_back(in.surfaces[i]);
+    }
+    const std::string what = infs == 0 ? "NaN" : nans == 0 ? "Inf" : "NaN or Inf";
+    std::string s = "Your function returns " + what + " at " + std::to_string(nans + infs) +
+                    " of " + std::to_string(in.values.size()) + " points";
+    s += where.empty() ? "." : ", " + where;
+    if (!where.empty() && s.back() != '.' && s.back() != '?') s += ".";
+    // Up to 32 of them, spread, re-rendered by the diagnosis build.
+    FeedbackInputs::NonFiniteOrigin origin;
+    if (in.traceNonFinite) {
+        std::vector<Surface> traced;
+        const size_t count = std::min<size_t>(points.size(), 32);
+        for (size_t k = 0; k < count; ++k) traced.push_back(points[k * points.size() / count]);
+        origin = in.traceNonFinite(traced);
+    }
+    // "pow, sqrt, ... or mod": the calls the diagnosis build traces.
+    std::string names;
+    const std::vector<TracedCall>& calls = tracedCalls();
+    for (size_t k = 0; k < calls.size(); ++k)
+        names += (k == 0 ? "" : k + 1 == calls.size() ? " or " : ", ") + calls[k].builtin;
+    const std::string file = in.module->id + ".glsl";
+    // What else makes one from finite values: as the value is NaN, Inf or both.
+    const std::string arithmetic = infs == 0   ? "a division 0/0, Inf/Inf or 0 x Inf"
+                                   : nans == 0 ? "a division by zero or an overflow"
+                                               : "a division by zero, 0/0 or an overflow";
+    const auto at = [&](const TraceSite& site) {
+        return site.what() + ", at line " + std::to_string(site.line) + " of " + file;
+    };
+    if (origin.site.traced() && origin.confirmed) {
+        s += " The first " + what + " there comes from " + at(origin.site) +
+             (origin.points < origin.traced ? " (at " + std::to_string(origin.points) + " of the " +
+                                                  std::to_string(origin.traced) + " points traced)"
+                                            : "") +
+             (origin.other.traced() ? "; " + at(origin.other) + " makes one there too" : "") +
+             ": is a guard or a clamp of its argument missing?";
+    } else if (origin.site.traced()) {
+        // It made one, but the value is not finite without it either: not the cause alone.
+        s += " Your " + at(origin.site) +
+             ", makes one there, but with its result replaced by 0 the value is still not "
+             "finite: " +
+             arithmetic + " elsewhere?";
+    } else if (origin.traced > 0) {
+        s += " No " + names + " in " + file +
+             " made it from finite arguments there: " + arithmetic + "?";
+    } else {
+        s += " (a division by zero or a sqrt/pow of a negative?)";
+    }
+    // What the other points say, when a pattern accounts for every one of them (an input
+    // flipped that makes 0/0 where it cancels the other, normalize(L - V) at L = V).
+    FeedbackInputs rest = in;
+    rest.surfaces.clear(), rest.values.clear(), rest.expected.clear(), rest.slack.clear();
+    rest.traceNonFinite = nullptr;
+    for (size_t i = 0; i < in.values.size(); ++i)
+        if (finite(in.values[i], n)) {
+            rest.surfaces.push_back(in.surfaces[i]);
+            rest.values.push_back(in.values[i]);
+            rest.expected.push_back(in.expected[i]);
+            rest.slack.push_back(in.slack[i]);
+        }
+    bool exact = false;
+    const std::string elsewhere = rest.values.size() >= 8 ? classifyError(rest, &exact) : "";
+    if (exact && !elsewhere.empty()) s += " At the other points: " + elsewhere;
+    return s;
+}
+
+// Where more than one component is wrong: the first wrong component that is the reference's
+// to a power at 90% of its points (as the power pattern measures it), or "".
+std::string componentPower(const FeedbackInputs& in) {
+    const int n = in.module->components;
+    static const char* names[] = {"first", "second", "third"};
+    for (int c = 0; c < n; ++c) {
+        std::vector<double> powers;
+        int wrong = 0;
+        for (size_t i = 0; i < in.values.size(); ++i) {
+            const double v = in.values[i][c], e = in.expected[i][c];
+            wrong += !(std::abs(v - e) <= in.slack[i][c]);
+            if (e > 0 && v > 0 && std::abs(std::log(e)) > 0.05)
+                powers.push_back(std::log(v) / std::log(e));
+        }
+        if (wrong < 0.05 * double(in.values.size()) || powers.size() < 8) continue;
+        const double p = median(powers);
+        if (std::abs(p - 1) <= 0.02 || std::abs(p) <= 0.05 || shareNear(powers, p, 0.01) < 0.9)
+            continue;
+        const double rounded = std::round(p * 2) / 2;
+        const std::string power = std::abs(p - rounded) < 0.01 ? num(rounded) : num(p);
+        return std::string("The ") + names[c] + " component of your value is the reference's to " +
+               "the power " + power + " (x^" + power + " where the reference has x)" +
+               (rounded == 2     ? ": is a square root missing, or a square extra?"
+                : rounded == 0.5 ? ": is a square missing, or a square root extra?"
+                                 : ": is an exponent wrong?") +
+               " The other components are wrong too.";
+    }
+    return "";
+}
+
 }  // namespace
+
+const std::vector<InputAxis>& inputAxes(const ModuleDesc& d) {
+    return d.inputAxes.empty() ? genericAxes(d.extraName) : d.inputAxes;
+}
 
 std::string describeInputs(const ModuleDesc& d, const Surface& s) {
     const unsigned mask = varyingFields(d);
@@ -390,6 +561,12 @@ std::string describeInputs(const ModuleDesc& d, const Surface& s) {
     };
     const bool N = varies("the normal N"), V = varies("the view direction V"),
                L = varies("the light direction L");
+    // A step that names what its function receives is described by those inputs.
+    if (!d.inputAxes.empty()) {
+        for (const InputAxis& a : d.inputAxes) field(a.name, num(a.value(s)));
+        if (N) field("N", vec(s.normal));
+        return o.str();
+    }
     if (N && V) field("N.V", num(glm::dot(s.normal, s.view)));
     if (N && L) field("N.L", num(glm::dot(s.normal, s.light)));
     if (V && L && glm::length(s.light + s.view) > 1e-6)
@@ -469,13 +646,11 @@ std::string classifyError(const FeedbackInputs& in, bool* exactOut) {
     // Not finite.
     int nonFinite = 0;
     for (const glm::dvec3& v : in.values) nonFinite += !finite(v, n);
-    std::string where = region(in);
+    bool hinted = false;
+    std::string where = region(in, &hinted);
     if (nonFinite > 0) {
         exact = false;
-        std::string s = "Your function returns NaN or Inf at " + std::to_string(nonFinite) +
-                        " of " + std::to_string(in.values.size()) + " points";
-        return s + (where.empty() ? " (a division by zero or a sqrt/pow of a negative?)."
-                                  : ": " + where);
+        return nonFiniteMessage(in, where);
     }
     if (all.empty()) return exact = false, "";
     // A constant output.
@@ -494,25 +669,40 @@ std::string classifyError(const FeedbackInputs& in, bool* exactOut) {
                                                          : whyAlwaysZero(in.studentCode);
         return why.rfind("Your function", 0) == 0 ? why : constant + (why.empty() ? "" : " " + why);
     }
-    // Swapped components (multi-component values).
+    // Swapped components (multi-component values): where the reference's components differ,
+    // and at the points the reference does not explain (an estimator's band can be wide enough
+    // for a sky's red and green to pass for each other where the student is right).
     if (n >= 2) {
+        std::vector<bool> wrong;
+        int wrongCount = 0;
+        for (size_t i = 0; i < in.values.size(); ++i) {
+            bool w = false;
+            for (int c = 0; c < n; ++c)
+                w = w || !(std::abs(in.values[i][c] - in.expected[i][c]) <= in.slack[i][c]);
+            wrong.push_back(w);
+            wrongCount += w;
+        }
         const int perms[][3] = {{1, 0, 2}, {0, 2, 1}, {2, 1, 0}, {1, 2, 0}, {2, 0, 1}};
         for (const auto& p : perms) {
             if (n == 2 && (p[0] >= 2 || p[1] >= 2)) continue;
-            int match = 0, considered = 0;
+            int match = 0, considered = 0, matchWrong = 0;
             for (size_t i = 0; i < in.values.size(); ++i) {
-                bool ok = true, differs = false;
+                bool ok = true, differs = false, inBand = true;
                 for (int c = 0; c < n; ++c) {
                     const double e = in.expected[i][p[c]];
-                    ok = ok && std::abs(in.values[i][c] - e) <=
-                                   in.slack[i][p[c]] * 4 + 1e-3 * std::abs(e);
+                    const double apart = std::abs(in.values[i][c] - e);
+                    ok = ok && apart <= in.slack[i][p[c]] * 4 + 1e-3 * std::abs(e);
+                    // Where the reference does not explain the value, the swapped one must, as
+                    // the reference explains the right ones: within the band.
+                    inBand = inBand && apart <= in.slack[i][p[c]] + 1e-4 * std::abs(e);
                     differs = differs || std::abs(in.expected[i][c] - e) > in.slack[i][c];
                 }
+                matchWrong += inBand && wrong[i];
                 if (!differs) continue;
                 ++considered;
                 match += ok;
             }
-            if (considered > 8 && match >= 0.95 * considered) {
+            if (considered > 8 && match >= 0.95 * considered && matchWrong >= 0.9 * wrongCount) {
                 const char* names = n == 2 ? "xy" : "xyz";
                 std::string s = "Your components are swapped: ";
                 for (int c = 0; c < n; ++c)
@@ -588,9 +778,19 @@ std::string classifyError(const FeedbackInputs& in, bool* exactOut) {
     }
     // The error explained by one input: value = reference + k x (albedo x ao, N.L, ...).
     if (std::string f = termFit(in); !f.empty()) return f;
+    // The reference on other inputs, a direction at another length, a curve of one input
+    // (input_fits.h).
+    if (std::string f = nameSubstitution(in); !f.empty()) return f;
+    if (std::string f = nameLength(in); !f.empty()) return f;
+    // A curve says less than a clamp or a cut-off on one side of an input (N.L unclamped is
+    // N.L itself, and wrong only where N.L < 0 with the reference 0 there).
+    if (std::string f = hinted ? "" : nameCurve(in); !f.empty()) return f;
     // One component wrong, the others right.
     if (std::string c = componentPattern(in, exact); !c.empty()) return c;
     exact = false;
+    // Several wrong: one of them the reference's to a power (a square root missing in what
+    // makes it), said for that one.
+    if (std::string c = componentPower(in); !c.empty()) return c;
     std::string s = where.empty() ? "" : "Your function is " + where;
     const std::string sens = sensitivity(in);
     if (!sens.empty()) s += (s.empty() ? "" : " ") + sens;

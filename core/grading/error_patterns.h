@@ -1,13 +1,16 @@
 // Feedback that names the mistake from the shape of the error (docs/grading.md): a constant
 // factor, an offset, a power, a sign, a constant output, an error confined to one region of
-// an input, an input the function ignores or depends on wrongly. General patterns, not a
-// list of known files; grading/grade_step.cpp adds the nearest typical mistake on top.
+// an input, an input the function ignores or depends on wrongly, a NaN traced to the call
+// that made it; the named terms (term_fits.h) and the reference on other inputs and curves
+// (input_fits.h). General patterns, not a list of known files; grading/failure_message.cpp
+// adds the nearest typical mistake on top.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "pbrlab/module.h"
+#include "shader/preprocess.h"
 
 namespace pbrlab {
 
@@ -28,7 +31,23 @@ struct FeedbackInputs {
     // environment's maps): the named-term fits recompute the step with it (term_fits.h).
     // Optional.
     const ReferenceContext* context = nullptr;
+    // Where the student's function made its first NaN or Inf at these points (the diagnosis
+    // build, shader/preprocess.h): the site (traced call and line) most of them share, another
+    // site that made one there too, at how many points, of how many traced; `confirmed`: with
+    // what those calls made replaced by 0 the value is finite there (the NaN or Inf the student
+    // sees is theirs). Optional.
+    struct NonFiniteOrigin {
+        TraceSite site, other;
+        int points = 0, traced = 0;
+        bool confirmed = false;
+    };
+    std::function<NonFiniteOrigin(const std::vector<Surface>&)> traceNonFinite;
 };
+
+// The inputs a step's errors are located and substituted by: its own (ModuleDesc::inputAxes)
+// or, when it declares none, the generic ones (N.V, N.L, V.L, roughness, metallic, ao, the
+// mean albedo, the light's distance, extra.x, extra.y, tangent.w). Kept for the program's life.
+const std::vector<InputAxis>& inputAxes(const ModuleDesc& module);
 
 // What the inputs at a point were, in the module's terms: the fields its domain (or probe)
 // varies, and the cosines between the directions it reads ("N.V 0.42, roughness 0.05").

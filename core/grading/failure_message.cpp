@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "grading/error_patterns.h"
@@ -47,10 +48,13 @@ std::string mistakeName(const fs::path& file) {
 }  // namespace
 
 // What the typical mistakes and the mutants are compared with: up to 96 points of the failed
-// check (evenly spread, its worst among them) and the student's values there, rendered
-// once. Every candidate is then one small render on the same points.
+// check (its worst, up to 48 where the student's value is outside the band, the rest evenly
+// spread) and the student's values there, rendered once. Every candidate is then one small
+// render on the same points.
 struct StepGrader::Sample {
-    std::vector<size_t> picked;   // indices into the failed check's points
+    std::vector<size_t> picked;  // indices into the failed check's points
+    std::vector<bool> wrong;     // the student's value outside the band there
+    int wrongCount = 0;
     std::vector<Surface> points;  // those points, in rows of kRowWidth (padded)
     int height = 0;
     Image student;
@@ -59,8 +63,15 @@ struct StepGrader::Sample {
 // At how many of the sampled points a candidate's values equal the student's (within twice
 // the band's width), and how far apart they are over all of them (0: equal everywhere).
 struct StepGrader::Agreement {
-    int same = 0;
+    int same = 0, sameWhereWrong = 0;
     double distance = 0;
+    // Equal at 95% of the sampled points and at 90% of those where the student's value is
+    // wrong: a candidate that is right where the student is right, and nothing more, names
+    // nothing (an error at 65 of 8385 points is one or two points of an even sample).
+    bool matches(const Sample& sample) const {
+        return same >= 0.95 * double(sample.picked.size()) &&
+               sameWhereWrong >= 0.9 * double(sample.wrongCount);
+    }
 };
 
 // Each mutant of the reference solution (grading/mutants_mechanical.h) on the sampled points: one
@@ -126,6 +137,44 @@ void StepGrader::explain() {
             request.isolatePoints = true;
             return pointValues(renderer_.render(request).value, surfaces.size());
         };
+        // The points where the value is not finite, again, with the diagnosis build: which
+        // of the student's calls made the first NaN or Inf there.
+        in.traceNonFinite = [this, &f](const std::vector<Surface>& surfaces) {
+            FeedbackInputs::NonFiniteOrigin origin;
+            if (source_.dir.empty()) return origin;  // the reference solutions: no one to tell
+            StudentSource traced = source_;
+            traced.traceNonFinite = true;
+            const Grid g = grid(surfaces);
+            RenderRequest request{&m_, &f.params, &f.scene, traced, &g.surfaces, g.width, g.height};
+            request.seamlessCubes = false;
+            request.isolatePoints = true;
+            std::vector<glm::dvec3> calls;
+            try {
+                calls = pointValues(renderer_.render(request).value, surfaces.size());
+            } catch (const Error&) {
+                return origin;  // the diagnosis build does not compile: nothing to say
+            }
+            // The site most points share, among those where it is the cause (the value finite
+            // with what the traced calls made replaced), else among all.
+            std::map<std::pair<int, int>, int> confirmed, noted;
+            std::map<std::pair<int, int>, TraceSite> other;
+            for (const glm::dvec3& c : calls) {
+                const TraceSite site = traceSite(c.x);
+                if (!site.traced()) continue;
+                const std::pair<int, int> key{site.call, site.line};
+                ++(c.z > 0.5 ? confirmed : noted)[key];
+                if (traceSite(c.y).traced()) other[key] = traceSite(c.y);
+            }
+            origin.traced = int(calls.size());
+            origin.confirmed = !confirmed.empty();
+            for (const auto& [key, points] : confirmed.empty() ? noted : confirmed)
+                if (points > origin.points) {
+                    origin.site = {key.first, key.second};
+                    origin.other = other.count(key) ? other[key] : TraceSite{};
+                    origin.points = points;
+                }
+            return origin;
+        };
         // The estimator's bands are not the reference's: the sensitivity test would
         // compare against the same-sample reference, so it is left out there.
         if (!d_.estimator) in.domain = d_.domain;
@@ -190,11 +239,34 @@ StepGrader::Sample StepGrader::sample(const ValuesRun& f) {
     for (size_t i = 0; i < f.surfaces.size(); ++i)
         if (f.surfaces[i].covered) covered.push_back(i);
     if (covered.empty()) return out;
-    const size_t step = std::max<size_t>(1, covered.size() / 95);
-    for (size_t k = 0; k < covered.size() && out.picked.size() < 95; k += step)
-        out.picked.push_back(covered[k]);
+    // Up to 48 of the points where the student's value is outside the band (the worst
+    // first), the rest spread over all: 96 in all.
+    auto outside = [&](size_t i) {
+        const glm::dvec3 v(f.value.pixels[i * 4], f.value.pixels[i * 4 + 1],
+                           f.value.pixels[i * 4 + 2]);
+        for (int c = 0; c < d_.components; ++c)
+            if (!(std::abs(v[c] - f.band.expected[i][c]) <= f.band.slack[i][c])) return true;
+        return false;
+    };
+    std::vector<size_t> wrong;
+    for (size_t i : covered)
+        if (outside(i)) wrong.push_back(i);
     if (f.worstIndex >= 0 && f.surfaces[size_t(f.worstIndex)].covered)
         out.picked.push_back(size_t(f.worstIndex));
+    const size_t fromWrong = std::min<size_t>(wrong.size(), 48);
+    for (size_t k = 0; k < fromWrong; ++k) {
+        const size_t i = wrong[k * wrong.size() / fromWrong];
+        if (std::find(out.picked.begin(), out.picked.end(), i) == out.picked.end())
+            out.picked.push_back(i);
+    }
+    const size_t step = std::max<size_t>(1, covered.size() / (96 - out.picked.size()));
+    for (size_t k = 0; k < covered.size() && out.picked.size() < 96; k += step)
+        if (std::find(out.picked.begin(), out.picked.end(), covered[k]) == out.picked.end())
+            out.picked.push_back(covered[k]);
+    for (size_t i : out.picked) {
+        out.wrong.push_back(outside(i));
+        out.wrongCount += out.wrong.back();
+    }
     for (size_t i : out.picked) out.points.push_back(f.surfaces[i]);
     out.points.resize((out.points.size() + kRowWidth - 1) / kRowWidth * kRowWidth);
     out.height = int(out.points.size() / kRowWidth);
@@ -224,6 +296,7 @@ StepGrader::Agreement StepGrader::agreement(const ValuesRun& f, const Sample& sa
             a.distance += std::isfinite(e) ? std::min(e, 1e6) : 1e6;
         }
         a.same += equal;
+        a.sameWhereWrong += equal && sample.wrong[p];
     }
     return a;
 }
@@ -248,7 +321,8 @@ std::string StepGrader::typicalMistake(const ValuesRun& f, const Sample& sample)
         try {
             const Agreement a = agreement(f, sample, valuesOn(f, sample, {tmp, false}));
             const double share = double(a.same) / double(sample.picked.size());
-            if (share >= bestShare) bestShare = share, best = mistakeName(file);
+            if (a.matches(sample) && share >= bestShare)
+                bestShare = share, best = mistakeName(file);
         } catch (const Error&) {
         }
     }
@@ -279,7 +353,7 @@ StepGrader::MutantMatch StepGrader::mutantMatch(const ValuesRun& f, const Sample
             continue;  // does not compile
         }
         const Agreement a = agreement(f, sample, mutant);
-        if (a.same >= 0.95 * double(sample.picked.size()) && a.distance < bestDistance) {
+        if (a.matches(sample) && a.distance < bestDistance) {
             bestDistance = a.distance;
             std::string mistake = mutants[k].family;
             for (const MutantFamily& family : mutantFamilies())

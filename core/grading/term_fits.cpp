@@ -37,7 +37,9 @@ struct Knobs {
     double f0ForF = 0;                  // F0 where F belongs
     double NX = 1;                      // N.X in G1's numerator
     double kChoice = 0;                 // another remapping of k (kChoices)
+    double kComplement = 0;             // 1 - k in place of k
     double g1vTwice = 0, g1lTwice = 0;  // G1(N.V) for the light too, or G1(N.L) for the view
+    double unnormalisedH = 0;           // H = L + V where normalize(L + V) belongs
     // The IBL estimators' weight G (V.H) / ((N.H)(N.V)).
     double VH = 1, NH = -1;
     // The diffuse part kD albedo / pi, and the BRDF's sum.
@@ -48,8 +50,13 @@ struct Knobs {
     double reinhard = -1, gamma = 1 / 2.2, gammaFirst = 0;
     // irradiance
     double irradianceCosine = 1, wholeSphere = 0;
+    double sinTheta = 1;  // the sin(theta) of the solid angle sin(theta) dtheta dphi
     // split_sum
     double bias = 1, fForF0 = 0, irradiancePi = 0;
+    // The exponents of the terms a step declares (ModuleDesc::formulaTerms), in order.
+    double declared0 = 1, declared1 = 1, declared2 = 1, declared3 = 1;
+    double maxLod = 1;      // the LOD roughness x uPrefilterMaxLod
+    double lutSwapped = 0;  // the LUT read at (roughness, N.V)
 };
 
 double power(double x, double e) {
@@ -82,7 +89,8 @@ double g1(double NdotX, double roughness, const Knobs& k, int own) {
     const double x = std::max(NdotX, 0.0);
     // kChoice: 0 the step's own, -1 the direct one, i > 0 kChoices[i].
     const int choice = k.kChoice > 0 ? int(k.kChoice) : k.kChoice < 0 ? 0 : own;
-    const double kk = kChoices[choice].k(roughness);
+    const double kk =
+        k.kComplement != 0 ? 1 - kChoices[choice].k(roughness) : kChoices[choice].k(roughness);
     return power(x, k.NX) / (x * (1 - kk) + kk);
 }
 
@@ -91,7 +99,9 @@ double ggx(double NdotH, double roughness, const Knobs& k) {
     const double a2 = std::max(a * a, ref::kMinAlpha2);
     const double h = power(std::max(NdotH, 0.0), k.NHpower);
     const double d = (1.0 - h) + h * a2;
-    return power(a2, k.alpha2) / (kPi * power(d, k.denominator));
+    // Squared as the formula writes it: d < 0 where N.H > 1 (an unnormalised H), and its square
+    // is what the student's float code computes there.
+    return power(a2, k.alpha2) / (kPi * (k.denominator == 2 ? d * d : power(d, k.denominator)));
 }
 
 dvec3 fresnel(double cosine, const dvec3& F0, const Knobs& k) {
@@ -106,7 +116,7 @@ struct Lobe {
 };
 Lobe cookTorrance(const Surface& s, const dvec3& L, const Knobs& k) {
     const dvec3 &N = s.normal, &V = s.view;
-    const dvec3 H = ref::halfwayVector(L, V);
+    const dvec3 H = k.unnormalisedH != 0 ? L + V : ref::halfwayVector(L, V);
     const dvec3 F0 = ref::baseReflectivity(s.albedo, s.metallic);
     const double NdotV = std::max(glm::dot(N, V), 0.0), NdotL = std::max(glm::dot(N, L), 0.0);
     const dvec3 F =
@@ -231,8 +241,18 @@ dvec3 irradiance(const Surface& s, const ReferenceContext& c, const Knobs& k) {
     for (size_t i = 0; i < t.direction.size(); ++i) {
         double cosine = glm::dot(s.normal, t.direction[i]);
         if (k.wholeSphere != 0) cosine = std::abs(cosine);
-        if (cosine > 0)
-            sum += t.radiance[i] * (power(cosine, k.irradianceCosine) * t.solidAngle[i]);
+        // The solid angle without its sin(theta) (a Riemann sum over dtheta dphi) weighs a
+        // texel by 1/sin(theta): near N that is averaged over the texel as over a disc of its
+        // angular radius r (2/r), as the student's sum over small steps of theta does, not
+        // read at the texel's centre (a fraction of a degree from N at the sizes graded).
+        const double radius = std::sqrt(t.solidAngle[i] / kPi);
+        const double solidAngle =
+            k.sinTheta == 1
+                ? t.solidAngle[i]
+                : t.solidAngle[i] *
+                      std::pow(std::max(std::sqrt(std::max(1 - cosine * cosine, 0.0)), radius / 2),
+                               k.sinTheta - 1);
+        if (cosine > 0) sum += t.radiance[i] * (power(cosine, k.irradianceCosine) * solidAngle);
     }
     return sum / kPi;
 }
@@ -247,9 +267,10 @@ dvec3 splitSum(const Surface& s, const ReferenceContext& c, const Knobs& k) {
     const dvec3 kD = (1.0 - F) * power(1.0 - s.metallic, k.metal);
     const dvec3 diffuse = power(kD, k.kD) * power(s.albedo, k.albedo) *
                           ibl.irradiance.sample(N, 0) * power(kPi, k.irradiancePi);
-    const dvec3 prefiltered =
-        ibl.prefilter.sample(glm::reflect(-V, N), s.roughness * ibl.prefilterMaxLod);
-    const dvec2 lut(sampleTexture(ibl.lut, {NdotV, s.roughness}));
+    const dvec3 prefiltered = ibl.prefilter.sample(
+        glm::reflect(-V, N), s.roughness * power(ibl.prefilterMaxLod, k.maxLod));
+    const dvec2 lut(sampleTexture(
+        ibl.lut, k.lutSwapped != 0 ? dvec2(s.roughness, NdotV) : dvec2(NdotV, s.roughness)));
     const dvec3 specular = prefiltered * ((k.fForF0 != 0 ? F : F0) * lut.x + k.bias * lut.y);
     return (k.diffuse * diffuse + k.specular * specular) * power(s.ao, k.ao) + s.emissive;
 }
@@ -324,6 +345,22 @@ Term removed(std::string name, double Knobs::*knob) {
     return {Term::Switch, "", std::move(name), {knob}, 1, {0}};
 }
 
+// G1 = N.X / (N.X (1 - k) + k) with 1 - k in place of k.
+Term kSwapped() {
+    return onOff("k and (1 - k) swapped in G1's denominator N.X (1 - k) + k", &Knobs::kComplement);
+}
+
+// The weight V.H / (N.H N.V) that dividing D G F N.L / (4 N.L N.V) by the pdf D N.H / (4 V.H)
+// leaves, as a whole: its three factors missing at once.
+Term pdfWeight() {
+    return {Term::Factor,
+            "V.H / (N.H N.V)",
+            "the V.H / (N.H N.V) left after dividing by the pdf",
+            {&Knobs::VH, &Knobs::NH, &Knobs::NV},
+            1,
+            {0}};
+}
+
 // The Cook-Torrance terms shared by specular (`whole`: the lobe is the step's value), brdf
 // and reflectance.
 std::vector<Term> specularTerms(bool whole) {
@@ -342,6 +379,7 @@ std::vector<Term> specularTerms(bool whole) {
         onOff("F evaluated at N.V, where the specular lobe has H.V", &Knobs::fresnelAtNdotV),
         onOff("F0 multiplying the Schlick factor (F0 + F0 (1 - cos)^5)", &Knobs::f0TimesSchlick),
         onOff("G1(N.V) for the light too, where the reference has G1(N.L)", &Knobs::g1vTwice),
+        onOff("the half vector L + V used without normalising it", &Knobs::unnormalisedH),
         {Term::Exponent,
          "alpha",
          "alpha",
@@ -443,7 +481,7 @@ const std::map<std::string, StepTerms>& table() {
         t["g1"] = {[](const Surface& s, const ReferenceContext&, const Knobs& k) {
                        return dvec3(g1(glm::dot(s.normal, s.view), s.roughness, k, 0));
                    },
-                   {wholeFactor("N.X", "N.X in the numerator", {&Knobs::NX})}};
+                   {wholeFactor("N.X", "N.X in the numerator", {&Knobs::NX}), kSwapped()}};
         for (int i = 1; i < int(std::size(kChoices)); ++i)
             t["g1"].terms.push_back({Term::Switch,
                                      "",
@@ -464,6 +502,7 @@ const std::map<std::string, StepTerms>& table() {
              wholeFactor("G1(N.L)", "the shadowing term G1(N.L)", {&Knobs::G1L}),
              onOff("G1(N.V) for the light too, where the reference has G1(N.L)", &Knobs::g1vTwice),
              onOff("G1(N.L) for the view too, where the reference has G1(N.V)", &Knobs::g1lTwice),
+             kSwapped(),
              {Term::Switch,
               "",
               "k = roughness^2 / 2 (the IBL remapping), where direct light has "
@@ -561,6 +600,7 @@ const std::map<std::string, StepTerms>& table() {
              factor("V.H", "V.H in the weight G V.H / (N.H N.V)", {&Knobs::VH}),
              factor("N.H", "N.H in the weight G V.H / (N.H N.V)", {&Knobs::NH}, -1),
              factor("N.V", "N.V in the weight G V.H / (N.H N.V)", {&Knobs::NV}, -1),
+             pdfWeight(),
              onOff("F0 where F belongs (F = F0 + (1 - F0)(1 - V.H)^5)", &Knobs::f0ForF),
              onOff("F evaluated at N.V, where each sample has V.H", &Knobs::fresnelAtNdotV),
              {Term::Switch,
@@ -579,6 +619,7 @@ const std::map<std::string, StepTerms>& table() {
              factor("V.H", "V.H in G_vis = G V.H / (N.H N.V)", {&Knobs::VH}),
              factor("N.H", "N.H in G_vis = G V.H / (N.H N.V)", {&Knobs::NH}, -1),
              factor("N.V", "N.V in G_vis = G V.H / (N.H N.V)", {&Knobs::NV}, -1),
+             pdfWeight(),
              {Term::Exponent,
               "(1 - V.H)",
               "the Schlick factor",
@@ -614,7 +655,13 @@ const std::map<std::string, StepTerms>& table() {
               }},
              onOff("light from below the horizon counted (|N.L| over the whole sphere, where "
                    "the reference has max(N.L, 0) over the hemisphere)",
-                   &Knobs::wholeSphere)},
+                   &Knobs::wholeSphere),
+             {Term::Factor,
+              "sin(theta)",
+              "the sin(theta) of the solid angle dw = sin(theta) dtheta dphi",
+              {&Knobs::sinTheta},
+              1,
+              {0}}},
             48};
         t["split_sum"] = {
             splitSum,
@@ -625,6 +672,14 @@ const std::map<std::string, StepTerms>& table() {
              factor("PI", "PI in the diffuse term (uIrradianceMap stores E / PI already)",
                     {&Knobs::irradiancePi}, 0),
              removed("the LUT's bias B (in F0 A + B)", &Knobs::bias),
+             {Term::Factor,
+              "uPrefilterMaxLod",
+              "uPrefilterMaxLod in the LOD roughness x uPrefilterMaxLod",
+              {&Knobs::maxLod},
+              1,
+              {0}},
+             onOff("the LUT read at (roughness, N.V), where its coordinates are (N.V, roughness)",
+                   &Knobs::lutSwapped),
              onOff("F where the bracket has F0 (prefiltered (F0 A + B): Fresnel is inside A "
                    "and B)",
                    &Knobs::fForF0),
@@ -634,6 +689,26 @@ const std::map<std::string, StepTerms>& table() {
         return t;
     }();
     return steps;
+}
+
+// A step's own named terms (ModuleDesc::formulaTerms, up to four): the reference, or the
+// declared term at another exponent.
+StepTerms declaredTerms(const ModuleDesc& d) {
+    static double Knobs::*const slots[] = {&Knobs::declared0, &Knobs::declared1, &Knobs::declared2,
+                                           &Knobs::declared3};
+    const size_t count = std::min(d.formulaTerms.size(), std::size(slots));
+    StepTerms step;
+    step.model = [&d, count](const Surface& s, const ReferenceContext& c, const Knobs& k) {
+        for (size_t j = 0; j < count; ++j)
+            if (k.*slots[j] != 1) return d.formulaTerms[j].value(s, c, k.*slots[j]);
+        return d.reference(s, c);
+    };
+    for (size_t j = 0; j < count; ++j)
+        step.terms.push_back(
+            factor(d.formulaTerms[j].symbol, d.formulaTerms[j].name, {slots[j]}, 1));
+    // An estimator's value costs its sample count per point.
+    step.points = d.estimator ? 32 : 192;
+    return step;
 }
 
 // ---- measuring how well a candidate explains the error ---------------------------------------
@@ -692,8 +767,8 @@ struct Evaluation {
     // How far each candidate value is from the student's, in units of the tolerance of
     // near(): the share within 1, and the median (what the exponent search minimises: it
     // falls smoothly towards the exponent that fits, where the share is 0 until it is hit).
-    std::vector<double> distances(const Knobs& k) {
-        const std::vector<dvec3> v = values(k);
+    std::vector<double> distances(const Knobs& k) { return distancesOf(values(k)); }
+    std::vector<double> distancesOf(const std::vector<dvec3>& v) {
         std::vector<double> out;
         for (size_t p = 0; p < v.size(); ++p) {
             const size_t i = points.index[p];
@@ -708,8 +783,8 @@ struct Evaluation {
         }
         return out;
     }
-    Share share(const Knobs& k) {
-        const std::vector<double> d = distances(k);
+    Share share(const Knobs& k) { return shareOf(distances(k)); }
+    Share shareOf(const std::vector<double>& d) {
         int all = 0, wrong = 0;
         for (size_t p = 0; p < d.size(); ++p) {
             all += d[p] <= 1;
@@ -718,8 +793,8 @@ struct Evaluation {
         return {double(all) / double(std::max<size_t>(d.size(), 1)),
                 double(wrong) / double(std::max(points.wrongCount, 1))};
     }
-    double medianDistance(const Knobs& k) {
-        std::vector<double> d = distances(k);
+    double medianDistance(const Knobs& k) { return medianOf(distances(k)); }
+    static double medianOf(std::vector<double> d) {
         if (d.empty()) return 1e300;
         std::nth_element(d.begin(), d.begin() + long(d.size() / 2), d.end());
         return d[d.size() / 2];
@@ -741,7 +816,7 @@ std::vector<double> niceNear(double e) {
 }
 
 struct Candidate {
-    const Term* term;
+    const Term* term;  // null: not one term at one exponent (two factors added)
     double exponent;
     Share share;
     double median;  // distance, in units of the tolerance
@@ -802,8 +877,12 @@ std::string nameTerm(const FeedbackInputs& in) {
     } timer;
     if (!in.module || !in.context || in.values.empty()) return "";
     const auto found = table().find(in.module->id);
-    if (found == table().end()) return "";
-    const StepTerms& step = found->second;
+    StepTerms declared;
+    if (found == table().end()) {
+        if (in.module->formulaTerms.empty() || !in.module->reference) return "";
+        declared = declaredTerms(*in.module);
+    }
+    const StepTerms& step = found != table().end() ? found->second : declared;
     Evaluation ev{in,
                   step,
                   *in.context,
@@ -876,6 +955,32 @@ std::string nameTerm(const FeedbackInputs& in) {
                                      : std::vector<double>{1, -1};
         for (double e : tries) consider(t, e);
     }
+    // Two factors of the whole value added or averaged where the reference multiplies them:
+    // the value with one missing is the rest times the other.
+    for (size_t a = 0; a < step.terms.size(); ++a)
+        for (size_t b = a + 1; b < step.terms.size(); ++b) {
+            const Term &ta = step.terms[a], &tb = step.terms[b];
+            auto product = [](const Term& t) {
+                return t.kind == Term::Factor && t.whole && t.reference == 1;
+            };
+            if (!product(ta) || !product(tb)) continue;
+            bool shared = false;
+            for (double Knobs::*x : ta.knobs)
+                for (double Knobs::*y : tb.knobs) shared = shared || x == y;
+            if (shared) continue;
+            const std::vector<dvec3> withA = ev.values(with(tb, 0)), withB = ev.values(with(ta, 0));
+            for (const double w : {0.5, 1.0}) {
+                std::vector<dvec3> v;
+                for (size_t p = 0; p < withA.size(); ++p) v.push_back((withA[p] + withB[p]) * w);
+                const std::vector<double> d = ev.distancesOf(v);
+                const std::string how = w == 1 ? "added" : "averaged";
+                candidates.push_back({nullptr, 0, ev.shareOf(d), Evaluation::medianOf(d),
+                                      "Your value fits the reference with " + ta.symbol + " and " +
+                                          tb.symbol + " " + how +
+                                          ", where it multiplies them: are the two " + how +
+                                          " instead of multiplied?"});
+            }
+        }
     // The best explanation: most of the points the reference does not explain, and most of
     // all; named only when it explains 90% of both and no other (with another message)
     // comes within 0.1 of it (the two shares summed). Measured on tests/naming: the named one

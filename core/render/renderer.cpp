@@ -115,6 +115,9 @@ ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentS
         };
         bool fromStudent = !source.dir.empty() && (step->id == d.id || source.cumulative) &&
                            studentPart(source.dir);
+        // The diagnosis build traces the graded step's file only: a line it reports is one of
+        // that file.
+        part.traced = fromStudent && step->id == d.id && source.traceNonFinite;
         // A withheld solution (an assignment's site): the student's own file of that step
         // wherever the solution would be, else its starter.
         if (!fromStudent && solutionWithheld(*step)) {
@@ -137,6 +140,7 @@ ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentS
     // IBL functions); only what the step may read is bound (see runView).
     r.defines["PBRLAB_IBL"] = "1";
     if ((d.needs & NeedsEnvironment) && d.skyBackground && !probe) r.defines["PBRLAB_SKY"] = "1";
+    if (source.traceNonFinite) r.defines[kTraceNonFinite] = "1";
     return r;
 }
 

@@ -25,6 +25,9 @@ namespace pbrlab {
 struct StudentSource {
     std::filesystem::path dir;  // empty: reference solutions only
     bool cumulative = false;    // use the student's earlier steps too (default: stepwise)
+    // The diagnosis build (kTraceNonFinite, shader/preprocess.h): the view writes which of the
+    // graded step's calls made the first NaN or Inf, and its line, instead of its value.
+    bool traceNonFinite = false;
 };
 
 // GLSL declarations of the step's parameter uniforms (u_<name>: float, int for int, bool and

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <regex>
 #include <set>
@@ -70,6 +72,57 @@ vec4 pbrlab_definedPow(vec4 x, vec4 y) {
     return mix(pow(x, y), vec4(intBitsToFloat(0x7fc00000)), lessThan(x, vec4(0.0)));
 }
 )";
+
+// The diagnosis build's functions (kTraceNonFinite): one per traced built-in and argument
+// type, calling the built-in (pow: its defined form); a non-finite result of finite arguments
+// is noted and replaced by 0, so that whether the value is finite after it says whether the
+// NaN or Inf the student sees came from those calls.
+std::string traceFunctions() {
+    std::string out = R"(int pbrlab_traceSite = 0;
+int pbrlab_traceOther = 0;
+bool pbrlab_finite(float x) { return !isnan(x) && !isinf(x); }
+bool pbrlab_finite(vec2 x) { return !any(isnan(x)) && !any(isinf(x)); }
+bool pbrlab_finite(vec3 x) { return !any(isnan(x)) && !any(isinf(x)); }
+bool pbrlab_finite(vec4 x) { return !any(isnan(x)) && !any(isinf(x)); }
+void pbrlab_noteCall(int call, int line) {
+    int site = (abs(call) * 65536 + min(line, 65535)) * (call < 0 ? -1 : 1);
+    if (pbrlab_traceSite == 0) pbrlab_traceSite = site;
+    else if (site != pbrlab_traceSite && pbrlab_traceOther == 0) pbrlab_traceOther = site;
+}
+bool pbrlab_powUndefined(float x, float y) { return x < 0.0 || (x == 0.0 && y <= 0.0); }
+)";
+    for (const char* t : {"vec2", "vec3", "vec4"}) {
+        const std::string T = t;
+        out += "bool pbrlab_powUndefined(" + T + " x, " + T + " y) {\n    return any(lessThan(x, " +
+               T + "(0.0))) ||\n           any(greaterThan(" + T + "(equal(x, " + T + "(0.0))) * " +
+               T + "(lessThanEqual(y, " + T + "(0.0))), " + T + "(0.0)));\n}\n";
+    }
+    const std::vector<TracedCall>& calls = tracedCalls();
+    for (size_t k = 0; k < calls.size(); ++k) {
+        const TracedCall& c = calls[k];
+        const std::string impl = c.builtin == "pow" ? "pbrlab_definedPow" : c.builtin;
+        const std::string index = std::to_string(k + 1);
+        // The overflow case where the arguments lie where the built-in is defined.
+        const std::string code =
+            c.overflow.empty() ? index : "pbrlab_powUndefined(x, y) ? " + index + " : -" + index;
+        for (const char* t : {"float", "vec2", "vec3", "vec4"}) {
+            const std::string T = t;
+            // mod(genType, float) too.
+            for (const std::string& second : c.arguments == 2 && T != "float" && c.builtin == "mod"
+                                                 ? std::vector<std::string>{T, "float"}
+                                                 : std::vector<std::string>{T}) {
+                const bool two = c.arguments == 2;
+                out += T + " pbrlab_trace_" + c.builtin + "(" + T + " x, " +
+                       (two ? second + " y, " : "") + "int line) {\n    " + T + " r = " + impl +
+                       (two ? "(x, y);\n" : "(x);\n") + "    if (pbrlab_finite(x) && " +
+                       (two ? "pbrlab_finite(y) && " : "") + "!pbrlab_finite(r)) {\n" +
+                       "        pbrlab_noteCall(" + code + ", line);\n        return " + T +
+                       "(0.0);\n    }\n    return r;\n}\n";
+            }
+        }
+    }
+    return out;
+}
 
 }  // namespace
 
@@ -193,6 +246,31 @@ struct Expander {
     std::set<std::string> studentMacros;
     // The current student's part's ShaderPart::unreachable.
     const std::map<std::string, std::string>* unreachable = nullptr;
+    bool trace = false;  // the diagnosis build (kTraceNonFinite)
+    // Whether the text being expanded is a traced part's own (not a file it includes).
+    bool tracing = false;
+
+    // What a student's part reads its built-ins through: definedBuiltins(), or in a traced
+    // part of the diagnosis build a macro per traced built-in that passes the call's line.
+    std::string builtinMacros(bool traced) const {
+        std::string out;
+        for (const std::string& builtin : builtinMacroNames()) out += "#undef " + builtin + "\n";
+        for (const auto& [builtin, definition] : definedBuiltins())
+            if (!traced) out += "#define " + builtin + " " + definition + "\n";
+        if (traced)
+            for (const TracedCall& c : tracedCalls())
+                out += "#define " + c.builtin + (c.arguments == 2 ? "(x, y)" : "(x)") +
+                       " pbrlab_trace_" + c.builtin + (c.arguments == 2 ? "(x, y" : "(x") +
+                       ", __LINE__)\n";
+        return out;
+    }
+    std::set<std::string> builtinMacroNames() const {
+        std::set<std::string> names;
+        for (const auto& [builtin, definition] : definedBuiltins()) names.insert(builtin);
+        if (trace)
+            for (const TracedCall& c : tracedCalls()) names.insert(c.builtin);
+        return names;
+    }
 
     int sourceIndex(const std::string& name) {
         out.sourceNames.push_back(name);
@@ -316,7 +394,7 @@ struct Expander {
         out.text += "\n";
         for (const std::string& macro : studentMacros) out.text += "#undef " + macro + "\n";
         studentMacros.clear();
-        for (const auto& [builtin, definition] : definedBuiltins())
+        for (const std::string& builtin : builtinMacroNames())
             out.text += "#undef " + builtin + "\n";
     }
 
@@ -343,7 +421,13 @@ struct Expander {
                 fs::path target = resolve(m[1].str(), file, where);
                 if (included.insert(target).second) {
                     out.files.push_back(target);
+                    // A line the diagnosis build reports is one of the traced part's own.
+                    const bool wasTracing = tracing;
+                    if (wasTracing) out.text += builtinMacros(false);
+                    tracing = false;
                     expandText(read(target), target.string(), target);
+                    tracing = wasTracing;
+                    if (wasTracing) out.text += builtinMacros(true);
                 }
                 out.text +=
                     "#line " + std::to_string(lineNo + 1) + " " + std::to_string(index) + "\n";
@@ -384,10 +468,11 @@ ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
     // the reference solutions call them).
     const bool anyStudent = std::any_of(
         parts.begin(), parts.end(), [](const ShaderPart& p) { return !p.studentFolder.empty(); });
-    if (anyStudent) {
-        ex.out.text += kDefinedBuiltins;
-        for (const auto& [builtin, definition] : definedBuiltins()) ex.hostMacros.insert(builtin);
-    }
+    ex.trace = defines.count(kTraceNonFinite) != 0;
+    if (anyStudent || ex.trace) ex.out.text += kDefinedBuiltins;
+    if (ex.trace) ex.out.text += traceFunctions();
+    if (anyStudent)
+        for (const std::string& builtin : ex.builtinMacroNames()) ex.hostMacros.insert(builtin);
     bool afterStudent = false;
     for (const auto& part : parts) {
         if (!anyStudent) break;  // no one to screen
@@ -415,16 +500,53 @@ ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
         if (!ex.included.insert(file).second) continue;
         ex.out.files.push_back(file);
         ex.studentFolder = part.studentFolder;
+        ex.tracing = ex.trace && part.traced && !part.studentFolder.empty();
         if (!part.studentFolder.empty())  // the student's calls reach kDefinedBuiltins
-            for (const auto& [builtin, definition] : definedBuiltins())
-                ex.out.text += "#define " + builtin + " " + definition + "\n";
+            ex.out.text += ex.builtinMacros(ex.tracing);
         ex.roots = part.studentFolder.empty() ? roots_ : std::vector<fs::path>{part.studentFolder};
         // A student's file is read by the name it was given, so that the screening sees a
         // link as a link (and names the file as the student knows it).
         ex.expandText(ex.read(part.studentFolder.empty() ? file : part.file), file.string(), file);
         if (!part.studentFolder.empty()) ex.closeStudentPart();
+        ex.tracing = false;
     }
     return ex.out;
+}
+
+const std::vector<TracedCall>& tracedCalls() {
+    static const std::vector<TracedCall> calls = {
+        {"pow", 2, "pow with a negative base (or 0 to a power <= 0)",
+         "pow with a result too large for a float (an overflow)"},
+        {"sqrt", 1, "sqrt of a negative number", ""},
+        {"inversesqrt", 1, "inversesqrt of a negative number or of 0", ""},
+        {"log", 1, "log of a negative number or of 0", ""},
+        {"log2", 1, "log2 of a negative number or of 0", ""},
+        {"normalize", 1, "normalize of a zero vector (0/0)", ""},
+        {"acos", 1, "acos of a number outside [-1, 1]", ""},
+        {"asin", 1, "asin of a number outside [-1, 1]", ""},
+        {"mod", 2, "mod(x, 0)", ""},
+    };
+    return calls;
+}
+
+const TracedCall* TraceSite::traced() const {
+    const std::vector<TracedCall>& calls = tracedCalls();
+    const int k = std::abs(call);
+    return k >= 1 && k <= int(calls.size()) ? &calls[size_t(k - 1)] : nullptr;
+}
+
+const std::string& TraceSite::what() const {
+    static const std::string none;
+    const TracedCall* c = traced();
+    return !c ? none : call < 0 && !c->overflow.empty() ? c->overflow : c->what;
+}
+
+TraceSite traceSite(double written) {
+    // As pbrlab_noteCall writes it: (|call| x 65536 + line), negative for the overflow case.
+    if (!std::isfinite(written) || std::abs(written) >= 2147483647.0) return {};
+    const long site = std::lround(written);
+    const long magnitude = std::labs(site);
+    return {int(magnitude / 65536) * (site < 0 ? -1 : 1), int(magnitude % 65536)};
 }
 
 const std::map<std::string, std::string>& definedBuiltins() {

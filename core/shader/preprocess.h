@@ -36,6 +36,9 @@ struct ShaderPart {
     // (said in place of the compiler's "no function with name"): the contract functions of
     // later steps (contract.h, unreachableFrom).
     std::map<std::string, std::string> unreachable;
+    // A student's part whose calls the diagnosis build traces (kTraceNonFinite): the graded
+    // step's file, so that a line reported is one of that file.
+    bool traced = false;
     // A reference solution linked as host code (not the student's part): the contract function
     // it defines. Every other function it defines is a private helper of that solution, and no
     // student's part of the program may name it (see ShaderPreprocessor::expand).
@@ -103,6 +106,34 @@ std::string mapCompilerLog(const std::string& log, const std::vector<std::string
 // leaves undefined (pow of a negative base) compute the same on every GPU: built-in -> the
 // host's function the program defines before the first student's part.
 const std::map<std::string, std::string>& definedBuiltins();
+
+// The diagnosis build, when the define set holds kTraceNonFinite: each call the traced part
+// (ShaderPart::traced, not the files it includes) makes of a built-in that can turn finite
+// arguments into a NaN or an Inf (pow of a negative base, sqrt of a negative, normalize of a
+// zero vector ...) is checked, and a non-finite result of finite arguments is noted and
+// replaced by 0. The view writes out, in place of its value (shaders/view_main.frag): the
+// first call that made one (its site, traceSite), another call that made one at that point
+// (its site, 0: none), and whether the value with those results replaced is finite (1, else
+// 0): whether the NaN or Inf the student sees came from those calls. Feedback renders the
+// points where a value is not finite with it.
+inline constexpr const char* kTraceNonFinite = "PBRLAB_TRACE_NONFINITE";
+struct TracedCall {
+    std::string builtin;  // "pow"
+    int arguments;        // 1 or 2
+    std::string what;     // what made the NaN or Inf, for the student
+    // pow only: what it is when the arguments lie where the built-in is defined (a result too
+    // large for a float); "": `what` is every case.
+    std::string overflow;
+};
+const std::vector<TracedCall>& tracedCalls();
+// A site as the diagnosis build writes it: the traced call (its index in tracedCalls() + 1,
+// negative for its `overflow` case) and the line of the student's file.
+struct TraceSite {
+    int call = 0, line = 0;
+    const TracedCall* traced() const;  // null: no site
+    const std::string& what() const;   // what made it, for the student
+};
+TraceSite traceSite(double written);
 
 // mapCompilerLog, then every message that a student's file caused but the compiler reports
 // elsewhere (Mesa loses the source number of a redefinition and reports a recursion at 0:0)

@@ -158,6 +158,7 @@ ModuleDesc describeModule() {
     // density D(h) (N.h), in any frame (sample.glsl returns H).
     d.extraViews = {"sample"};
     d.invariants = [](const Evaluator& evaluate) { return ggxSamplingInvariants(evaluate); };
+    d.extraName = "Xi";  // the point of the unit square the function maps (extra.xy), for feedback
     return d;
 }
 

@@ -81,6 +81,17 @@ ModuleDesc describeModule() {
         }
         return out;
     };
+    // The function receives N and H = halfwayVector(L, V): an error is located by N.H (in the
+    // scenes V and L differ, so N.V and N.L would name the wrong axis).
+    d.inputAxes = {
+        {"N.H",
+         [](const Surface& s) { return glm::dot(s.normal, ref::halfwayVector(s.light, s.view)); },
+         [](Surface& s, double v) {
+             s.view = s.light = atCosine(s.normal, ref::halfwayVector(s.light, s.view), v);
+         }},
+        {"roughness", [](const Surface& s) { return s.roughness; },
+         [](Surface& s, double v) { s.roughness = v; }},
+    };
     d.termViews = {{"D", TermView::Encode::None, [](const Surface& s) {
                         const double D = ref::distributionGGX(
                             s.normal, ref::halfwayVector(s.light, s.view), s.roughness);

@@ -18,6 +18,31 @@ std::uint32_t samples(const ReferenceContext& c) {
     return std::uint32_t(std::max(c.params.number("samples"), 1.0));
 }
 
+// The reference's lobe average with its weights N.L raised to `weight` (1: the reference) and
+// divided by the mean weight sum(N.L^weight) / n raised to `normalised` (1: the reference, a
+// weighted average; 0: the weighted sum divided by the sample count): the parts of the formula
+// feedback names (ModuleDesc::formulaTerms).
+glm::dvec3 lobeAverage(const Surface& s, const ReferenceContext& c, double weight,
+                       double normalised) {
+    if (!c.ibl) return glm::dvec3(0);
+    const ref::CubeEnvironment env(c.ibl->environment);
+    const glm::dvec3 R = glm::reflect(-s.view, s.normal);
+    const std::uint32_t n = samples(c);
+    glm::dvec3 sum(0.0);
+    double total = 0.0;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const glm::dvec3 H = ref::importanceSampleGGX(ref::hammersley(i, n), R, s.roughness);
+        const glm::dvec3 L = 2.0 * glm::dot(R, H) * H - R;
+        const double NdotL = glm::dot(R, L);
+        if (NdotL <= 0.0) continue;
+        const double w = std::pow(NdotL, weight);
+        sum += env.radiance(L) * w;
+        total += w;
+    }
+    if (total <= 0.0) return env.radiance(R);
+    return sum / double(n) / std::pow(total / double(n), normalised);
+}
+
 ModuleDesc describeModule() {
     ModuleDesc d;
     d.title = "Prefiltered environment (GGX lobe average)";
@@ -82,6 +107,18 @@ ModuleDesc describeModule() {
     // 1.65x, 4 of the 28 points outside; every correct variant at most 0.33x (docs/grading.md).
     e.systematicAtLargestCount = Tolerance{1e-3, 3e-3, 0, 0.04};
     d.estimator = e;
+    d.formulaTerms = {
+        {"N.L", "the N.L weight of each sample",
+         [](const Surface& s, const ReferenceContext& c, double e) {
+             return lobeAverage(s, c, e, 1);
+         }},
+        {"sum(N.L) / n",
+         "the division by the mean weight sum(N.L) / n (the weighted sum divided by the sample "
+         "count instead of the sum of weights)",
+         [](const Surface& s, const ReferenceContext& c, double e) {
+             return lobeAverage(s, c, 1, e);
+         }},
+    };
     // N anywhere, V in its hemisphere, roughness 0 to 1.
     d.domain = [](DomainRandom& r) {
         Surface s;

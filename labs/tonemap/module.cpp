@@ -55,6 +55,7 @@ ModuleDesc describeModule() {
         s.extra = {v, v * y, v * (1 - y), 1};
         return s;
     };
+    d.extraName = "hdr";  // the radiance the function encodes (extra.xyz), for feedback
     return d;
 }
 

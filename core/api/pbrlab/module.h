@@ -22,7 +22,7 @@
 namespace pbrlab {
 
 // Bump when ModuleDesc or anything it contains changes layout.
-constexpr int kModuleAbiVersion = 7;
+constexpr int kModuleAbiVersion = 8;
 
 // Everything a contract function may take, per pixel. The GPU fills the same fields in
 // GLSL (shaders/surface.glsl) from the G-buffer (scene) or from uploaded textures (probe), so
@@ -301,6 +301,39 @@ struct AcceptedAlternative {
     bool range = false;
 };
 
+// d turned in the plane of n and d to the cosine c with n (unit n and d; when d is along n,
+// towards any direction perpendicular to n): what an InputAxis sets a cosine such as N.H with.
+inline glm::dvec3 atCosine(const glm::dvec3& n, const glm::dvec3& d, double c) {
+    glm::dvec3 t = d - n * glm::dot(n, d);
+    if (glm::dot(t, t) < 1e-24) t = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    t = glm::normalize(t - n * glm::dot(n, t));
+    c = std::clamp(c, -1.0, 1.0);
+    return n * c + t * std::sqrt(std::max(0.0, 1 - c * c));
+}
+
+// A part of the step's formula, named, for feedback (the named-term fits of docs/grading.md):
+// the reference with that part raised to the power e (e = 1: the reference). The fits try it
+// missing (e = 0) and applied twice (e = 2), and name the one the student's values equal. For
+// the steps whose formula the grader does not write itself (an estimator's weights, its
+// normalisation).
+struct FormulaTerm {
+    std::string symbol;  // as the formula writes it: "N.L"
+    std::string name;    // what it is: "the N.L weight of each sample"
+    std::function<glm::dvec3(const Surface&, const ReferenceContext&, double e)> value;
+};
+
+// A scalar the step's function receives, in the lesson's terms, as its view derives it from
+// the surface: "N.H" for a step given N and H = halfwayVector(L, V). Feedback names where an
+// error lies by these ("wrong only where N.H < 0") and describes a point by them; a step that
+// declares none is described by the cosines of its directions (N.V, N.L, V.L) and the fields
+// its domain varies. `set` (optional) moves the surface to the value v of this input, leaving
+// the others as they were: feedback evaluates the reference on inputs transformed by it.
+struct InputAxis {
+    std::string name;
+    std::function<double(const Surface&)> value;
+    std::function<void(Surface&, double)> set;
+};
+
 // The module's teaching domain as a distribution: one random point, every input the function
 // reads varied independently over the range it is taught on (the ends of the domain belong
 // to the probe; the extremes beyond it to the robustness sweep). Graded as "random inputs",
@@ -424,6 +457,13 @@ struct ModuleDesc {
     // The quantities of this step's lesson the GUI can show over any picture, after the scene
     // inputs and the earlier steps' (in step order).
     std::vector<TermView> termViews;
+    // What the step's function receives, when the view derives it (InputAxis); empty: the
+    // generic ones.
+    std::vector<InputAxis> inputAxes;
+    // What the surface's extra inputs are to the step's function ("hdr", "Xi"), for feedback.
+    std::string extraName = "extra";
+    // The named parts of the step's formula (FormulaTerm), for feedback; optional.
+    std::vector<FormulaTerm> formulaTerms;
 
     const Tolerance& toleranceFor(int component) const {
         return componentTolerances.empty() ? tolerance

@@ -1,4 +1,4 @@
-// expect: gamma applied the wrong way round
+// expect: the albedo texel^(1/2.2) at every point
 // mistake: gamma applied the wrong way round (encodes with 1/2.2 instead of decoding)
 vec3 srgbToLinear(vec3 c)
 {

@@ -1,4 +1,4 @@
-// expect: cos^5 instead of (1 - cos)^5
+// expect: 1 - N.V in place of N.V
 // mistake: cos^5 instead of (1 - cos)^5 (reflectance highest at normal incidence)
 vec3 fresnelSchlick(float cosTheta, vec3 F0)
 {

@@ -1,4 +1,4 @@
-// expect: the square root is missing
+// expect: to the power 2 (x^2 where the reference has x): is a square root missing
 // mistake: the square root is missing: cos(theta) set to what is cos^2(theta)
 vec3 importanceSampleGGX(vec2 Xi, vec3 N, float roughness)
 {

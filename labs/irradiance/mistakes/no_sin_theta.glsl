@@ -1,4 +1,4 @@
-// expect: sin(theta) is missing
+// expect: fits the reference without sin(theta)
 // mistake: the solid angle's sin(theta) is missing (directions near N count as much as whole
 // rings near the horizon)
 vec3 irradianceAt(vec3 N)

@@ -1,4 +1,4 @@
-// expect: the V.H / (N.H N.V) left after dividing by the pdf is missing
+// expect: the V.H / (N.H N.V) left after dividing by the pdf missing
 // mistake: samples weighted by F G only; the V.H / (N.H N.V) left after dividing by the pdf is
 // missing
 vec3 specularIBLReference(vec3 N, vec3 V, vec3 F0, float roughness, uint sampleCount)

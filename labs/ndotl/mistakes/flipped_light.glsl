@@ -1,4 +1,4 @@
-// expect: pointing from the light to the surface (-L)
+// expect: -L in place of L
 // mistake: light vector taken pointing from the light to the surface (-L)
 float lambertCosine(vec3 N, vec3 L)
 {

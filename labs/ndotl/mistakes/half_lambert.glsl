@@ -1,4 +1,4 @@
-// expect: "half Lambert" wrap
+// expect: 0.5 + 0.5 x N.L at every point
 // mistake: "half Lambert" wrap (N.L * 0.5 + 0.5), a non-physical stylised term
 float lambertCosine(vec3 N, vec3 L)
 {

@@ -1,4 +1,4 @@
-// expect: B = T x N instead of N x T
+// expect: -tangent.w in place of tangent.w
 // mistake: B = T x N instead of N x T (bitangent always points the wrong way)
 vec3 normalFromMap(vec3 N, vec4 tangent, vec3 mapTexel)
 {

@@ -1,4 +1,4 @@
-// expect: without the N.L weights
+// expect: fits the reference without N.L: is the N.L weight of each sample missing
 // mistake: a plain average of the samples above the horizon, without the N.L weights
 vec3 prefilterEnvironment(vec3 R, float roughness, uint sampleCount)
 {

@@ -1,4 +1,4 @@
-// expect: L points from the light to the surface
+// expect: -L in place of L
 // mistake: L points from the light to the surface (P - lightPos) instead of towards the light
 vec3 reflectedRadiance(vec3 P, vec3 N, vec3 V, vec3 albedo, float metallic, float roughness, float ao)
 {

@@ -1,4 +1,4 @@
-// expect: passes alpha = roughness^2 where G1 expects perceptual roughness
+// expect: roughness^2 in place of roughness
 // mistake: passes alpha = roughness^2 where G1 expects perceptual roughness
 float geometrySmith(vec3 N, vec3 V, vec3 L, float roughness)
 {

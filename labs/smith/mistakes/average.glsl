@@ -1,4 +1,4 @@
-// expect: the two G1 terms averaged
+// expect: G1(N.V) and G1(N.L) averaged
 // mistake: the two G1 terms averaged instead of multiplied
 float geometrySmith(vec3 N, vec3 V, vec3 L, float roughness)
 {

@@ -1,4 +1,4 @@
-// expect: clipped to [0, 1] instead of tone mapped
+// expect: clamp(hdr, 0, 1)^(1/2.2) at every point
 // mistake: HDR clipped to [0, 1] instead of tone mapped
 vec3 displayEncode(vec3 hdr)
 {
