@@ -144,26 +144,56 @@ public:
     ClassroomCommand()
         : Command("classroom",
                   "Write .github/workflows/classroom.yml: GitHub Classroom's command grader, one "
-                  "points row per step (student-controlled feedback, not a grade)") {}
+                  "points row per step (student-controlled feedback, not a grade); --pages: "
+                  "and pages.yml, the course's site on GitHub Pages") {}
     void declare(CLI::App& cmd) override {
         cmd.add_option("--assignment", assignment_, "Steps and points from this assignment.json");
         cmd.add_option("--steps", steps_,
                        "Without --assignment: comma-separated step ids (default: all)");
         cmd.add_option("--points", points_,
                        "Without --assignment: whole points per step (default 1)");
+        cmd.add_option("--bundle-url", classroom_.bundleUrl,
+                       "https URL of the grader bundle (.tar.gz, a top folder with bin/pbrlab) "
+                       "that the workflow downloads instead of building pbrlab");
         cmd.add_option("--repository", classroom_.pbrlabRepository,
-                       "Required: GitHub repository the workflow clones and builds pbrlab from "
-                       "(OWNER/NAME, e.g. my-course/pbrlab)");
+                       "GitHub repository of pbrlab's source (OWNER/NAME, e.g. "
+                       "my-course/pbrlab), built in a debian:bookworm container: required "
+                       "without --bundle-url, and with --pages");
+        cmd.add_option("--ref", classroom_.pbrlabRef,
+                       "Branch or tag of --repository to build (default: its default branch)");
+        cmd.add_flag("--pages", pages_,
+                     "Also write .github/workflows/pages.yml, which publishes the course's site "
+                     "(needs --assignment, copied to " +
+                         std::string(kPagesAssignmentPath) + ")");
         cmd.add_option("--out", out_, "Folder that gets .github/workflows/classroom.yml")
             ->required();
     }
     int run(const GlobalOptions& global) override {
         Session session(global, false);
+        if (pages_ && assignment_.empty())
+            throw Error(
+                "classroom --pages: pass --assignment FILE; the site withholds the solutions "
+                "that assignment has not released (a site without one carries every solution)");
         classroom_.steps = assignment_.empty() ? listedSteps(*session.modules, steps_, points_)
                                                : assignmentSteps(*session.modules, assignment_);
-        const fs::path file = fs::path(out_) / ".github/workflows/classroom.yml";
-        writeFileAtomically(file, classroomWorkflow(classroom_));
-        std::cout << "wrote " << file.string() << " (" << classroom_.steps.size() << " steps)\n";
+        // Both texts first: nothing is written when either is refused.
+        const std::string classroom = classroomWorkflow(classroom_),
+                          pages = pages_ ? pagesWorkflow(classroom_) : "";
+        const fs::path workflows = fs::path(out_) / ".github/workflows";
+        writeFileAtomically(workflows / "classroom.yml", classroom);
+        std::cout << "wrote " << (workflows / "classroom.yml").string() << " ("
+                  << classroom_.steps.size() << " steps, pbrlab "
+                  << (classroom_.bundleUrl.empty() ? "built from " + classroom_.pbrlabRepository
+                                                   : "from the grader bundle")
+                  << ")\n";
+        if (pages_) {
+            writeFileAtomically(workflows / "pages.yml", pages);
+            const fs::path copy = fs::path(out_) / kPagesAssignmentPath;
+            fs::create_directories(copy.parent_path());
+            fs::copy_file(assignment_, copy, fs::copy_options::overwrite_existing);
+            std::cout << "wrote " << (workflows / "pages.yml").string() << " and "
+                      << (fs::path(out_) / kPagesAssignmentPath).string() << "\n";
+        }
         return 0;
     }
 
@@ -171,6 +201,7 @@ private:
     ClassroomOptions classroom_;
     std::string assignment_, steps_, out_;
     int points_ = 1;
+    bool pages_ = false;
 };
 
 class KitCommand : public Command {
