@@ -66,7 +66,9 @@ strip --strip-unneeded -o "$out/lib/$compat" "$build/lib/$compat"
 # glibc's own libraries stay the system's: they must match its dynamic linker.
 glibc='^(ld-linux-x86-64\.so\.2|linux-vdso\.so\.1|libc\.so\.6|libm\.so\.6|libdl\.so\.2|libpthread\.so\.0|librt\.so\.1|libresolv\.so\.2|libutil\.so\.1|libanl\.so\.1|libmvec\.so\.1|libnsl\.so\.1|libBrokenLocale\.so\.1|libc_malloc_debug\.so\.0|libthread_db\.so\.1)$'
 # OSMesa is opened with dlopen (core/native/context_osmesa.cpp), so no ldd of pbrlab names it.
-osmesa=$(ldconfig -p | awk '$1 == "libOSMesa.so.8" && /x86-64/ {print $NF; exit}')
+# (awk reads to the end: a reader that quits early would end ldconfig with SIGPIPE, a failure
+# under pipefail.)
+osmesa=$(ldconfig -p | awk '$1 == "libOSMesa.so.8" && /x86-64/ && !found {print $NF; found = 1}')
 [ -n "$osmesa" ] || { echo "grader-bundle: no libOSMesa.so.8 (libosmesa6)" >&2; exit 1; }
 ldd "$out/bin/pbrlab" "$out"/lib/pbrlab/modules/*.so "$osmesa" > "$stage/ldd.txt"
 if grep -q "not found" "$stage/ldd.txt"; then
@@ -89,7 +91,7 @@ while read -r soname path; do
     real=$(realpath "$path")
     package=""
     for candidate in "$real" "${real#/usr}" "$path"; do
-        package=$(dpkg -S "$candidate" 2>/dev/null | head -1 | cut -d: -f1) && [ -n "$package" ] &&
+        package=$(dpkg -S "$candidate" 2>/dev/null | sed -n "1s/:.*//p") && [ -n "$package" ] &&
             break
     done
     version=unknown

@@ -71,10 +71,10 @@ fi
 flock -u 9
 . "$root/etc/os-release"
 echo "== in $PRETTY_NAME, glibc $(ls "$root"/usr/lib/x86_64-linux-gnu/libc.so.6 > /dev/null &&
-    chroot "$root" /usr/bin/ldd --version | head -1 | awk '{print $NF}')"
+    chroot "$root" /usr/bin/ldd --version | awk 'NR == 1 {print $NF}')"
 # None of pbrlab's libraries (nor OSMesa's) is on that system.
 for lib in libOSMesa.so.8 libLLVM-15.so.1 libpng16.so.16 libOpenEXRCore-3_1.so.30 libglfw.so.3; do
-    if [ -n "$(find "$root/usr/lib" "$root/lib" -name "$lib" 2>/dev/null | head -1)" ]; then
+    if [ -n "$(find "$root/usr/lib" "$root/lib" -name "$lib" -print -quit 2>/dev/null)" ]; then
         echo "$lib is in the $name root: it is not bare"
         exit 1
     fi
