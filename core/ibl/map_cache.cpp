@@ -59,8 +59,7 @@ bool readMaps(const fs::path& file, std::vector<std::vector<Image>>& levels) {
             im.width = size[0];
             im.height = size[1];
             im.channels = 4;
-            im.pixels.resize(size_t(size[0]) * size_t(size[1]) * 4);
-            if (!in.bytes(im.pixels.data(), im.pixels.size() * sizeof(float))) return false;
+            if (!in.floats(im.pixels, size_t(size[0]) * size_t(size[1]) * 4)) return false;
             faces.push_back(std::move(im));
         }
     return in.atEnd();
@@ -116,6 +115,17 @@ std::string IblPrecompute::mapsKey(const Image& equirect, const IblSettings& s) 
     // and the passes of the steps that provide the maps with what they link.
     addFiles(f, sources({kFilteredPrefilterShader, kRiemannIrradianceShader},
                         {"uPrefilterMap", "uIrradianceMap"}));
+    return f.hex();
+}
+
+// The environment cube is resampled on the CPU (equirectToCube): its texels depend on the
+// equirectangular pixels, the cube's size and mip count and that code, no shader.
+std::string IblPrecompute::environmentKey(const Image& equirect, int size, int levels) {
+    Digest f;
+    f.add(equirect.pixels.data(), equirect.pixels.size() * sizeof(float));
+    f.add(std::to_string(equirect.width) + "x" + std::to_string(equirect.height) + "x" +
+          std::to_string(equirect.channels) + " cube " + std::to_string(size) + " x" +
+          std::to_string(levels) + kCpuMapsVersion);
     return f.hex();
 }
 

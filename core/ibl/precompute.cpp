@@ -223,19 +223,39 @@ std::unique_ptr<IblMaps> IblPrecompute::makeMaps(const IblSettings& settings) {
 
 std::unique_ptr<IblMaps> IblPrecompute::build(const Image& equirect, const IblSettings& s,
                                               const IblDiskCache* cache) {
-    auto maps = buildEnvironment(equirect, s);
+    auto maps = buildEnvironment(equirect, s, cache);
     buildDerived(*maps, equirect, cache);
     return maps;
 }
 
 std::unique_ptr<IblMaps> IblPrecompute::buildEnvironment(const Image& equirect,
-                                                         const IblSettings& s) {
+                                                         const IblSettings& s,
+                                                         const IblDiskCache* cache) {
     auto maps = makeMaps(s);
-    PassTimer timer(*maps, "environment", "environment cube " + std::to_string(s.environmentSize),
-                    onPass);
     const int levels = fullMipCount(s.environmentSize);
     maps->environment = makeCube(s.environmentSize, levels);
-    uploadCube(maps->environment.id(), equirectToCube(equirect, s.environmentSize, levels));
+    // The resampling is a third of a second for a 256 cube, and a grade reads the same few
+    // environments in every step's process.
+    const fs::path file = cache ? cache->root_ / "ibl-environment" /
+                                      environmentKey(equirect, s.environmentSize, levels) /
+                                      "environment.bin"
+                                : fs::path();
+    std::vector<std::vector<Image>> cube;
+    if (cache && readMaps(file, cube) && sizesAre(cube, s.environmentSize, levels)) {
+        uploadCube(maps->environment.id(), cube);
+        maps->passes.push_back({"environment", "environment cube (cached)", 0, true});
+        logLine("precompute", "environment cube from " + file.string());
+        maps->environmentTexels = std::move(cube);
+        return maps;
+    }
+    {
+        PassTimer timer(*maps, "environment",
+                        "environment cube " + std::to_string(s.environmentSize), onPass);
+        cube = equirectToCube(equirect, s.environmentSize, levels);
+        uploadCube(maps->environment.id(), cube);
+    }
+    if (cache) storeQuietly(file, cube);
+    maps->environmentTexels = std::move(cube);
     return maps;
 }
 

@@ -92,6 +92,9 @@ struct IblMaps {
     float prefilterMaxLod = 0;
     std::vector<IblPass> passes;
     double milliseconds(const std::string& map) const;  // the passes of that map, summed
+    // The texels uploaded to `environment` (mips[level][face], as readCube returns them), kept
+    // from buildEnvironment for a caller that wants them on the CPU (none: read them back).
+    std::vector<std::vector<Image>> environmentTexels;
 };
 
 // The maps as images, read back on one context to be uploaded on another (the GUI's evaluation
@@ -124,14 +127,14 @@ private:
 class IblPrecompute {
 public:
     IblPrecompute(ProgramCache& programs, std::filesystem::path shaders);
-    // With a cache: the maps come from disk when present (only the environment cube is built),
-    // else they are computed and stored.
+    // With a cache: the maps come from disk when present, else they are computed and stored.
     std::unique_ptr<IblMaps> build(const Image& equirect, const IblSettings& settings,
                                    const IblDiskCache* cache = nullptr);
     // The two halves of build(): the environment cube with its mips (what steps 17-19 read),
     // then the maps derived from the environment (what step 21 reads), only when something
     // samples them. `maps` may come from makeMaps() instead, without an environment cube.
-    std::unique_ptr<IblMaps> buildEnvironment(const Image& equirect, const IblSettings& settings);
+    std::unique_ptr<IblMaps> buildEnvironment(const Image& equirect, const IblSettings& settings,
+                                              const IblDiskCache* cache = nullptr);
     void buildDerived(IblMaps& maps, const Image& equirect, const IblDiskCache* cache = nullptr);
     static std::unique_ptr<IblMaps> makeMaps(const IblSettings& settings);
     // Every map `maps` holds (the derived ones when built) read back, and maps made from such
@@ -178,6 +181,7 @@ private:
     std::vector<std::filesystem::path> sources(const std::vector<std::string>& hostShaders,
                                                const std::vector<const char*>& samplers) const;
     std::string mapsKey(const Image& equirect, const IblSettings& settings) const;
+    static std::string environmentKey(const Image& equirect, int size, int levels);
     std::string lutKey(const IblSettings& settings) const;
     ProgramCache& programs_;
     std::filesystem::path shaders_;

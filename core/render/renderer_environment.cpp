@@ -55,8 +55,7 @@ Image loadEnvironmentImage(const std::string& source, const fs::path& cache) {
         image.width = size[0];
         image.height = size[1];
         image.channels = 3;
-        image.pixels.resize(size_t(size[0]) * size_t(size[1]) * 3);
-        if (in.bytes(image.pixels.data(), image.pixels.size() * sizeof(float)) && in.atEnd())
+        if (in.floats(image.pixels, size_t(size[0]) * size_t(size[1]) * 3) && in.atEnd())
             return image;
     }
     Image image = generate();
@@ -76,7 +75,9 @@ LabRenderer::Environment& LabRenderer::environment(const Scene& scene, const Ibl
         logLine("environment", scene.environment + " (" + settings.key() + ")");
         precompute_->onPass = options_.onPrecomputePass;
         env.equirect = loadEnvironmentImage(scene.environment, options_.cacheRoot);
-        env.maps = precompute_->buildEnvironment(env.equirect, settings);
+        IblDiskCache cache(options_.cacheRoot);
+        env.maps = precompute_->buildEnvironment(env.equirect, settings,
+                                                 options_.cacheRoot.empty() ? nullptr : &cache);
     }
     if (derived && !env.maps->derived) {
         precompute_->onPass = options_.onPrecomputePass;
@@ -129,8 +130,13 @@ const IblInputs& LabRenderer::environmentInputs(const Scene& scene, const IblSet
         digest.add(std::array<int, 3>{image.width, image.height, image.channels});
         digest.add(image.pixels.data(), image.pixels.size() * sizeof(float));
     };
-    auto cube = [&](GLuint texture, int size, int levels, Digest& digest) {
-        std::vector<std::vector<Image>> mips = IblPrecompute::readCube(texture, size, levels);
+    auto cube = [&](GLuint texture, int size, int levels, Digest& digest,
+                    std::vector<std::vector<Image>>* kept = nullptr) {
+        // The texels uploaded (an RGBA32F texture reads back the same floats), else read back.
+        std::vector<std::vector<Image>> mips = kept && !kept->empty()
+                                                   ? std::move(*kept)
+                                                   : IblPrecompute::readCube(texture, size, levels);
+        if (kept) kept->clear();
         for (const auto& faces : mips)
             for (const Image& face : faces) add(digest, face);
         // The references read the maps as this renderer's views do: across face edges when
@@ -142,7 +148,8 @@ const IblInputs& LabRenderer::environmentInputs(const Scene& scene, const IblSet
         env.cpu = std::make_unique<IblInputs>();
         Digest digest;
         env.cpu->environment = cube(maps.environment.id(), s.environmentSize,
-                                    int(std::floor(std::log2(s.environmentSize))) + 1, digest);
+                                    int(std::floor(std::log2(s.environmentSize))) + 1, digest,
+                                    &env.maps->environmentTexels);
         env.cubeDigest = digest.h;
     }
     if (derived && !env.cpuDerived) {

@@ -259,8 +259,7 @@ bool LabRenderer::readGBuffer(const fs::path& file) {
         image.width = size[0];
         image.height = size[1];
         image.channels = 4;
-        image.pixels.resize(size_t(size[0]) * size_t(size[1]) * 4);
-        if (!in.bytes(image.pixels.data(), image.pixels.size() * sizeof(float))) return false;
+        if (!in.floats(image.pixels, size_t(size[0]) * size_t(size[1]) * 4)) return false;
     }
     if (!in.atEnd()) return false;
     for (int i = 0; i < kGBufferTextures; ++i) {

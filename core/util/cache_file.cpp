@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <fstream>
 #include <functional>
-#include <iterator>
 #include <thread>
 
 #include "util/digest.h"
@@ -16,9 +15,9 @@ namespace pbrlab {
 
 namespace {
 
-std::uint64_t digestOf(const std::string& text, size_t begin, size_t end) {
+std::uint64_t digestOf(const char* data, size_t begin, size_t end) {
     Digest digest;
-    digest.add(text.data() + begin, end - begin);
+    digest.add(data + begin, end - begin);
     return digest.h;
 }
 
@@ -32,7 +31,7 @@ bool CacheWriter::commit(const fs::path& file) const {
                          std::to_string(std::hash<std::thread::id>()(std::this_thread::get_id()));
     {
         std::ofstream out(tmp, std::ios::binary);
-        const std::uint64_t digest = digestOf(payload_, 8, payload_.size());
+        const std::uint64_t digest = digestOf(payload_.data(), 8, payload_.size());
         out.write(payload_.data(), std::streamsize(payload_.size()));
         out.write(reinterpret_cast<const char*>(&digest), sizeof digest);
         if (!out) {
@@ -46,15 +45,19 @@ bool CacheWriter::commit(const fs::path& file) const {
 }
 
 CacheReader::CacheReader(const fs::path& file, const char (&magic)[8]) {
-    std::ifstream in(file, std::ios::binary);
+    std::ifstream in(file, std::ios::binary | std::ios::ate);
     if (!in) return;
-    payload_.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    if (payload_.size() < 8 + sizeof(std::uint64_t) || payload_.compare(0, 8, magic, 8) != 0)
-        return;
-    end_ = payload_.size() - sizeof(std::uint64_t);
+    // One read of the whole size: the files are megabytes (a sun's sky is 25 MB), which a
+    // character iterator copies a byte at a time.
+    const std::streamoff size = in.tellg();
+    if (size < std::streamoff(8 + sizeof(std::uint64_t))) return;
+    payload_ = std::make_unique_for_overwrite<char[]>(size_t(size));
+    in.seekg(0);
+    if (!in.read(payload_.get(), size) || std::memcmp(payload_.get(), magic, 8) != 0) return;
+    end_ = size_t(size) - sizeof(std::uint64_t);
     std::uint64_t stored = 0;
-    std::memcpy(&stored, payload_.data() + end_, sizeof stored);
-    ok_ = stored == digestOf(payload_, 8, end_);
+    std::memcpy(&stored, payload_.get() + end_, sizeof stored);
+    ok_ = stored == digestOf(payload_.get(), 8, end_);
 }
 
 }  // namespace pbrlab

@@ -7,8 +7,10 @@
 
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 namespace pbrlab {
 
@@ -37,8 +39,22 @@ public:
     // False past the end of the payload (or when not ok()).
     bool bytes(void* data, size_t size) {
         if (!ok_ || size > end_ - at_) return false;
-        std::memcpy(data, payload_.data() + at_, size);
+        std::memcpy(data, payload_.get() + at_, size);
         at_ += size;
+        return true;
+    }
+    // `count` floats into `out` (replacing what it held): written once, not zeroed first.
+    bool floats(std::vector<float>& out, size_t count) {
+        if (!ok_ || count > (end_ - at_) / sizeof(float)) return false;
+        out.resize(0);
+        out.reserve(count);
+        const char* p = payload_.get() + at_;
+        for (size_t i = 0; i < count; ++i, p += sizeof(float)) {
+            float f;
+            std::memcpy(&f, p, sizeof f);
+            out.push_back(f);
+        }
+        at_ += count * sizeof(float);
         return true;
     }
     template <class T, class = std::enable_if_t<std::is_trivially_copyable_v<T>>>
@@ -48,7 +64,7 @@ public:
     bool atEnd() const { return ok_ && at_ == end_; }
 
 private:
-    std::string payload_;
+    std::unique_ptr<char[]> payload_;  // the whole file, as read (not zeroed first)
     size_t at_ = 8, end_ = 0;
     bool ok_ = false;
 };
