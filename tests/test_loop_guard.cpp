@@ -414,6 +414,43 @@ TEST(LoopGuard, LoopsThatNeverEndFailNamingTheLoopInBoundedTime) {
     }
 }
 
+TEST(LoopGuard, TheBrowsersGlslGivesTheSameVerdictAndMessage) {
+    // The page's programs are GLSL ES 3.00 (WebGL 2): the guard and its diagnosis build in that
+    // dialect grade the issue's file and a nested loop as the desktop's programs do, message for
+    // message (Mesa compiles `#version 300 es` with ES's rules; tests/test_glsl_es.cpp).
+    Lab lab;
+    test::TempDir esCache;
+    RendererOptions esOptions;
+    esOptions.cacheRoot = esCache.path;
+    esOptions.dialect = GlslDialect::Es300;
+    LabRenderer es{lab.paths, esOptions};
+    const std::pair<const char*, std::string> files[] = {
+        {"ndf", withBeforeReturn("ndf",
+                                 "    int i = 0;\n    while (i >= 0) { i = (i + 1) & "
+                                 "0x3fffffff; }\n")},
+        {"f0",
+         "vec3 baseReflectivity(vec3 albedo, float metallic)\n{\n    vec3 f = vec3(0.04);\n"
+         "    int rounds = 0;\n    do {\n"
+         "        for (int c = 0; c < 3; ++c) f[c] += 0.0;\n"
+         "        rounds = (rounds + 1) & 0xffff;\n    } while (rounds >= 0);\n"
+         "    return mix(f, albedo, metallic);\n}\n"}};
+    for (const auto& [id, text] : files) {
+        SCOPED_TRACE(id);
+        test::TempDir dir;
+        dir.write(std::string(id) + ".glsl", text);
+        const StudentSource source{dir.path, false};
+        const StepResult desktop =
+            gradeStep(lab.renderer, lab.module(id), lab.paths, source, GradeSettings{});
+        const StepResult browser =
+            gradeStep(es, lab.module(id), lab.paths, source, GradeSettings{});
+        EXPECT_FALSE(desktop.passed);
+        EXPECT_FALSE(browser.passed);
+        EXPECT_TRUE(contains(desktop.message, ": this loop did not end within "))
+            << desktop.message;
+        EXPECT_EQ(browser.message, desktop.message);
+    }
+}
+
 TEST(LoopGuard, TheIssuesLoopFailsThroughPbrlabCheck) {
     // What a student runs: `pbrlab check` on the issue's file fails naming the loop.
     test::TempDir dir;
