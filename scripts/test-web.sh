@@ -31,7 +31,7 @@ failed=0
 node --experimental-websocket web/test/site_test.mjs --site "$native/web/site" \
     --pbrlab "$native/pbrlab" --out "$native/web-test" "$@" || failed=1
 node --experimental-websocket web/test/page_test.mjs --site "$native/web/site" \
-    --out "$native/web-page" || failed=1
+    --pbrlab "$native/pbrlab" --out "$native/web-page" || failed=1
 node --experimental-websocket web/test/assignment_test.mjs --site "$native/web/assignment-site" \
     --full-site "$native/web/site" --steps-dir "$native/web/assignment-steps" \
     --pbrlab "$native/pbrlab" --out "$native/web-assignment" || failed=1

@@ -643,7 +643,7 @@ std::string nameConstant(double ratio) {
 std::string loopCutMessage(const LoopSite& loop, int budget, int cut, int points) {
     return loop.file + " line " + std::to_string(loop.line) + ": this loop did not end within " +
            std::to_string(budget) +
-           " iterations (a loop that never ends?). pbrlab stops the loops of your files after "
+           " iterations: a loop that never ends? The loops of your files are stopped after "
            "that many iterations in one evaluation, enough for a correct function, and the value "
            "is then NaN (here at " +
            std::to_string(cut) + " of " + std::to_string(points) + " points).";

@@ -248,12 +248,16 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
                            shown.nanCount, shown.infCount);
 
     const bool difference = state.view == View::Difference;
-    ImVec2 avail = ImGui::GetContentRegionAvail();
     const LegendLabels labels(difference ? 0.0 : d.display.lo,
                               difference ? state.differenceRange : d.display.hi,
                               !difference && d.display.logScale);
     const float legend =
         (difference || d.display.mode == DisplayMode::FalseColor) ? labels.width() : 0;
+    // Room for the legend's top label, drawn above the picture's top (it overlapped the line
+    // of NaN counts).
+    if (legend > 0)
+        ImGui::Dummy(ImVec2(0, ImGui::GetTextLineHeight() - ImGui::GetStyle().ItemSpacing.y));
+    const ImVec2 avail = ImGui::GetContentRegionAvail();
     float side = std::max(64.0f, std::min(avail.x - legend, avail.y - 150));
     state.layout.pictureSide = side;
     ImVec2 origin = ImGui::GetCursorScreenPos();
