@@ -148,7 +148,12 @@ LoopLimits viewLoopLimits(const ModuleDesc& module, const ParamValues& params, s
                           int environmentSize) {
     LoopLimits limits;
     limits.lightSlots = lightSlots(std::max<size_t>(lights, 1));
-    if (LabRenderer::mayRead(module, "uEnvironment")) limits.environmentSize = environmentSize;
+    // Not below the default environment's: a function's loops over the sky need not follow the
+    // size of the cube it reads (a grid in angles, a fixed sample count), and the host's checks
+    // with a small cube (16 x 16: is textureSize followed?) must judge the same loops as the
+    // others, not cut them.
+    if (LabRenderer::mayRead(module, "uEnvironment"))
+        limits.environmentSize = std::max(environmentSize, IblSettings{}.environmentSize);
     for (const ParamDecl& p : module.params)
         if (p.type == ParamType::Int)
             limits.counts.push_back(module.estimator && module.estimator->samplesParam == p.name

@@ -266,10 +266,11 @@ private:
 };
 
 // What the host lets one invocation of a module's view loop over (loop_guard.h): the scene's
-// light slots, uEnvironment where the view may read it (`environmentSize`), and the module's
-// integer parameters, which are counts (samples, points): an estimator's sample count at its
-// value (the view passes it to the step's function), any other at its largest (hammersley's
-// view takes its point counts from its inputs, up to the parameter's largest).
+// light slots, uEnvironment where the view may read it (`environmentSize`, not below the
+// default environment's), and the module's integer parameters, which are counts (samples,
+// points): an estimator's sample count at its value (the view passes it to the step's
+// function), any other at its largest (hammersley's view takes its point counts from its
+// inputs, up to the parameter's largest).
 LoopLimits viewLoopLimits(const ModuleDesc& module, const ParamValues& params, size_t lights,
                           int environmentSize);
 
