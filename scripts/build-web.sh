@@ -4,7 +4,8 @@
 # data both read (lab.data, lab-data.js), served as static files.
 #   bash scripts/build-web.sh [BUILD_DIR]
 # For an assignment (docs/assignment.md), a site without the solutions it has not released
-# (written by the desktop's pbrlab: --pbrlab, else the one on PATH), in BUILD_DIR/assignment-site:
+# (its step folders written by the desktop's pbrlab: --pbrlab, else build/pbrlab, else the one on
+# PATH, else build/pbrlab built first), in BUILD_DIR/assignment-site:
 #   bash scripts/build-web.sh [BUILD_DIR] --assignment FILE [--date YYYY-MM-DD] [--pbrlab PATH]
 # Installs Debian's emscripten, dpkg-dev and chromium (web/debian-packages.txt) beside
 # debian-packages.txt's, and a deb-src entry for bookworm so that CMake can fetch Dear ImGui's
@@ -40,22 +41,33 @@ fi
 # its cache is the package's own (frozen), so EM_CACHE must not point elsewhere.
 export NODE_PATH=/usr/share/nodejs
 unset EM_CACHE
+# With ccache (the desktop's build uses it too, when installed) a rebuild compiles only what
+# changed: em++ is a compiler to ccache like any other.
+launcher=()
+if command -v ccache >/dev/null; then
+    launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+fi
 if [ -z "$assignment" ]; then
-    emcmake cmake -S web -B "$build" -DCMAKE_BUILD_TYPE=Release -DPBRLAB_ASSIGNMENT_STEPS= >/dev/null
+    emcmake cmake -S web -B "$build" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" \
+        -DPBRLAB_ASSIGNMENT_STEPS= >/dev/null
     cmake --build "$build" -j "$(nproc)"
     echo "build-web: the site is in $build/site (serve it: python3 -m http.server -d $build/site)"
     exit 0
 fi
+# The desktop's pbrlab writes the step folders: the one given, this checkout's, the one
+# installed, else this checkout's built now (scripts/build.sh, as README's set-up does).
+if [ -z "$pbrlab" ] && [ -x build/pbrlab ]; then pbrlab=$root/build/pbrlab; fi
 [ -n "$pbrlab" ] || pbrlab=$(command -v pbrlab || true)
 if [ -z "$pbrlab" ]; then
-    echo "build-web: --assignment needs the desktop's pbrlab (--pbrlab PATH, or pbrlab on PATH)" >&2
-    exit 2
+    echo "build-web: no desktop pbrlab (--pbrlab PATH, build/pbrlab or on PATH): building it"
+    bash scripts/build.sh
+    pbrlab=$root/build/pbrlab
 fi
 mkdir -p "$build"
 steps=$(realpath "$build")/assignment-steps
 rm -rf "$steps"
 "$pbrlab" kit --assignment "$assignment" ${date:+--date "$date"} --site-steps --out "$steps"
-emcmake cmake -S web -B "$build" -DCMAKE_BUILD_TYPE=Release \
+emcmake cmake -S web -B "$build" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" \
     -DPBRLAB_ASSIGNMENT_STEPS="$steps" >/dev/null
-cmake --build "$build" -j "$(nproc)" --target assignment_site
+cmake --build "$build" -j "$(nproc)" --target assignment_site_version
 echo "build-web: the assignment's site is in $build/assignment-site"

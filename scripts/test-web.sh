@@ -1,20 +1,37 @@
 #!/usr/bin/env bash
-# The site in a real browser (web/test/site_test.mjs): builds it into NATIVE_BUILD/web, then
-# headless Chromium renders every step against NATIVE_BUILD/pbrlab's pictures, types into the
-# editor, reloads; screenshots and figures.json go to NATIVE_BUILD/web-test. Then an
-# assignment's site (docs/autograder/assignment.json before its solutions are out) is built
-# beside it and checked for answers (web/test/assignment_test.mjs, NATIVE_BUILD/web-assignment).
+# The site in a real browser: builds it into NATIVE_BUILD/web with README's commands as written
+# there (the build folder added), then headless Chromium renders every step against
+# NATIVE_BUILD/pbrlab's pictures, types into the editor, reloads (web/test/site_test.mjs;
+# NATIVE_BUILD/web-test), uses the page as a student does: hangs, views, fresh badges, laptop
+# sizes (web/test/page_test.mjs; NATIVE_BUILD/web-page); and checks the assignment's site for
+# answers (web/test/assignment_test.mjs, NATIVE_BUILD/web-assignment).
 #   bash scripts/test-web.sh NATIVE_BUILD [--steps ndf,brdf]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 native=$(cd "${1:?usage: test-web.sh NATIVE_BUILD [--steps ids]}" && pwd)
 shift
-bash scripts/build-web.sh "$native/web"
-bash scripts/build-web.sh "$native/web" --assignment docs/autograder/assignment.json \
-    --date 2026-09-22 --pbrlab "$native/pbrlab"
+# README's site commands ("In a browser"), each with the build folder; the assignment's with
+# this build's pbrlab when it is not the one README's default finds (build/pbrlab).
+mapfile -t commands < <(sed -n '/^## In a browser/,/^## /p' README.md |
+    sed -n 's/^    \(bash scripts\/build-web\.sh[^#]*\).*/\1/p')
+if [ ${#commands[@]} -ne 2 ]; then
+    echo "test-web: README's site commands not found (${#commands[@]} of 2)" >&2
+    exit 1
+fi
+for command in "${commands[@]}"; do
+    extra=()
+    if [[ $command == *--assignment* ]] && [ "$native" != "$(pwd)/build" ]; then
+        extra=(--pbrlab "$native/pbrlab")
+    fi
+    echo "test-web: README's command: $command"
+    # shellcheck disable=SC2086 # README's words, as a shell splits them
+    $command "$native/web" "${extra[@]}"
+done
 failed=0
 node --experimental-websocket web/test/site_test.mjs --site "$native/web/site" \
     --pbrlab "$native/pbrlab" --out "$native/web-test" "$@" || failed=1
+node --experimental-websocket web/test/page_test.mjs --site "$native/web/site" \
+    --pbrlab "$native/pbrlab" --out "$native/web-page" || failed=1
 node --experimental-websocket web/test/assignment_test.mjs --site "$native/web/assignment-site" \
     --full-site "$native/web/site" --steps-dir "$native/web/assignment-steps" \
     --pbrlab "$native/pbrlab" --out "$native/web-assignment" || failed=1

@@ -32,8 +32,17 @@ void main()
         vec3 repaired = view(s);
         outValue = vec4(float(pbrlab_traceSite), float(pbrlab_traceOther),
                         pbrlab_finite(repaired) ? 1.0 : 0.0, 1.0);
+#ifdef PBRLAB_LOOP_GUARD
+        // A loop cut by the guard (core/shader/loop_guard.h): which one, as -K.
+        if (pbrlab_loopCut) outValue.z = -float(pbrlab_loopCutSite);
+#endif
         return;
     }
 #endif
     outValue = s.covered ? vec4(view(s), 1.0) : vec4(0.0);
+#ifdef PBRLAB_LOOP_GUARD
+    // A loop of a student's file cut by the guard (core/shader/loop_guard.h): the value is not
+    // the function's, and NaN says so wherever it is read.
+    if (pbrlab_loopCut) outValue.rgb = vec3(intBitsToFloat(0x7fc00000));
+#endif
 }

@@ -351,9 +351,13 @@ TEST(Feedback, ANaNIsTracedToTheCallThatMadeIt) {
     // the whole).
     auto answer = [&in](TraceSite site, bool confirmed, TraceSite other = {}) {
         in.traceNonFinite = [=](const std::vector<Surface>& points) {
-            const int n = int(points.size());
-            return FeedbackInputs::NonFiniteOrigin{site, other, site.traced() ? n : 0, n,
-                                                   confirmed};
+            FeedbackInputs::NonFiniteOrigin origin;
+            origin.site = site;
+            origin.other = other;
+            origin.traced = int(points.size());
+            origin.points = site.traced() ? origin.traced : 0;
+            origin.confirmed = confirmed;
+            return origin;
         };
         return classifyError(in);
     };

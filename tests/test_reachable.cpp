@@ -70,10 +70,11 @@ std::string refusalOf(Lab& lab, const LoadedModule& module, const VisibleFunctio
 // student's part; main, whose call recurses).
 TEST(Reachable, EveryNameAStepsFileCanSeeIsOneTheContractAllows) {
     Lab lab;
-    // PBRLAB_LIGHT_SLOTS: the light arrays' length; the built-ins' names route a student's
-    // calls to their defined versions (definedBuiltins).
+    // PBRLAB_LIGHT_SLOTS: the light arrays' length; PBRLAB_LOOP_GUARD: the program bounds the
+    // student's loops (loop_guard.h); the built-ins' names route a student's calls to their
+    // defined versions (definedBuiltins).
     std::set<std::string> allowedMacros = {"NUM_LIGHTS", "PBRLAB_IBL", "PBRLAB_PROBE",
-                                           "PBRLAB_LIGHT_SLOTS"};
+                                           "PBRLAB_LIGHT_SLOTS", kLoopGuardMacro};
     std::set<std::string> definedVersions;
     for (const auto& [builtin, definition] : definedBuiltins()) {
         allowedMacros.insert(builtin);

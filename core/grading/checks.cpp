@@ -4,9 +4,12 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 
+#include "grading/error_patterns.h"
 #include "grading/stability.h"
 #include "grading/step_grader.h"
 #include "shader/student_file.h"
@@ -110,6 +113,62 @@ void StepGrader::checkSamplers(const Program& program) {
             "value from uEnvironment instead";
     }
     record(c);
+}
+
+// A loop that never ends, found before the other checks: each of them would be the guard's NaN
+// at the cost of the whole budget per point (a minute and more of a grade where the budget is
+// the most llvmpipe runs), and none would say more. 64 points of the probe at the default
+// parameters, drawn as the values checks draw them; where one is NaN, the diagnosis build says
+// whether the guard cut a loop there. A failed contract check: the function does not return,
+// which the contract asks of it (a loop the preprocessor reads as endless is a compile error),
+// and no partial credit is given. Recorded only when a loop was cut, so that the checks of every
+// other grade are what they were.
+void StepGrader::checkLoopsEnd(const Scene& scene, const Program& program) {
+    if (program.loops().empty() || source_.dir.empty()) return;
+    stage("every loop ends");
+    const std::vector<Surface> all = probeSurfaces(d_.probe);
+    std::vector<Surface> points;
+    const size_t count = std::min<size_t>(all.size(), 64);
+    for (size_t k = 0; k < count; ++k) points.push_back(all[k * all.size() / count]);
+    const Grid g = grid(points);
+    const ParamValues params(d_.params);
+    auto render = [&](bool diagnosis) {
+        StudentSource source = source_;
+        source.traceNonFinite = diagnosis;
+        RenderRequest request{&m_, &params, &scene, source, &g.surfaces, g.width, g.height};
+        request.seamlessCubes = false;
+        request.isolatePoints = true;
+        return renderer_.render(request);
+    };
+    const std::vector<glm::dvec3> values = pointValues(render(false).value, count);
+    if (std::none_of(values.begin(), values.end(),
+                     [](const glm::dvec3& v) { return std::isnan(v.x + v.y + v.z); }))
+        return;
+    RenderResult traced;
+    try {
+        traced = render(true);
+    } catch (const Error&) {
+        return;  // the diagnosis build does not compile: the other checks judge
+    }
+    std::map<size_t, int> cuts;  // loop K (written as -K) -> points
+    for (const glm::dvec3& c : pointValues(traced.value, count))
+        if (c.z < -0.5 && -c.z <= double(traced.loops.size())) ++cuts[size_t(std::lround(-c.z))];
+    if (cuts.empty()) return;
+    size_t loop = cuts.begin()->first;
+    int cut = 0;
+    for (const auto& [k, n] : cuts) {
+        if (n > cuts[loop]) loop = k;
+        cut += n;
+    }
+    CheckReport c;
+    c.name = "every loop of your files ends";
+    c.kind = "contract";
+    c.category = "contract";
+    c.passed = false;
+    c.detail = loopCutMessage(traced.loops[loop - 1], traced.loopBudget, cut, int(count));
+    loopCut_ = c.detail;
+    record(c);
+    throw Stopped{};
 }
 
 void StepGrader::gradeInvariants(const Scene& scene) {

@@ -453,6 +453,9 @@ std::string nonFiniteMessage(const FeedbackInputs& in, const std::string& where)
         for (size_t k = 0; k < count; ++k) traced.push_back(points[k * points.size() / count]);
         origin = in.traceNonFinite(traced);
     }
+    // A loop that did not end: nothing else is worth saying (the value is the guard's NaN).
+    if (origin.cut.line > 0)
+        return loopCutMessage(origin.cut, origin.loopBudget, nans + infs, int(in.values.size()));
     // "pow, sqrt, ... or mod": the calls the diagnosis build traces.
     std::string names;
     const std::vector<TracedCall>& calls = tracedCalls();
@@ -635,6 +638,15 @@ std::string nameConstant(double ratio) {
     for (const Named& k : known)
         if (std::abs(ratio - k.value) <= 0.01 * std::abs(k.value)) return k.name;
     return "";
+}
+
+std::string loopCutMessage(const LoopSite& loop, int budget, int cut, int points) {
+    return loop.file + " line " + std::to_string(loop.line) + ": this loop did not end within " +
+           std::to_string(budget) +
+           " iterations: a loop that never ends? The loops of your files are stopped after "
+           "that many iterations in one evaluation, enough for a correct function, and the value "
+           "is then NaN (here at " +
+           std::to_string(cut) + " of " + std::to_string(points) + " points).";
 }
 
 std::string classifyError(const FeedbackInputs& in, bool* exactOut) {

@@ -36,10 +36,15 @@ struct FeedbackInputs {
     // site that made one there too, at how many points, of how many traced; `confirmed`: with
     // what those calls made replaced by 0 the value is finite there (the NaN or Inf the student
     // sees is theirs). Optional.
+    // `cut`: a loop of the student's files the guard ended there (shader/loop_guard.h), the
+    // one most of the traced points name (line 0: none), at `cutPoints` of them, with the
+    // budget of iterations it ran out of.
     struct NonFiniteOrigin {
         TraceSite site, other;
         int points = 0, traced = 0;
         bool confirmed = false;
+        LoopSite cut;
+        int cutPoints = 0, loopBudget = 0;
     };
     std::function<NonFiniteOrigin(const std::vector<Surface>&)> traceNonFinite;
 };
@@ -57,6 +62,11 @@ std::string describeInputs(const ModuleDesc& module, const Surface& s);
 // `exact`: the pattern accounts for every point (a factor, an offset, a power, a constant
 // output, swapped components, a term), not only where the error lies.
 std::string classifyError(const FeedbackInputs& in, bool* exact = nullptr);
+
+// What the student reads when the loop guard (shader/loop_guard.h) cut `loop` after `budget`
+// iterations in one evaluation, at `cut` of `points` points: the file, the line, the likely
+// cause first.
+std::string loopCutMessage(const LoopSite& loop, int budget, int cut, int points);
 
 // The constant that `ratio` is closest to among the usual suspects (pi, 1/pi, 2, 4, ...), as
 // "pi/4", when it is within 1%; else "".

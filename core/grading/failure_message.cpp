@@ -86,6 +86,12 @@ struct StepGrader::MutantMatch {
 // The failure message: the first failed check, and the mistake named from the shape of
 // the error of the check that failed worst.
 void StepGrader::explain() {
+    if (!loopCut_.empty()) {  // the grade stopped there: the loop is all there is to say
+        result_.message = result_.mistake = loopCut_;
+        result_.namedBy = "pattern";
+        result_.mistakeGroup = withoutFigures(loopCut_);
+        return;
+    }
     // What leads the message: a broken contract (it reads what it may not) explains
     // everything after it; else the values check with its worst input.
     const CheckReport* first = nullptr;
@@ -149,11 +155,24 @@ void StepGrader::explain() {
             request.seamlessCubes = false;
             request.isolatePoints = true;
             std::vector<glm::dvec3> calls;
+            RenderResult diagnosis;
             try {
-                calls = pointValues(renderer_.render(request).value, surfaces.size());
+                diagnosis = renderer_.render(request);
+                calls = pointValues(diagnosis.value, surfaces.size());
             } catch (const Error&) {
                 return origin;  // the diagnosis build does not compile: nothing to say
             }
+            // A loop the guard cut (written as -K, view_main.frag): the one most points name.
+            std::map<size_t, int> cuts;
+            for (const glm::dvec3& c : calls)
+                if (c.z < -0.5 && -c.z <= double(diagnosis.loops.size()))
+                    ++cuts[size_t(std::lround(-c.z))];
+            for (const auto& [k, points] : cuts)
+                if (points > origin.cutPoints) {
+                    origin.cut = diagnosis.loops[k - 1];
+                    origin.cutPoints = points;
+                    origin.loopBudget = diagnosis.loopBudget;
+                }
             // The site most points share, among those where it is the cause (the value finite
             // with what the traced calls made replaced), else among all.
             std::map<std::pair<int, int>, int> confirmed, noted;

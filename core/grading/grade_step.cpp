@@ -89,6 +89,7 @@ StepResult StepGrader::run() {
     const auto program = renderer_.programs().get(renderer_.viewRecipe(m_, source_, true, 1));
     try {
         checkSamplers(*program);
+        checkLoopsEnd(scene, *program);
         gradeLinearity(scene);  // before the values: a nonlinearity explains their failures
         if (d_.estimator)
             gradeEstimator(scene);

@@ -175,6 +175,9 @@ private:
 
     // grading/checks.cpp
     void checkSamplers(const Program& program);
+    // A loop of the student's files that the guard cuts on the probe (shader/loop_guard.h):
+    // a failed contract check naming it, and the grade stops (loopCut_).
+    void checkLoopsEnd(const Scene& scene, const Program& program);
     void gradeInvariants(const Scene& scene);
     void gradeCallerInputs(const Scene& scene);
     void gradeRobustness(const Scene& scene);
@@ -198,6 +201,7 @@ private:
     const GradeSettings& settings_;
     StepResult result_;
     std::unique_ptr<ValuesRun> failed_;  // the values check that failed worst
+    std::string loopCut_;                // checkLoopsEnd's message, when a loop was cut
     Probe probe_;                        // the estimator's subsampled probe
     std::string stageName_;              // the stage running, and since when
     std::chrono::steady_clock::time_point stageStart_;

@@ -9,10 +9,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 
 #include "gui/gui.h"
+#include "gui/source_watch.h"
 #include "steps/contract.h"
 #include "steps/solution_stub.h"
 #include "util/error.h"
@@ -39,6 +42,21 @@ std::string queryValue(const char* name) {
     return values.empty() ? std::string() : values.back();
 }
 
+// What pbrlabPage.<method>(argument) returns, as a string (shell.html).
+std::string pageString(const char* method, const std::string& argument) {
+    char* text = reinterpret_cast<char*>(EM_ASM_INT(
+        {
+            const value = pbrlabPage[UTF8ToString($0)](UTF8ToString($1));
+            return allocateUTF8(value == null ? "" : String(value));
+        },
+        method, argument.c_str()));
+    std::string value(text);
+    std::free(text);
+    return value;
+}
+
+constexpr const char* kWorkspace = "/work";
+
 }  // namespace
 
 extern "C" {
@@ -51,7 +69,31 @@ EMSCRIPTEN_KEEPALIVE void pbrlab_start(int width, int height) {
     // Where an assignment's site withholds a solution, programs take the student's file.
     pbrlab::setWithheldStepsFolder(options.submission);
     options.module = queryValue("step");
+    // Else the step the student was on (the page remembers it across visits and reloads).
+    if (options.module.empty()) {
+        const std::string remembered = pageString("remembered", "step");
+        if (pbrlab::findContractStep(remembered)) options.module = remembered;
+    }
     options.view = queryValue("view");
+    // The view the student chose per step, remembered by the page; each choice goes to it.
+    try {
+        const nlohmann::json views = nlohmann::json::parse(pageString("remembered", "views"));
+        for (const auto& [id, view] : views.items())
+            if (view.is_string()) options.chosenViews[id] = view.get<std::string>();
+    } catch (const std::exception&) {
+        // Nothing remembered, or not ours: every step shows its default.
+    }
+    options.viewChosen = [](const std::string& id, const std::string& view) {
+        EM_ASM({ pbrlabPage.viewChosen(UTF8ToString($0), UTF8ToString($1)); }, id.c_str(),
+               view.c_str());
+    };
+    // The page's watchdog (shell.html): the window runs a version of a student's file only once
+    // the page has noted, where a hang would leave it, that it runs; a file that did not finish
+    // last time runs again once edited.
+    options.studentFileGate = [](const std::string& id) { return pageString("gate", id); };
+    options.studentFileCameBack = [](const std::string& id) {
+        EM_ASM({ pbrlabPage.cameBack(UTF8ToString($0)); }, id.c_str());
+    };
     options.scene = queryValue("scene");
     options.sets = queryValues("set");
     options.commands = queryValues("command");
@@ -82,6 +124,28 @@ EMSCRIPTEN_KEEPALIVE char* pbrlab_starter(const char* id) {
     } catch (const std::exception& e) {
         return strdup((std::string("// ") + e.what() + "\n").c_str());
     }
+}
+
+// The files of the workspace a grade of step `id` reads, one name a line: its file and the
+// files it includes, and on an assignment's site every withheld step's (a program links the
+// student's file in the solution's place: contract.h), with theirs. The page keeps a report
+// under these files' contents: a file the grade does not read changes nothing. The caller
+// frees it.
+EMSCRIPTEN_KEEPALIVE char* pbrlab_grade_reads(const char* id) {
+    std::set<std::string> names;
+    auto add = [&](const std::string& step) {
+        pbrlab::SourceWatch watch;
+        watch.changed(std::filesystem::path(kWorkspace) / (step + ".glsl"), kWorkspace);
+        for (const auto& [file, stamp] : watch.current())
+            if (file.parent_path() == kWorkspace) names.insert(file.filename().string());
+        names.insert(step + ".glsl");  // (missing: its absence is what the grade reads)
+    };
+    add(id);
+    for (const pbrlab::ContractStep& step : pbrlab::contractSteps())
+        if (step.id != id && pbrlab::solutionWithheld(step)) add(step.id);
+    std::string text;
+    for (const std::string& name : names) text += name + "\n";
+    return strdup(text.c_str());
 }
 
 // The step on screen, for the editor to follow. The caller frees it.

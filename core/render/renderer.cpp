@@ -144,9 +144,27 @@ ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentS
     return r;
 }
 
-double LabRenderer::runView(const RenderRequest& request, const Scene& scene, bool probe,
-                            const std::vector<GLuint>& inputs, int width, int height,
-                            const glm::mat4& viewProjection) {
+LoopLimits viewLoopLimits(const ModuleDesc& module, const ParamValues& params, size_t lights,
+                          int environmentSize) {
+    LoopLimits limits;
+    limits.lightSlots = lightSlots(std::max<size_t>(lights, 1));
+    // Not below the default environment's: a function's loops over the sky need not follow the
+    // size of the cube it reads (a grid in angles, a fixed sample count), and the host's checks
+    // with a small cube (16 x 16: is textureSize followed?) must judge the same loops as the
+    // others, not cut them.
+    if (LabRenderer::mayRead(module, "uEnvironment"))
+        limits.environmentSize = std::max(environmentSize, IblSettings{}.environmentSize);
+    for (const ParamDecl& p : module.params)
+        if (p.type == ParamType::Int)
+            limits.counts.push_back(module.estimator && module.estimator->samplesParam == p.name
+                                        ? params.number(p.name)
+                                        : p.max);
+    return limits;
+}
+
+void LabRenderer::runView(const RenderRequest& request, const Scene& scene, bool probe,
+                          const std::vector<GLuint>& inputs, int width, int height,
+                          const glm::mat4& viewProjection, RenderResult& result) {
     const LoadedModule& module = *request.module;
     const ModuleDesc& d = *module.desc;
     // reloadIfChanged: an edited student file is recompiled; if that fails, the error is thrown
@@ -236,16 +254,22 @@ double LabRenderer::runView(const RenderRequest& request, const Scene& scene, bo
                 break;
         }
     }
+    result.loops = program->loops();
+    result.loopBudget = 0;
+    if (program->uses(kLoopBudgetUniform)) {
+        result.loopBudget = loopBudget(
+            viewLoopLimits(d, *request.params, scene.lights.size(), request.ibl.environmentSize));
+        program->set(kLoopBudgetUniform, result.loopBudget);
+    }
     if (request.extraUniforms) request.extraUniforms(*program);
     gl::setSeamlessCubeFiltering(request.seamlessCubes || options_.seamlessCubesAlways);
     gl::Finish();
     auto start = std::chrono::steady_clock::now();
     fullscreen_.draw();
     gl::Finish();
-    double ms =
+    result.milliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     gl::checkError("view pass");
-    return ms;
 }
 
 namespace {
@@ -298,8 +322,8 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
             drawGBuffer(scene, d.needs, request.width, request.height, request);
         const gl::RenderTarget& gbuffer = *gbufferFor(request.coarseSpheres);
         for (int i = 0; i < kGBufferTextures; ++i) inputs.push_back(gbuffer.colorTexture(i));
-        result.milliseconds =
-            runView(request, scene, false, inputs, request.width, request.height, viewProjection);
+        runView(request, scene, false, inputs, request.width, request.height, viewProjection,
+                result);
         result.valueTexture = valueTarget_->colorTexture(0);
         result.pictureMilliseconds = result.milliseconds;
         if (request.readValue) readValueTimed(*valueTarget_, result);
@@ -320,8 +344,8 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
         probeInputs_.push_back(gl::uploadTexture(quadsBottomUp(image, q), false, GL_RGBA32F));
         inputs.push_back(probeInputs_.back().id());
     }
-    result.milliseconds =
-        runView(request, scene, true, inputs, q * request.width, q * request.height, glm::mat4(1));
+    runView(request, scene, true, inputs, q * request.width, q * request.height, glm::mat4(1),
+            result);
     result.pictureMilliseconds = result.milliseconds;
     readValueTimed(*valueTarget_, result);
     if (q > 1) {  // one value per quad (all four are the same point)

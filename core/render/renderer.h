@@ -49,6 +49,11 @@ struct RenderResult {
     // GPU where glFinish may not (WebGL's finish returns before the work is done, so
     // `milliseconds` is near 0 in a browser, and this is the view's cost there).
     double pictureMilliseconds = 0;
+    // The loops of the students' files in the program drawn (Program::loops) and the budget of
+    // iterations they shared per invocation (loopBudget; 0: no student's loop): what the
+    // diagnosis build's cut loop (shaders/view_main.frag) is read with.
+    std::vector<LoopSite> loops;
+    int loopBudget = 0;
 };
 
 // The probe's inputs, row 0 = top (y = 1 there, so larger values are up in pictures).
@@ -212,9 +217,10 @@ private:
     bool readGBuffer(const std::filesystem::path& file);
     void writeGBuffer(const std::filesystem::path& file) const;
     // `viewProjection`: the G-buffer's, for the sky behind a scene (unused on probes).
-    double runView(const RenderRequest& request, const Scene& scene, bool probe,
-                   const std::vector<GLuint>& inputs, int width, int height,
-                   const glm::mat4& viewProjection);
+    // Sets `result`'s milliseconds and loops.
+    void runView(const RenderRequest& request, const Scene& scene, bool probe,
+                 const std::vector<GLuint>& inputs, int width, int height,
+                 const glm::mat4& viewProjection, RenderResult& result);
     GLuint texture(const TextureSource& source);  // read and uploaded on first use
     // The scene's environment with these settings: the cube only, or with the derived maps
     // too.
@@ -258,6 +264,15 @@ private:
     std::map<std::string, Environment> environments_;  // by source and settings key
     std::unique_ptr<IblPrecompute> precompute_;
 };
+
+// What the host lets one invocation of a module's view loop over (loop_guard.h): the scene's
+// light slots, uEnvironment where the view may read it (`environmentSize`, not below the
+// default environment's), and the module's integer parameters, which are counts (samples,
+// points): an estimator's sample count at its value (the view passes it to the step's
+// function), any other at its largest (hammersley's view takes its point counts from its
+// inputs, up to the parameter's largest).
+LoopLimits viewLoopLimits(const ModuleDesc& module, const ParamValues& params, size_t lights,
+                          int environmentSize);
 
 // The segments (rings: half as many) of a sphere whose outline stays within half a pixel of a
 // round one when its radius is `radiusPixels` on screen; 96 (the built-in sphere's) at most.

@@ -398,13 +398,25 @@ struct Expander {
             out.text += "#undef " + builtin + "\n";
     }
 
-    void expandText(const std::string& text, const std::string& name, const fs::path& file) {
+    // The file as the student names it: its path in the submission folder.
+    std::string studentName(const fs::path& file) const {
+        std::error_code ec;
+        const fs::path folder = fs::weakly_canonical(studentFolder, ec);
+        const fs::path relative = ec ? fs::path() : file.lexically_relative(folder);
+        return relative.empty() || *relative.begin() == ".." ? file.filename().string()
+                                                             : relative.generic_string();
+    }
+
+    void expandText(const std::string& original, const std::string& name, const fs::path& file) {
         int index = sourceIndex(name);
+        std::string guarded;
         if (!studentFolder.empty()) {
-            screenStudentText(text, name);
-            out.studentTexts[index] = text;
+            screenStudentText(original, name);
+            out.studentTexts[index] = original;
             if (unreachable && !unreachable->empty()) out.unreachable[index] = *unreachable;
+            guarded = guardLoops(original, name, studentName(file), out.loops);
         }
+        const std::string& text = studentFolder.empty() ? original : guarded;
         out.text += "#line 1 " + std::to_string(index) + "\n";
         static const std::regex includeLine(R"(^\s*#\s*include\s*"([^"]+)\"\s*(//.*)?$)");
         static const std::regex versionLine(R"(^\s*#\s*version\b.*$)");
@@ -471,6 +483,12 @@ ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
     ex.trace = defines.count(kTraceNonFinite) != 0;
     if (anyStudent || ex.trace) ex.out.text += kDefinedBuiltins;
     if (ex.trace) ex.out.text += traceFunctions();
+    if (anyStudent) {
+        ex.out.text += loopGuardPrelude(ex.trace);
+        ex.hostMacros.insert(kLoopGuardMacro);
+        for (const std::string& name : loopGuardNames())
+            ex.privateHelpers.emplace(name, "pbrlab's loop guard");
+    }
     if (anyStudent)
         for (const std::string& builtin : ex.builtinMacroNames()) ex.hostMacros.insert(builtin);
     bool afterStudent = false;
@@ -510,6 +528,7 @@ ExpandedShader ShaderPreprocessor::expand(const std::vector<ShaderPart>& parts,
         if (!part.studentFolder.empty()) ex.closeStudentPart();
         ex.tracing = false;
     }
+    if (anyStudent && ex.trace) ex.out.text += loopGuardDiagnosis(ex.out.loops.size());
     return ex.out;
 }
 
@@ -739,6 +758,24 @@ std::string mapCompilerLog(const std::string& log, const ExpandedShader& shader)
     std::string out;
     for (std::string line; std::getline(in, line);) {
         std::smatch m, n;
+        // The loop guard's wrapping (loop_guard.h) of a condition that is not a bool: the
+        // compiler names pbrlab_loop, which the student never wrote. (Mesa reports it, and its
+        // own "loop condition must be scalar boolean" after it, at a line of common.glsl.)
+        if (line.find("pbrlab_loop") != std::string::npos) {
+            static const std::regex angleLocated(R"(^((ERROR|WARNING): [^:]+:\d+:))");
+            const std::string what =
+                " a loop's condition must be a bool (GLSL converts no number to one: `i != 0`, "
+                "not `i`)";
+            line = std::regex_match(line, m, located)
+                       ? m[1].str() + ":" + m[2].str() + "(" + m[3].str() + "): error:" + what
+                   : std::regex_search(line, m, angleLocated) ? m[1].str() + what
+                                                              : "error:" + what;
+            if (out.size() >= line.size() + 1 &&
+                out.compare(out.size() - line.size() - 1, line.size() + 1, line + "\n") == 0)
+                continue;  // its candidates, said once
+            out += line + "\n";
+            continue;
+        }
         if (std::regex_match(line, m, located) && !isStudentSource(shader, m[1].str())) {
             const std::string place = m[1].str() + ":" + m[2].str();
             if (!movedPlaces.count(place)) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "shader/loop_guard.h"
 #include "util/error.h"
 
 namespace pbrlab {
@@ -56,6 +57,9 @@ struct ExpandedShader {
     std::map<int, std::string> studentTexts;
     // Source-string number of a student's file -> ShaderPart::unreachable of its part.
     std::map<int, std::map<std::string, std::string>> unreachable;
+    // The loops of the students' files, as the guard numbers them (loop_guard.h): loop K is
+    // loops[K - 1].
+    std::vector<LoopSite> loops;
 };
 
 // The GLSL the host writes every program in. Es300 is WebGL 2's (OpenGL ES 3.00), for the
@@ -85,7 +89,10 @@ public:
     //   common.glsl's pbrlab_ utilities, declared before every step, compute no step;
     // - #define or #undef of a macro the host defines (the define set, NUM_LIGHTS, ...): the
     //   host's code after the part reads it;
-    // - a /* comment still open at the end of a file: it would swallow the host's code after it.
+    // - a /* comment still open at the end of a file: it would swallow the host's code after it;
+    // - a loop the guard cannot bound (guardLoops).
+    // Every loop of such a part is bounded by the guard (loop_guard.h), whose budget uniform the
+    // program then declares.
     // Every macro the part defines is #undef'd after it, so the host's code after the part
     // reads none of them. (Undefining rather than refusing every macro: a student's own macros
     // are legitimate GLSL and harm nothing once they end with the file; refusing is kept for

@@ -50,8 +50,8 @@ std::string partsKey(const std::vector<ShaderPart>& parts) {
 
 }  // namespace
 
-Program::Program(gl::Handle handle, std::vector<fs::path> files)
-    : handle_(std::move(handle)), files_(std::move(files)) {
+Program::Program(gl::Handle handle, std::vector<fs::path> files, std::vector<LoopSite> loops)
+    : handle_(std::move(handle)), files_(std::move(files)), loops_(std::move(loops)) {
     for (const auto& f : files_) stamps_.push_back(FileStamp::of(f));
 }
 
@@ -135,7 +135,7 @@ std::shared_ptr<Program> ProgramCache::build(const ProgramRecipe& recipe) {
     std::snprintf(time, sizeof time, "%.1f ms", ms);
     logLine("compile", "#" + std::to_string(compiles_) + " " + compiled_.back().label + " {" +
                            compiled_.back().defines + "} " + time);
-    return std::make_shared<Program>(std::move(program), std::move(files));
+    return std::make_shared<Program>(std::move(program), std::move(files), std::move(fs.loops));
 }
 
 std::shared_ptr<Program> ProgramCache::get(const ProgramRecipe& recipe) {

@@ -20,7 +20,8 @@ namespace pbrlab {
 
 class Program {
 public:
-    Program(gl::Handle handle, std::vector<std::filesystem::path> files);
+    Program(gl::Handle handle, std::vector<std::filesystem::path> files,
+            std::vector<LoopSite> loops = {});
     GLuint id() const { return handle_.id(); }
     void use() const { gl::UseProgram(id()); }
 
@@ -41,10 +42,13 @@ public:
     bool sourcesChanged() const;
     void refreshStamps();
     const std::vector<std::filesystem::path>& files() const { return files_; }
+    // The loops of the students' files in the fragment shader (ExpandedShader::loops).
+    const std::vector<LoopSite>& loops() const { return loops_; }
 
 private:
     gl::Handle handle_;
     std::vector<std::filesystem::path> files_;
+    std::vector<LoopSite> loops_;
     std::vector<FileStamp> stamps_;
     mutable std::unordered_map<std::string, GLint> locations_;
 };

@@ -37,7 +37,8 @@ const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
 
 export class Chromium {
   // A fresh profile in `profileDir` (kept between pages: IndexedDB lives there).
-  static async launch(profileDir, {width = 1280, height = 720} = {}) {
+  // `flags`: more of Chromium's switches.
+  static async launch(profileDir, {width = 1280, height = 720, flags = []} = {}) {
     fs.mkdirSync(profileDir, {recursive: true});
     const portFile = path.join(profileDir, 'DevToolsActivePort');
     fs.rmSync(portFile, {force: true});
@@ -45,7 +46,8 @@ export class Chromium {
                   '--enable-unsafe-swiftshader', '--disable-background-networking',
                   '--disable-component-update', '--disable-sync', '--disable-quic',
                   '--no-first-run', '--mute-audio', `--user-data-dir=${profileDir}`,
-                  '--remote-debugging-port=0', `--window-size=${width},${height}`, 'about:blank'];
+                  '--remote-debugging-port=0', `--window-size=${width},${height}`, ...flags,
+                  'about:blank'];
     const child = spawn(chromiumBinary(), args, {stdio: ['ignore', 'ignore', 'pipe']});
     // A script that throws exits without close(): the browser goes with it, or it would go on
     // drawing its page beside whatever runs next (one such browser took 35-45% of the cores).
@@ -59,6 +61,7 @@ export class Chromium {
     }
     const [port, wsPath] = fs.readFileSync(portFile, 'utf8').trim().split('\n');
     const browser = new Chromium(child, new WebSocket(`ws://127.0.0.1:${port}${wsPath}`));
+    browser.profileDir = profileDir;
     await new Promise((resolve, reject) => {
       browser.ws.onopen = resolve;
       browser.ws.onerror = () => reject(new Error('no DevTools connection to chromium'));
@@ -96,6 +99,7 @@ export class Chromium {
     const {targetId} = await this.send('Target.createTarget', {url: 'about:blank'});
     const {sessionId} = await this.send('Target.attachToTarget', {targetId, flatten: true});
     const page = new Page(this, sessionId);
+    page.targetId = targetId;
     await page.send('Page.enable');
     await page.send('Runtime.enable');
     await page.send('Emulation.setDeviceMetricsOverride',
@@ -103,12 +107,33 @@ export class Chromium {
     return page;
   }
 
+  // What a GPU's watchdog does to a draw that never finishes (Chromium's software GPU in a
+  // headless browser has none): the GPU process goes, every WebGL context is lost, and the
+  // browser starts a new one. Killed, as a watchdog kills it: Browser.crashGpuProcess asks the
+  // GPU process's own thread, which a draw that never finishes keeps waiting.
+  async crashGpu() {
+    const gpu = fs.readdirSync('/proc').filter((pid) => /^\d+$/.test(pid)).find((pid) => {
+      try {
+        // (Chromium writes its arguments over argv as one line: split at spaces.)
+        const args = fs.readFileSync(`/proc/${pid}/cmdline`, 'utf8').split(/[\0 ]/);
+        return args.includes('--type=gpu-process') &&
+               args.includes(`--user-data-dir=${this.profileDir}`);
+      } catch {
+        return false;  // gone meanwhile
+      }
+    });
+    if (gpu) process.kill(Number(gpu), 'SIGKILL');
+    else await Promise.race([this.send('Browser.crashGpuProcess'), sleep(5000)]).catch(() => {});
+  }
+
+  // (A GPU process stuck in a draw can keep the browser from exiting: killed after 10 s.)
   async close() {
-    try { await this.send('Browser.close'); } catch { /* already gone */ }
+    await Promise.race([this.send('Browser.close'), sleep(10000)]).catch(() => {});
     this.ws.close();
     await new Promise((resolve) => {
-      if (this.process.exitCode !== null) resolve();
-      else this.process.on('exit', resolve);
+      if (this.process.exitCode !== null || this.process.signalCode !== null) return resolve();
+      this.process.on('exit', resolve);
+      setTimeout(() => this.process.kill('SIGKILL'), 10000);
     });
   }
 }
@@ -146,10 +171,16 @@ export class Page {
     await this.until(() => this.loads > before, 60000, 'the page to reload');
   }
 
-  // The expression's value (awaited when it is a promise); throws the page's exception.
-  async evaluate(expression) {
-    const r = await this.send('Runtime.evaluate',
-                              {expression, awaitPromise: true, returnByValue: true});
+  // The expression's value (awaited when it is a promise); throws the page's exception, or
+  // after `timeoutMs` when the page does not answer (a page stopped in a draw never does).
+  async evaluate(expression, timeoutMs = 120000) {
+    let timer;
+    const r = await Promise.race([
+      this.send('Runtime.evaluate', {expression, awaitPromise: true, returnByValue: true}),
+      new Promise((resolve, reject) => {
+        timer = setTimeout(() => reject(new Error(
+            `the page did not answer in ${timeoutMs} ms: ${expression.slice(0, 80)}`)), timeoutMs);
+      })]).finally(() => clearTimeout(timer));
     if (r.exceptionDetails)
       throw new Error(`${expression}: ${r.exceptionDetails.exception?.description ??
                       r.exceptionDetails.text}`);
@@ -167,6 +198,34 @@ export class Page {
                         this.console.slice(-20).join('\n'));
       await sleep(50);
     }
+  }
+
+  // Whether the page's thread answers within `ms` (a page stopped in a draw or a loop does not).
+  async answers(ms) {
+    const answer = this.send('Runtime.evaluate', {expression: '1', returnByValue: true})
+        .then(() => true, () => false);
+    return Promise.race([answer, sleep(ms).then(() => false)]);
+  }
+
+  // The tab closed by force, as the browser's "Page unresponsive: exit page" does (its thread
+  // may not answer).
+  async close() {
+    await Promise.race([this.browser.send('Target.closeTarget', {targetId: this.targetId}),
+                        sleep(5000)]).catch(() => {});
+  }
+
+  // The page's size (the window's, as a laptop's screen gives it).
+  async resize(width, height) {
+    await this.send('Emulation.setDeviceMetricsOverride',
+                    {width, height, deviceScaleFactor: 1, mobile: false});
+  }
+
+  // A click of the left button at (x, y).
+  async click(x, y) {
+    for (const type of ['mousePressed', 'mouseReleased'])
+      await this.send('Input.dispatchMouseEvent',
+                      {type, x, y, button: 'left', buttons: type === 'mousePressed' ? 1 : 0,
+                       clickCount: 1});
   }
 
   async screenshot(file) {

@@ -26,7 +26,7 @@ const {settledOn, status, typeFile} = labPage(page);
 await page.navigate(`http://127.0.0.1:${server.address().port}/index.html?step=ndf&view=student`);
 await page.until(() => settledOn('ndf'), 120000, 'ndf to settle');
 // The grader's first grade (the file in the editor, once the picture has settled) done.
-await page.until(() => page.evaluate(`pbrlabPage.gradeTimes.length > 0 && !pbrlabPage.sent`),
+await page.until(() => page.evaluate(`pbrlabPage.gradeTimes.length > 0 && Object.values(pbrlabPage.graders).every((g) => !g.job)`),
                  120000, 'the grader to warm up');
 // --idle-grades N: first N grades of new files with the window idle (posted to the page's grader
 // without writing them: no evaluation beside them), for what a grade costs beside the page alone.

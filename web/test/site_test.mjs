@@ -160,18 +160,19 @@ try {
   await page.screenshot(path.join(out, 'ndf-compile-error.png'));
 
   // A badge waiting behind another grade, for a file typed over before its grade starts, still
-  // comes: the grader runs a long grade (prefilter's solution, 10-27 s), the correct ndf is
-  // typed and its badge asks for it (queued), then a wrong one replaces it in the queue.
+  // comes: the student's grader runs a long grade of a file just written (prefilter's
+  // solution, 10-27 s), the correct ndf is typed and its badge asks for it (queued), then a
+  // wrong one replaces it in the queue.
   const prefilter = fs.readFileSync(path.join(root, 'labs/prefilter/solution.glsl'), 'utf8');
   await page.evaluate(
-      `pbrlabPage.request('prefilter', {'prefilter.glsl': ${JSON.stringify(prefilter)}}), true`);
+      `pbrlabPage.request('prefilter', {'prefilter.glsl': ${JSON.stringify(prefilter)}}, true), true`);
   await typeFile(correct + '\n// typed again\n');
   const asked = await page.until(() => page.evaluate(
-      `pbrlabPage.wanted.ndf !== undefined || pbrlabPage.sent?.step !== 'prefilter'
+      `pbrlabPage.wanted.ndf !== undefined || pbrlabPage.graders.fg.job?.step !== 'prefilter'
            ? pbrlabPage.wanted.ndf !== undefined : null`), 60000, 'the badge to ask for ndf');
   await typeFile(wrong + '\n// typed again\n');
-  const replaced = await page.evaluate(`(pbrlabPage.flush(), pbrlabPage.sent?.step === 'prefilter' &&
-                                          pbrlabPage.queued.has('ndf'))`);
+  const replaced = await page.evaluate(`(pbrlabPage.flush(),
+      pbrlabPage.graders.fg.job?.step === 'prefilter' && pbrlabPage.queue.some((j) => j.step === 'ndf'))`);
   check(asked && replaced, `the badge asked for ndf behind another grade, and the file was ` +
                            `typed over in the queue (asked ${asked}, replaced ${replaced})`);
   s = await page.until(async () => {

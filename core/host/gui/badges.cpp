@@ -90,20 +90,28 @@ Badges::~Badges() {
     }
 }
 
-std::string Badges::update(const ModuleRegistry& registry) {
+std::string Badges::update(const ModuleRegistry& registry, const std::string& first) {
     std::string arrived;
 #ifdef __EMSCRIPTEN__
-    if (job_.pid > 0) {
-        const std::optional<std::string> report = pageGradeResult(job_.id);
-        if (!report) return {};  // still grading
-        takeReport(badges_[job_.id], *report);
-        arrived = job_.id;
-        job_ = {};
+    // The page's grader orders the grades itself (shell.html: the file just written first,
+    // then the step on screen): every step whose file changed is asked for at once.
+    for (auto it = pending_.begin(); it != pending_.end();) {
+        const std::optional<std::string> report = pageGradeResult(*it);
+        if (!report) {
+            ++it;
+            continue;
+        }
+        takeReport(badges_[*it], *report);
+        arrived = *it;
+        it = pending_.erase(it);
     }
 #else
     if (job_.pid > 0) {
         int status = 0;
-        if (waitpid(job_.pid, &status, WNOHANG) == 0) return {};  // still grading
+        if (waitpid(job_.pid, &status, WNOHANG) == 0) {  // still grading
+            markStale(registry);
+            return {};
+        }
         std::ostringstream text;
         text << std::ifstream(job_.json).rdbuf();
         takeReport(badges_[job_.id], text.str());
@@ -114,9 +122,15 @@ std::string Badges::update(const ModuleRegistry& registry) {
     }
 #endif
     const auto& ms = registry.modules();
-    for (size_t k = 0; k < ms.size(); ++k) {
-        cursor_ = (cursor_ + 1) % ms.size();
-        const std::string& id = ms[cursor_].desc->id;
+    // The step on screen first, then the others from the one after the last started.
+    std::vector<size_t> order;
+    for (size_t k = 0; k < ms.size(); ++k)
+        if (ms[k].desc->id == first) order.push_back(k);
+    for (size_t k = 1; k <= ms.size(); ++k)
+        if (ms[(cursor_ + k) % ms.size()].desc->id != first)
+            order.push_back((cursor_ + k) % ms.size());
+    for (const size_t k : order) {
+        const std::string& id = ms[k].desc->id;
         Badge& badge = badges_[id];
         fs::path file = submission_.empty() ? fs::path() : submission_ / (id + ".glsl");
         if (file.empty() || !fs::exists(file)) {
@@ -126,14 +140,41 @@ std::string Badges::update(const ModuleRegistry& registry) {
         }
         if (!badge.watch.changed(file, submission_)) continue;
         badge.status = Status::Unknown;
+        if (id != first) cursor_ = k;
         start(id);
+#ifndef __EMSCRIPTEN__
+        if (job_.pid > 0) markStale(registry);  // one grade at a time: the others wait
         return arrived;
+#endif
     }
     return arrived;
 }
 
+// While the others wait for their grade, a badge whose file changed since it was graded says
+// "..." rather than the grade of the file before (a fix showed the old "compile error").
+void Badges::markStale(const ModuleRegistry& registry) {
+    for (const auto& m : registry.modules()) {
+        const std::string& id = m.desc->id;
+        auto it = badges_.find(id);
+        if (it == badges_.end() || id == job_.id) continue;
+        Badge& badge = it->second;
+        if (badge.status == Status::Unknown || badge.status == Status::Missing) continue;
+        const fs::path file = submission_ / (id + ".glsl");
+        if (badge.status == Status::CompileError && !badge.compileError.stale(file)) continue;
+        if (badge.watch.stale(file)) badge.status = Status::Unknown;
+    }
+}
+
+void Badges::markCompileError(const std::string& id) {
+    Badge& badge = badges_[id];
+    badge.status = Status::CompileError;
+    badge.compileError.forget();
+    badge.compileError.changed(submission_ / (id + ".glsl"), submission_);
+}
+
 bool Badges::upToDate(const std::string& id) const {
     if (job_.pid > 0 && job_.id == id) return false;
+    if (pending_.count(id)) return false;
     const Badge& badge = of(id);
     if (badge.status == Status::Missing || badge.status == Status::NotGradedHere) return true;
     return badge.status != Status::Unknown && !badge.watch.stale(submission_ / (id + ".glsl"));
@@ -147,8 +188,7 @@ void Badges::start(const std::string& id) {
         badges_[id].status = Status::NotGradedHere;
         return;
     }
-    job_.id = id;
-    job_.pid = 1;  // a grade is running (in the worker)
+    pending_.insert(id);  // graded, or on its way (the page answers gradeResult)
     return;
 #endif
     job_.id = id;

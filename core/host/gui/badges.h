@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,8 @@ struct Badge {
     Status status = Status::Unknown;
     std::string gradeMessage;  // why the badge says "fails": the grader's message
     SourceWatch watch;         // the student's file as last graded
+    // markCompileError's: the file the window found does not compile (status is then of it).
+    SourceWatch compileError;
 };
 
 class Badges {
@@ -36,9 +39,11 @@ public:
     Badges& operator=(const Badges&) = delete;
     ~Badges();  // a grade still running is not needed any more: it is stopped
 
-    // Collects a finished grade, and starts the next one needed (at most one at a time).
-    // Returns the id of the step whose grade just arrived (empty: none).
-    std::string update(const ModuleRegistry& registry);
+    // Collects a finished grade, and starts the next one needed, step `first` (the one on
+    // screen) before the others: at most one at a time on the desktop; in a page every one
+    // needed, which the page's grader orders. Returns the id of a step whose grade just
+    // arrived (empty: none).
+    std::string update(const ModuleRegistry& registry, const std::string& first = {});
 
     // The step's badge (Status::Unknown before its first check).
     const Badge& of(const std::string& id) const {
@@ -49,10 +54,11 @@ public:
     // The step's badge is the grade of its file as it is on disk (or says it is missing).
     bool upToDate(const std::string& id) const;
     // The render found that the student's file does not compile: the badge says so now.
-    void markCompileError(const std::string& id) { badges_[id].status = Status::CompileError; }
+    void markCompileError(const std::string& id);
 
 private:
     void start(const std::string& id);
+    void markStale(const ModuleRegistry& registry);
     std::vector<std::filesystem::path> modulesDirs_;
     std::filesystem::path submission_;
     std::map<std::string, Badge> badges_;
@@ -61,7 +67,8 @@ private:
         pid_t pid = -1;  // in a page: 1 while its grader (a Web Worker) grades
         std::string id;
         std::filesystem::path json;
-    } job_;  // the badge being graded (a `pbrlab check` process)
+    } job_;                          // the badge being graded (a `pbrlab check` process)
+    std::set<std::string> pending_;  // in a page: the steps asked of the page's grader
 };
 
 const char* badgeText(Status s);

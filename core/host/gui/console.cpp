@@ -111,7 +111,7 @@ public:
     }
     int run(const GlobalOptions&) override {
         parseView(view_, lab().termViews(), state().view, state().term);
-        requests().recompose = true;
+        requests().recompose = requests().viewChosen = true;
         return 0;
     }
 

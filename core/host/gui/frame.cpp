@@ -78,7 +78,10 @@ ComposedView composeView(const ModuleDesc& d, const ViewChoice& choice, const Im
 }  // namespace
 
 void Lab::update(GuiState& state, Requests& requests) {
-    if (requests.selectStep >= 0) select(state, requests.selectStep);
+    if (requests.selectStep >= 0) {
+        select(state, requests.selectStep);
+        showChosenView(state);
+    }
     if (requests.reloadScene) loadScene(state);
     if (requests.firstLight && !shown_.scene.lights.empty()) {
         shown_.scene.lights[0] = *requests.firstLight;
@@ -96,6 +99,12 @@ void Lab::update(GuiState& state, Requests& requests) {
     }
     if (requests.moved) moved();
     if (requests.recompose) compose(state);
+    if (requests.viewChosen) {
+        const std::string& id = module(state).id;
+        const std::string view = viewName(state.view, state.term, termViews_);
+        state.chosenViews[id] = view;
+        if (options_.viewChosen) options_.viewChosen(id, view);
+    }
     const bool holding = requests.holding;
     Requests carriedOut;  // all but the screenshot, which the window takes after drawing
     carriedOut.screenshot = requests.screenshot;
@@ -104,8 +113,15 @@ void Lab::update(GuiState& state, Requests& requests) {
 
     // Hot reload: a saved student file, or a file it includes, marks the view dirty; the
     // renderer recompiles it.
-    if (!studentFile(state).empty() && studentWatch_.changed(studentFile(state), submission_))
+    if (!studentFile(state).empty() && studentWatch_.changed(studentFile(state), submission_)) {
         dirty_ = true;
+        // The student's file has appeared: their picture, unless they chose a view here.
+        if (state.view == View::Solution && !state.chosenViews.count(module(state).id) &&
+            fs::exists(studentFile(state))) {
+            state.view = View::Student;
+            compose(state);
+        }
+    }
     const ModuleDesc& m = module(state);
     const Scene scene = currentScene(state);
     // While the input moves, only the picture is drawn (on the GPU, mapped for display there,
@@ -150,7 +166,7 @@ void Lab::update(GuiState& state, Requests& requests) {
     // is usually made, or on its way, when the badge asks.
     // A grade that arrives changes the badge and the grade line under the picture, which read
     // the badge as they are drawn: the picture is not evaluated again for it.
-    if (!badges_->update(*registry_).empty()) ++gradesArrived_;
+    if (!badges_->update(*registry_, module(state).id).empty()) ++gradesArrived_;
 }
 
 // An input changed what is drawn (camera, parameter, light): a live frame now, the full
@@ -241,7 +257,12 @@ bool Lab::drawLive(const GuiState& state) {
 
 bool Lab::liveShowsStudent(const GuiState& state) const {
     return state.view != View::Solution && !shown_.studentValue.pixels.empty() &&
-           studentWatch_.current() != liveStudentFailed_;
+           studentWatch_.current() != liveStudentFailed_ && gate(module(state).id).empty();
+}
+
+// What a page's watchdog says of running the student's file now (gui.h, studentFileGate).
+std::string Lab::gate(const std::string& id) const {
+    return options_.studentFileGate ? options_.studentFileGate(id) : std::string();
 }
 
 // The live picture at LiveSize's side, mapped for display: its texture.
@@ -301,7 +322,14 @@ void Lab::startEvaluation(const GuiState& state) {
     // a FIFO, a device, a file over 10 MB or with NUL bytes, or a link out of the workspace is
     // refused, with the reason on screen, and never opened for reading.
     StudentCompile& c = compiles_[d.id];
-    const std::string refusal = shown_.hasStudent ? screenStudentFile(file, submission_) : "";
+    std::string refusal = shown_.hasStudent ? screenStudentFile(file, submission_) : "";
+    if (refusal.empty() && shown_.hasStudent) {
+        refusal = gate(d.id);  // a page's watchdog: a file that did not finish last time
+        if (refusal == kStudentFileNotYet) {
+            dirty_ = true;  // asked again next frame, once the page has noted it
+            return;
+        }
+    }
     if (!refusal.empty() && c.refusal != file.string() + ": " + refusal)
         logLine("gui", file.string() + ": " + refusal);
     c.refusal = refusal.empty() ? "" : file.string() + ": " + refusal;
@@ -344,6 +372,8 @@ void Lab::showEvaluation(EvaluationResult r, const GuiState& state) {
         shown_.renderError = r.renderError;
     }
     for (const std::string& error : r.studentErrors) studentFailed(d.id, error);
+    if ((r.studentRendered || !r.studentErrors.empty()) && options_.studentFileCameBack)
+        options_.studentFileCameBack(d.id);
     if (r.studentRendered) {
         shown_.studentValue = std::move(r.studentValue);
         shown_.studentStats = r.studentStats;

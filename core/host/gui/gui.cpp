@@ -231,8 +231,22 @@ public:
                               {"evaluationsYielded", lab_.evaluationsYielded()},
                               {"redraw", redrawJson()},
                               {"badge", badgeText(lab_.badges().of(id).status)},
-                              {"gradeMessage", lab_.badges().of(id).gradeMessage}}
+                              {"gradeMessage", lab_.badges().of(id).gradeMessage},
+                              {"bandNote", status.bandNote},
+                              {"grade", status.grade},
+                              {"gradeDetails", status.gradeDetails},
+                              {"view", viewName(state_.view, state_.term, lab_.termViews())},
+                              {"layout", layoutJson()}}
             .dump();
+    }
+    nlohmann::json layoutJson() const {
+        const WindowLayout& l = state_.layout;
+        return {{"compact", l.compact},
+                {"steps", l.steps},
+                {"view", l.view},
+                {"module", l.module},
+                {"pictureSide", l.pictureSide},
+                {"viewToggle", l.viewToggle}};
     }
     nlohmann::json redrawJson() const {
         const RedrawStats& r = redraw_.stats();
@@ -443,24 +457,37 @@ private:
                         r.framesChecked, r.pixelsDiffering);
     }
 
-    // Steps | picture | module, side by side, filling the window.
+    // Steps | picture | module, side by side, filling the window; in a narrow window
+    // (kCompactLayoutWidth) the steps are a line at the top of the picture's.
     void drawWindows() {
         ImVec2 size = ImGui::GetIO().DisplaySize;
+        WindowLayout& layout = state_.layout;
+        layout.compact = size.x < kCompactLayoutWidth;
         // Narrower than the layout's widths need (a page beside its editor, a small window),
         // the side windows give up width first, down to what their controls need.
-        const float left = std::min(state_.layout.stepsWidth, std::max(225.0f, 0.2f * size.x));
-        const float right = std::min(state_.layout.moduleWidth, std::max(300.0f, 0.34f * size.x));
+        const float left =
+            layout.compact ? 0 : std::min(layout.stepsWidth, std::max(225.0f, 0.2f * size.x));
+        // (Folded, the steps leave the parameters' window the width its controls need.)
+        const float right =
+            std::min(layout.moduleWidth, layout.compact ? std::max(340.0f, 0.38f * size.x)
+                                                        : std::max(300.0f, 0.34f * size.x));
         const ImGuiWindowFlags fixed =
             ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse;
-        ImGui::SetNextWindowPos(ImVec2(0, 0));
-        ImGui::SetNextWindowSize(ImVec2(left, size.y));
-        ImGui::Begin("Steps", nullptr, fixed);
-        drawStepsPanel(lab_, state_, requests_);
-        ImGui::End();
+        if (!layout.compact) {
+            ImGui::SetNextWindowPos(ImVec2(0, 0));
+            ImGui::SetNextWindowSize(ImVec2(left, size.y));
+            ImGui::Begin("Steps", nullptr, fixed);
+            drawStepsPanel(lab_, state_, requests_);
+            ImGui::End();
+        }
+        layout.steps = left;
+        layout.view = size.x - left - right;
+        layout.module = right;
 
         ImGui::SetNextWindowPos(ImVec2(left, 0));
         ImGui::SetNextWindowSize(ImVec2(size.x - left - right, size.y));
         ImGui::Begin("View", nullptr, fixed | ImGuiWindowFlags_NoScrollbar);
+        if (layout.compact) drawStepsLine(lab_, state_, requests_);
         drawViewPanel(lab_, state_, requests_);
         ImGui::End();
 

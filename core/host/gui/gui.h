@@ -2,6 +2,8 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -34,7 +36,21 @@ struct GuiOptions {
     // errors stay within this (chooseIblSettings, as `pbrlab precompute --error-budget`).
     double errorBudget = 0;
     int width = 1600, height = 960;
+    // The view the student chose per step (step id -> viewName), remembered from an earlier
+    // run: a page's, from the browser's storage (a desktop's are in gui.json).
+    std::map<std::string, std::string> chosenViews;
+    // Called when the student chooses a view for a step (the page remembers it).
+    std::function<void(const std::string& id, const std::string& view)> viewChosen;
+    // A page's watchdog (shell.html; empty on the desktop), asked before the window runs the
+    // student's file of step `id` (its picture, an evaluation, a live frame): "" run it;
+    // kStudentFileNotYet: not yet, ask again (the page is noting, where a hang would leave it,
+    // that the file runs); anything else: why it may not run, as a refusal.
+    std::function<std::string(const std::string& id)> studentFileGate;
+    // The window's evaluation of step `id` with the student's file has come back.
+    std::function<void(const std::string& id)> studentFileCameBack;
 };
+
+inline constexpr const char* kStudentFileNotYet = "not yet";
 
 int runGui(const GuiOptions& options);
 
@@ -43,8 +59,9 @@ int runGui(const GuiOptions& options);
 std::string guiStepOnScreen();
 void guiSubmitConsoleLine(const std::string& line);
 // What the status lines under the picture say, as JSON: {"step", "settled", "error",
-// "errorLog", "notice", "renderError", "sceneError", "rows": [{"text", "ok"}], "badge", "redraw"}
-// (the page's tests read it).
+// "errorLog", "notice", "renderError", "sceneError", "rows": [{"text", "ok"}], "bandNote",
+// "badge", "gradeMessage", "gradeHeadline", "gradeDetails", "view", "layout", "redraw"} (the
+// page's tests read it).
 std::string guiStatusJson();
 // The step's settled solution picture, display-encoded as `pbrlab render --out x.png` writes
 // it, saved to `file` (the page's tests compare it with the desktop's).

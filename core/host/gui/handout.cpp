@@ -93,7 +93,9 @@ void drawHandout(const std::string& markdown) {
             flushParagraph();
             size_t level = line.find_first_not_of('#');
             ImGui::Spacing();
+            ImGui::PushTextWrapPos(0);  // a long title wraps in a narrow window
             ImGui::TextColored(heading, "%s", stripInline(line.substr(level + 1)).c_str());
+            ImGui::PopTextWrapPos();
             if (level == 1) ImGui::Separator();
         } else if (line.rfind("- ", 0) == 0 || line.rfind("* ", 0) == 0) {
             flushParagraph();

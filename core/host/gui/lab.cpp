@@ -60,6 +60,7 @@ Lab::Lab(const GuiOptions& options, GuiState& state, std::unique_ptr<WorkerConte
         state.params[m.desc->id] = ParamValues(m.desc->params);
     select(state, 0);
     const RememberedChoice remembered = restoreState(*registry_, state, shown_.messages);
+    for (const auto& [id, view] : options.chosenViews) state.chosenViews[id] = view;
     if (!remembered.step.empty() && options.module.empty())
         for (size_t i = 0; i < registry_->modules().size(); ++i)
             if (registry_->modules()[i].desc->id == remembered.step) select(state, int(i));
@@ -80,9 +81,7 @@ Lab::Lab(const GuiOptions& options, GuiState& state, std::unique_ptr<WorkerConte
         throw Error("--tab " + options.tab +
                     ": unknown tab; one of handout, plot, log, programs, console");
     state.openTab = options.tab;
-    if (options.view.empty())  // no student file: show the solution
-        state.view = !studentFile(state).empty() && fs::exists(studentFile(state)) ? View::Student
-                                                                                   : View::Solution;
+    if (options.view.empty()) showChosenView(state);
     shown_.imageTexture = gl::makeTexture();
     displayPass_ = std::make_unique<DisplayPass>(renderer_->programs(), paths_.shaders());
     worker_ = std::make_unique<EvaluationWorker>(paths_, std::move(workerContext));
@@ -100,6 +99,22 @@ Lab::Lab(const GuiOptions& options, GuiState& state, std::unique_ptr<WorkerConte
 
 fs::path Lab::studentFile(const GuiState& state) const {
     return submission_.empty() ? fs::path() : submission_ / (module(state).id + ".glsl");
+}
+
+// The step's view: the one the student chose for it, else their picture when their file
+// exists, else the solution's.
+void Lab::showChosenView(GuiState& state) const {
+    const auto chosen = state.chosenViews.find(module(state).id);
+    if (chosen != state.chosenViews.end()) {
+        try {
+            parseView(chosen->second, termViews_, state.view, state.term);
+            return;
+        } catch (const Error&) {
+            // A view this build does not have (a term view of an older version): the default.
+        }
+    }
+    const fs::path file = studentFile(state);
+    state.view = !file.empty() && fs::exists(file) ? View::Student : View::Solution;
 }
 
 void Lab::select(GuiState& state, int index) {

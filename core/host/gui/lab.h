@@ -37,6 +37,7 @@ struct Requests {
     bool moved = false;        // camera, parameter or light changed: live frames, then the
                                // evaluation once the input is still
     bool recompose = false;    // the view or its settings changed: the same values shown anew
+    bool viewChosen = false;   // the student chose the view: remembered for the step
     // A control is held with the mouse (the picture's orbit, a slider), still or not, or the
     // button has just been pressed: without an evaluation thread it counts as moving (the
     // evaluation would stop the window mid-drag).
@@ -152,6 +153,7 @@ public:
 
 private:
     void select(GuiState& state, int index);
+    void showChosenView(GuiState& state) const;
     void loadScene(GuiState& state);
     void noteModelWarnings(const Scene& scene);
     // --error-budget's settings for the scene's environment are still being chosen.
@@ -159,6 +161,7 @@ private:
     bool drawLive(const GuiState& state);
     // The live picture is the student's (their file has rendered, and has not failed since).
     bool liveShowsStudent(const GuiState& state) const;
+    std::string gate(const std::string& id) const;
     GLuint renderLive(const GuiState& state, bool student);
     void startEvaluation(const GuiState& state);
     void showEvaluation(EvaluationResult result, const GuiState& state);

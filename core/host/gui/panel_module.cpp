@@ -94,7 +94,7 @@ bool paramWidget(const ParamDecl& p, glm::dvec3& v) {
             ImGui::SameLine();
             ImGui::BeginGroup();
             float f[3] = {float(v.x), float(v.y), float(v.z)};
-            ImGui::SetNextItemWidth(200);
+            ImGui::SetNextItemWidth(std::min(200.0f, ImGui::GetContentRegionAvail().x));
             if (ImGui::DragFloat3("##xyz", f, 0.01f, -1, 1) &&
                 glm::length(glm::dvec3(f[0], f[1], f[2])) > 1e-6) {
                 v = glm::dvec3(f[0], f[1], f[2]);
@@ -156,7 +156,7 @@ std::vector<fs::path> modelChoices(const Lab& lab, const GuiState& state) {
 void sceneChooser(const Lab& lab, GuiState& state, Requests& requests,
                   const std::string& sceneShown) {
     std::string current = state.model.empty() ? sceneShown : state.model.filename().string();
-    ImGui::SetNextItemWidth(220);
+    ImGui::SetNextItemWidth(std::min(220.0f, ImGui::CalcItemWidth()));
     if (!ImGui::BeginCombo("scene", current.c_str())) return;
     std::vector<std::string> names;
     for (const auto& e : fs::directory_iterator(lab.paths().assets() / "scenes"))
@@ -222,7 +222,7 @@ void drawScenePanel(const Lab& lab, GuiState& state, Requests& requests) {
         char* input = state.environmentInput.data();
         if (input[0] == 0)
             std::snprintf(input, state.environmentInput.size(), "%s", scene.environment.c_str());
-        ImGui::SetNextItemWidth(220);
+        ImGui::SetNextItemWidth(std::min(220.0f, ImGui::CalcItemWidth() - 50));
         ImGui::InputText("environment", input, state.environmentInput.size());
         ImGui::SameLine();
         if (ImGui::Button("load")) requests.environment = std::string(input);
@@ -237,9 +237,16 @@ void drawScenePanel(const Lab& lab, GuiState& state, Requests& requests) {
 }  // namespace
 
 void drawModulePanel(const Lab& lab, GuiState& state, Requests& requests) {
+    // Every control leaves room for the longest label beside it, and the descriptions wrap:
+    // in a narrow window (a laptop's page) nothing runs off the edge.
+    ImGui::PushItemWidth(-ImGui::CalcTextSize("light 0 intensity").x -
+                         ImGui::GetStyle().ItemInnerSpacing.x);
+    ImGui::PushTextWrapPos(0);
     drawParams(lab, state, requests);
     ImGui::Separator();
     drawScenePanel(lab, state, requests);
+    ImGui::PopTextWrapPos();
+    ImGui::PopItemWidth();
 }
 
 }  // namespace pbrlab

@@ -22,7 +22,51 @@ ImVec4 badgeColor(Status s) {
     }
 }
 
+void badgeLabel(const Lab& lab, const ModuleDesc& d) {
+    const Status s = lab.badges().of(d.id).status;
+    ImGui::TextColored(badgeColor(s), "%s", badgeText(s));
+}
+
 }  // namespace
+
+// The steps in one line, for a window too narrow for the steps panel: the step on screen and
+// its badge, the list (with every badge) a click away, previous / next.
+void drawStepsLine(const Lab& lab, GuiState& state, Requests& requests) {
+    const auto& ms = lab.registry().modules();
+    const ModuleDesc& on = lab.module(state);
+    char label[128];
+    std::snprintf(label, sizeof label, "%d  %s", on.step, on.id.c_str());
+    if (ImGui::ArrowButton("previous", ImGuiDir_Left))
+        requests.selectStep = std::max(0, state.step - 1);
+    ImGui::SameLine(0, 2);
+    ImGui::SetNextItemWidth(150);
+    if (ImGui::BeginCombo("##step", label, ImGuiComboFlags_HeightLarge)) {
+        std::string labName;
+        for (size_t i = 0; i < ms.size(); ++i) {
+            const ModuleDesc& d = *ms[i].desc;
+            if (d.lab != labName) {
+                labName = d.lab;
+                ImGui::TextColored(ImVec4(1, 0.8f, 0.45f, 1), "lab: %s", labName.c_str());
+            }
+            ImGui::PushID(int(i));
+            std::snprintf(label, sizeof label, "%2d  %s", d.step, d.id.c_str());
+            if (ImGui::Selectable(label, int(i) == state.step, 0, ImVec2(130, 0)))
+                requests.selectStep = int(i);
+            ImGui::SameLine(150);
+            badgeLabel(lab, d);
+            ImGui::PopID();
+        }
+        if (!lab.shown().messages.empty()) {
+            ImGui::Separator();
+            ImGui::TextWrapped("%s", lab.shown().messages.c_str());
+        }
+        ImGui::EndCombo();
+    }
+    ImGui::SameLine(0, 2);
+    if (ImGui::ArrowButton("next", ImGuiDir_Right)) requests.selectStep = state.step + 1;
+    ImGui::SameLine();
+    badgeLabel(lab, on);
+}
 
 void drawStepsPanel(const Lab& lab, GuiState& state, Requests& requests) {
     ImGui::TextDisabled("workspace");

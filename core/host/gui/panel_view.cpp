@@ -17,22 +17,33 @@ namespace {
 
 void viewChooser(const Lab& lab, GuiState& state, Requests& requests) {
     const std::vector<TermView>& terms = lab.termViews();
-    ImGui::SetNextItemWidth(170);
-    if (!ImGui::BeginCombo("view", viewName(state.view, state.term, terms).c_str())) return;
-    for (View v : kImageViews)
-        if (ImGui::Selectable(viewName(v, 0).c_str(), state.view == v)) {
-            state.view = v;
-            requests.recompose = true;
-        }
-    ImGui::Separator();
-    for (size_t i = 0; i < terms.size(); ++i)
-        if (ImGui::Selectable(terms[i].name.c_str(),
-                              state.view == View::Term && state.term == int(i))) {
-            state.view = View::Term;
-            state.term = int(i);
-            requests.recompose = true;
-        }
-    ImGui::EndCombo();
+    ImGui::SetNextItemWidth(150);
+    if (ImGui::BeginCombo("view", viewName(state.view, state.term, terms).c_str())) {
+        for (View v : kImageViews)
+            if (ImGui::Selectable(viewName(v, 0).c_str(), state.view == v)) {
+                state.view = v;
+                requests.recompose = requests.viewChosen = true;
+            }
+        ImGui::Separator();
+        for (size_t i = 0; i < terms.size(); ++i)
+            if (ImGui::Selectable(terms[i].name.c_str(),
+                                  state.view == View::Term && state.term == int(i))) {
+                state.view = View::Term;
+                state.term = int(i);
+                requests.recompose = requests.viewChosen = true;
+            }
+        ImGui::EndCombo();
+    }
+    // The student's picture and the solution's, one click apart (either, from any other view).
+    ImGui::SameLine();
+    const bool solution = state.view == View::Solution;
+    const ImVec2 at = ImGui::GetCursorScreenPos();
+    if (ImGui::Button(solution ? "show yours" : "show the solution")) {
+        state.view = solution ? View::Student : View::Solution;
+        requests.recompose = requests.viewChosen = true;
+    }
+    const ImVec2 size = ImGui::GetItemRectSize();
+    state.layout.viewToggle = {at.x, at.y, size.x, size.y};
 }
 
 // Drag: orbit; wheel: zoom; hover: the pixel inspector, on the settled picture. The picture is
@@ -83,7 +94,20 @@ void handleCamera(const Lab& lab, GuiState& state, Requests& requests, ImVec2 or
     ImGui::EndTooltip();
 }
 
-void drawLegend(double lo, double hi, bool logScale, float height) {
+// The legend's labels: the top value, the bottom one (with "log" on a log scale).
+struct LegendLabels {
+    char top[32], bottom[32];
+    LegendLabels(double lo, double hi, bool logScale) {
+        std::snprintf(top, sizeof top, "%.2g", hi);
+        std::snprintf(bottom, sizeof bottom, "%.2g%s", lo, logScale ? " log" : "");
+    }
+    // The width beside the picture: the bar, or the wider label (a narrow window cut "1e+02").
+    float width() const {
+        return std::max({28.0f, ImGui::CalcTextSize(top).x, ImGui::CalcTextSize(bottom).x});
+    }
+};
+
+void drawLegend(const LegendLabels& labels, float height) {
     ImVec2 p = ImGui::GetCursorScreenPos();
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const int steps = 64;
@@ -93,27 +117,37 @@ void drawLegend(double lo, double hi, bool logScale, float height) {
         dl->AddRectFilled(ImVec2(p.x, y0), ImVec2(p.x + 14, y1),
                           IM_COL32(int(c.r * 255), int(c.g * 255), int(c.b * 255), 255));
     }
-    char top[32], bottom[32];
-    std::snprintf(top, sizeof top, "%.2g", hi);
-    std::snprintf(bottom, sizeof bottom, "%.2g%s", lo, logScale ? " log" : "");
-    dl->AddText(ImVec2(p.x - 2, p.y - 14), IM_COL32(220, 220, 220, 255), top);
-    dl->AddText(ImVec2(p.x - 2, p.y + height + 1), IM_COL32(220, 220, 220, 255), bottom);
-    ImGui::Dummy(ImVec2(28, height));
+    dl->AddText(ImVec2(p.x - 2, p.y - 14), IM_COL32(220, 220, 220, 255), labels.top);
+    dl->AddText(ImVec2(p.x - 2, p.y + height + 1), IM_COL32(220, 220, 220, 255), labels.bottom);
+    ImGui::Dummy(ImVec2(labels.width(), height));
 }
 
 // The statistics under the picture; with a compile error, they say that they are of the last
-// program that compiled.
+// program that compiled. Wrapped: a narrow window cuts nothing. The grade's message is its
+// first sentence (what is wrong), the details folded under it.
 void drawStats(const ViewStatus& status) {
     ImGui::PushTextWrapPos(0);
     if (status.lastGood)
         ImGui::TextColored(ImVec4(1, 0.6f, 0.35f, 1), "%s", status.statsHeading.c_str());
     else
         ImGui::TextDisabled("%s", status.statsHeading.c_str());
-    ImGui::PopTextWrapPos();
+    // Outside the band with the solution outside it too: the band cannot judge here (amber,
+    // not the red of a file that fails), and the note under the rows says why.
+    const ImVec4 green(0.4f, 0.9f, 0.45f, 1), red(1, 0.5f, 0.3f, 1), amber(0.95f, 0.8f, 0.35f, 1);
     for (const ViewStatus::Row& row : status.rows)
-        ImGui::TextColored(row.ok ? ImVec4(0.4f, 0.9f, 0.45f, 1) : ImVec4(1, 0.5f, 0.3f, 1), "%s",
-                           row.text.c_str());
-    if (!status.grade.empty()) ImGui::TextWrapped("%s", status.grade.c_str());
+        ImGui::TextColored(row.ok                    ? green
+                           : status.bandNote.empty() ? red
+                                                     : amber,
+                           "%s", row.text.c_str());
+    if (!status.bandNote.empty()) ImGui::TextColored(amber, "%s", status.bandNote.c_str());
+    if (!status.grade.empty()) {
+        ImGui::TextUnformatted(status.grade.c_str());
+        if (!status.gradeDetails.empty() && ImGui::TreeNode("details")) {
+            ImGui::TextUnformatted(status.gradeDetails.c_str());
+            ImGui::TreePop();
+        }
+    }
+    ImGui::PopTextWrapPos();
 }
 
 // The student's compile error, above the picture until the file compiles again: what the
@@ -121,12 +155,21 @@ void drawStats(const ViewStatus& status) {
 void drawCompileError(const ViewStatus& status) {
     const ImVec4 red(1, 0.4f, 0.4f, 1);
     const ImGuiStyle& style = ImGui::GetStyle();
-    int lines = 0;  // of the log, up to 6 (then it scrolls)
-    for (size_t i = 0; i < status.errorLog.size(); ++i)
-        lines += status.errorLog[i] == '\n' || i + 1 == status.errorLog.size();
     const float wrap = ImGui::GetContentRegionAvail().x - 2 * style.WindowPadding.x;
+    // The log's lines wrapped (a long one would run off a narrow window), up to 6 lines'
+    // height (then it scrolls).
+    float logHeight = 0;
+    for (size_t start = 0; start < status.errorLog.size();) {
+        size_t end = status.errorLog.find('\n', start);
+        if (end == std::string::npos) end = status.errorLog.size();
+        logHeight += ImGui::CalcTextSize(status.errorLog.c_str() + start,
+                                         status.errorLog.c_str() + end, false, wrap)
+                         .y +
+                     style.ItemSpacing.y;
+        start = end + 1;
+    }
     const float height = ImGui::CalcTextSize(status.error.c_str(), nullptr, false, wrap).y +
-                         ImGui::GetTextLineHeightWithSpacing() * float(std::min(lines, 6)) +
+                         std::min(logHeight, 6 * ImGui::GetTextLineHeightWithSpacing()) +
                          style.ItemSpacing.y + style.WindowPadding.y * 2;
     ImGui::PushStyleColor(ImGuiCol_Border, red);
     ImGui::PushStyleColor(ImGuiCol_ChildBg, ImVec4(0.25f, 0.08f, 0.08f, 1));
@@ -141,7 +184,16 @@ void drawCompileError(const ViewStatus& status) {
         const std::string line = status.errorLog.substr(start, end - start);
         start = end + 1;
         ImGui::PushID(n);
-        if (ImGui::Selectable(line.c_str())) ImGui::SetClipboardText(line.c_str());
+        ImGui::PushTextWrapPos(0);
+        ImGui::TextUnformatted(line.c_str());
+        ImGui::PopTextWrapPos();
+        if (ImGui::IsItemHovered()) {
+            ImGui::GetWindowDrawList()->AddRectFilled(
+                ImGui::GetItemRectMin(), ImGui::GetItemRectMax(),
+                ImGui::GetColorU32(ImGuiCol_HeaderHovered, 0.4f));
+            ImGui::SetTooltip("click to copy the line");
+        }
+        if (ImGui::IsItemClicked()) ImGui::SetClipboardText(line.c_str());
         ImGui::PopID();
     }
     ImGui::EndChild();
@@ -153,8 +205,11 @@ void drawCompileError(const ViewStatus& status) {
 void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
     const ModuleDesc& d = lab.module(state);
     const Shown& shown = lab.shown();
+    if (state.layout.compact) ImGui::SameLine();  // after the steps' line (drawStepsLine)
+    ImGui::PushTextWrapPos(0);
     ImGui::Text("%d. %s", d.step, d.title.c_str());
     ImGui::TextDisabled("%s", d.function.c_str());
+    ImGui::PopTextWrapPos();
     viewChooser(lab, state, requests);
     if (state.view == View::Difference) {
         ImGui::SameLine();
@@ -170,8 +225,16 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
     }
     ImGui::SameLine();
     if (ImGui::Button("screenshot")) requests.screenshot = true;
-    ImGui::SameLine();
-    ImGui::TextDisabled("frame %.1f ms, render %.0f ms", shown.frameMs, shown.renderMs);
+    // The frame's times where they fit (not in a narrow window beside a range slider).
+    char times[64];
+    std::snprintf(times, sizeof times, "frame %.1f ms, render %.0f ms", shown.frameMs,
+                  shown.renderMs);
+    const float room = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x -
+                       ImGui::GetItemRectMax().x - ImGui::GetStyle().ItemSpacing.x;
+    if (room >= ImGui::CalcTextSize(times).x) {
+        ImGui::SameLine();
+        ImGui::TextDisabled("%s", times);
+    }
 
     const ViewStatus status = viewStatus(lab, state);
     if (!status.error.empty()) drawCompileError(status);
@@ -185,9 +248,18 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
                            shown.nanCount, shown.infCount);
 
     const bool difference = state.view == View::Difference;
-    ImVec2 avail = ImGui::GetContentRegionAvail();
-    float legend = (difference || d.display.mode == DisplayMode::FalseColor) ? 28 : 0;
+    const LegendLabels labels(difference ? 0.0 : d.display.lo,
+                              difference ? state.differenceRange : d.display.hi,
+                              !difference && d.display.logScale);
+    const float legend =
+        (difference || d.display.mode == DisplayMode::FalseColor) ? labels.width() : 0;
+    // Room for the legend's top label, drawn above the picture's top (it overlapped the line
+    // of NaN counts).
+    if (legend > 0)
+        ImGui::Dummy(ImVec2(0, ImGui::GetTextLineHeight() - ImGui::GetStyle().ItemSpacing.y));
+    const ImVec2 avail = ImGui::GetContentRegionAvail();
     float side = std::max(64.0f, std::min(avail.x - legend, avail.y - 150));
+    state.layout.pictureSide = side;
     ImVec2 origin = ImGui::GetCursorScreenPos();
     const GLuint shownTexture = shown.liveTexture ? shown.liveTexture : shown.imageTexture.id();
     ImGui::InvisibleButton("picture", ImVec2(side, side));
@@ -198,9 +270,7 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
     // Beside the picture (before the line under it, which would push it down).
     if (legend > 0) {
         ImGui::SameLine();
-        drawLegend(difference ? 0.0 : d.display.lo,
-                   difference ? state.differenceRange : d.display.hi,
-                   !difference && d.display.logScale, side);
+        drawLegend(labels, side);
     }
     // The live picture is the student's (or the solution's), drawn at a reduced size while the
     // input moves: say so, and what follows when it stops (or, stopped, when the evaluation

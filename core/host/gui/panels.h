@@ -12,6 +12,10 @@ namespace pbrlab {
 // The left window: the workspace and the steps with their badges.
 void drawStepsPanel(const Lab& lab, GuiState& state, Requests& requests);
 
+// The steps in one line (the step, its badge, the list a click away, previous / next): at the
+// top of the view panel in a window too narrow for the steps panel.
+void drawStepsLine(const Lab& lab, GuiState& state, Requests& requests);
+
 // The middle window: the step's title, the view chooser with its settings, the picture (drag
 // to orbit, wheel to zoom, hover to inspect a pixel) and the statistics under it.
 void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests);

@@ -46,6 +46,9 @@ RememberedChoice restoreState(const ModuleRegistry& registry, GuiState& state,
                 }
         }
         if (j.contains("module")) remembered.step = j["module"].get<std::string>();
+        if (j.contains("views") && j["views"].is_object())
+            for (auto& [id, view] : j["views"].items())
+                if (view.is_string()) state.chosenViews[id] = view.get<std::string>();
     } catch (const std::exception& e) {
         messages += configFile().string() + ": ignored (" + e.what() + ")\n";
     }
@@ -59,6 +62,7 @@ void saveState(const ModuleRegistry& registry, const GuiState& state) {
     for (const auto& m : registry.modules())
         for (const auto& p : m.desc->params)
             j["params"][m.desc->id][p.name] = p.format(state.params.at(m.desc->id).vector(p.name));
+    for (const auto& [id, view] : state.chosenViews) j["views"][id] = view;
     std::error_code ec;
     fs::create_directories(configFile().parent_path(), ec);
     fs::path tmp = configFile();

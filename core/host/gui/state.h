@@ -23,7 +23,18 @@ struct OrbitCamera {
 // Computed, not saved (ImGui's ini file is off).
 struct WindowLayout {
     float stepsWidth = 250, moduleWidth = 430;
+    // As drawn in the last frame (the page's tests read them): narrower than
+    // kCompactLayoutWidth, the steps panel folds into a line at the top of the picture's window.
+    bool compact = false;
+    float steps = 0, view = 0, module = 0;  // the windows' widths
+    float pictureSide = 0;
+    std::array<float, 4> viewToggle{};  // the one-click view button: x, y, width, height
 };
+
+// A window narrower than this (a laptop's page beside its editor: 896 and 956 pixels at
+// 1280 and 1366) shows the steps as a line over the picture: with the steps panel, three
+// windows in that width left the picture under 370 pixels and cut its status lines.
+inline constexpr float kCompactLayoutWidth = 1000;
 
 struct GuiState {
     int step = 0;  // index into ModuleRegistry::modules()
@@ -42,6 +53,10 @@ struct GuiState {
     bool polarPlot = true;          // probes over the light's angle: the row as a lobe
     bool polarTimesCosine = true;
     std::array<char, 512> environmentInput{};  // the environment field's text
+    // The view the student chose per step (step id -> viewName): a step shows it when chosen
+    // again; a step without one shows the student's picture when their file exists, else the
+    // solution's. Remembered across runs.
+    std::map<std::string, std::string> chosenViews;
 };
 
 // $XDG_CONFIG_HOME/pbrlab/gui.json (~/.config/pbrlab when unset).
@@ -62,7 +77,7 @@ struct RememberedChoice {
 RememberedChoice restoreState(const ModuleRegistry& registry, GuiState& state,
                               std::string& messages);
 
-// Writes the step, the model and every step's parameters to gui.json.
+// Writes the step, the model, every step's parameters and the views chosen to gui.json.
 void saveState(const ModuleRegistry& registry, const GuiState& state);
 
 }  // namespace pbrlab

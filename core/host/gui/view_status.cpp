@@ -1,5 +1,6 @@
 #include "view_status.h"
 
+#include <cctype>
 #include <cstdio>
 
 #include "lab.h"
@@ -71,18 +72,38 @@ ViewStatus viewStatus(const Lab& lab, const GuiState& state) {
         s.rows.push_back({"solution  not in this site: views show the CPU reference", true});
     else
         s.rows.push_back(statsRow("solution", shown.solutionStats, d));
+    // The reference solution outside its own band: this GPU computes the picture otherwise
+    // than the CPU reference expects (a browser's SwiftShader moves an estimator's samples
+    // with its approximate sin, cos and pow: docs/web.md). The band judges nothing here.
+    if (!shown.solutionWithheld && !s.rows.back().ok)
+        s.bandNote =
+            std::string("the solution's own picture is outside the band on this GPU, so ") +
+            "these rows cannot judge yours here: the badge is the grade" +
+            (d.estimator ? " (it compares estimates with the converged integral)" : "");
     const Badge& badge = lab.badges().of(d.id);
     if (badge.status == Status::CompileError && lastGood)
         s.grade = "badge: compile error, the grade of " + file +
                   " on disk; the rows above are the last program that compiled, " +
                   shown.compiledAt;
-    else if (badge.status == Status::Fails && !badge.gradeMessage.empty())
-        s.grade = "grade: " + badge.gradeMessage;
-    else if (badge.status == Status::NotGradedHere)
+    else if (badge.status == Status::Fails && !badge.gradeMessage.empty()) {
+        auto [first, rest] = firstSentence(badge.gradeMessage);
+        s.grade = "grade: " + first;
+        s.gradeDetails = rest;
+    } else if (badge.status == Status::NotGradedHere)
         s.grade =
             "badge: this browser cannot grade (no WebGL 2 in a worker); the rows above are the "
             "check against the CPU reference, and `pbrlab grade` on the kit gives the grade";
     return s;
+}
+
+std::pair<std::string, std::string> firstSentence(const std::string& message) {
+    for (size_t i = 1; i + 2 < message.size(); ++i) {
+        const char c = message[i];
+        if ((c == '.' || c == '?' || c == '!') && message[i - 1] != '.' && message[i + 1] == ' ' &&
+            std::isupper(static_cast<unsigned char>(message[i + 2])))
+            return {message.substr(0, i + 1), message.substr(i + 2)};
+    }
+    return {message, ""};
 }
 
 std::string describe(const ViewStatus& status) {
@@ -101,7 +122,9 @@ std::string describe(const ViewStatus& status) {
     line(status.notice);
     line(status.statsHeading);
     for (const ViewStatus::Row& row : status.rows) line(row.text);
+    line(status.bandNote);
     line(status.grade);
+    line(status.gradeDetails);
     return text;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pbrlab {
@@ -23,8 +24,18 @@ struct ViewStatus {
         bool ok = false;
     };
     std::vector<Row> rows;  // the student's (or the last good program's), then the solution's
-    std::string grade;      // what the step's badge says beyond its word
+    // The solution itself is outside the band on this GPU: why the rows cannot judge the
+    // student's file here, and what does (the badge).
+    std::string bandNote;
+    // What the step's badge says beyond its word: its first sentence (what is wrong), and the
+    // rest of the grader's message (the figures, the checks), shown folded.
+    std::string grade, gradeDetails;
 };
+
+// A grader's message as its first sentence and the rest (empty when it is one sentence): a
+// sentence ends at '.', '?' or '!' before a space and a capital letter ("3.142 x", ".. 0.2"
+// and "(PI, 4) is off); integral" do not end one).
+std::pair<std::string, std::string> firstSentence(const std::string& message);
 
 ViewStatus viewStatus(const Lab& lab, const GuiState& state);
 
