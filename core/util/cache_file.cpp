@@ -51,7 +51,9 @@ CacheReader::CacheReader(const fs::path& file, const char (&magic)[8]) {
     // character iterator copies a byte at a time.
     const std::streamoff size = in.tellg();
     if (size < std::streamoff(8 + sizeof(std::uint64_t))) return;
-    payload_ = std::make_unique_for_overwrite<char[]>(size_t(size));
+    // Uninitialised (the read overwrites it); not make_unique_for_overwrite, which the page's
+    // C++ library (Emscripten's libc++) does not have.
+    payload_.reset(new char[size_t(size)]);
     in.seekg(0);
     if (!in.read(payload_.get(), size) || std::memcmp(payload_.get(), magic, 8) != 0) return;
     end_ = size_t(size) - sizeof(std::uint64_t);
