@@ -27,12 +27,32 @@ for command in "${commands[@]}"; do
     # shellcheck disable=SC2086 # README's words, as a shell splits them
     $command "$native/web" "${extra[@]}"
 done
-failed=0
-node --experimental-websocket web/test/site_test.mjs --site "$native/web/site" \
-    --pbrlab "$native/pbrlab" --out "$native/web-test" "$@" || failed=1
-node --experimental-websocket web/test/page_test.mjs --site "$native/web/site" \
-    --pbrlab "$native/pbrlab" --out "$native/web-page" || failed=1
-node --experimental-websocket web/test/assignment_test.mjs --site "$native/web/assignment-site" \
+# Each part's output goes to the terminal and to a log; the end repeats every failed check, so
+# that the tail of a long run (all a CI page may show) says what failed.
+logs=$(mktemp -d)
+trap 'rm -rf "$logs"' EXIT
+failed=()
+run_part() {
+    local name=$1
+    shift
+    if ! node --experimental-websocket "$@" 2>&1 | tee "$logs/$name.log"; then
+        failed+=("$name")
+    fi
+}
+run_part site web/test/site_test.mjs --site "$native/web/site" \
+    --pbrlab "$native/pbrlab" --out "$native/web-test" "$@"
+run_part page web/test/page_test.mjs --site "$native/web/site" \
+    --pbrlab "$native/pbrlab" --out "$native/web-page"
+run_part assignment web/test/assignment_test.mjs --site "$native/web/assignment-site" \
     --full-site "$native/web/site" --steps-dir "$native/web/assignment-steps" \
-    --pbrlab "$native/pbrlab" --out "$native/web-assignment" || failed=1
-exit $failed
+    --pbrlab "$native/pbrlab" --out "$native/web-assignment"
+if [ ${#failed[@]} -eq 0 ]; then
+    echo "test-web: every part passed"
+    exit 0
+fi
+for name in "${failed[@]}"; do
+    echo "test-web: $name failed; its failed checks and last lines:"
+    grep -E '^FAIL' "$logs/$name.log" || true
+    tail -n 5 "$logs/$name.log"
+done
+exit 1

@@ -60,7 +60,7 @@ std::string guiStepOnScreen();
 void guiSubmitConsoleLine(const std::string& line);
 // What the status lines under the picture say, as JSON: {"step", "settled", "error",
 // "errorLog", "notice", "renderError", "sceneError", "rows": [{"text", "ok"}], "bandNote",
-// "badge", "gradeMessage", "gradeHeadline", "gradeDetails", "view", "layout", "redraw"} (the
+// "badge", "gradeMessage", "grade", "gradeDetails", "view", "layout", "redraw"} (the
 // page's tests read it).
 std::string guiStatusJson();
 // The step's settled solution picture, display-encoded as `pbrlab render --out x.png` writes

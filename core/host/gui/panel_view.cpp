@@ -253,10 +253,6 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
                               !difference && d.display.logScale);
     const float legend =
         (difference || d.display.mode == DisplayMode::FalseColor) ? labels.width() : 0;
-    // Room for the legend's top label, drawn above the picture's top (it overlapped the line
-    // of NaN counts).
-    if (legend > 0)
-        ImGui::Dummy(ImVec2(0, ImGui::GetTextLineHeight() - ImGui::GetStyle().ItemSpacing.y));
     const ImVec2 avail = ImGui::GetContentRegionAvail();
     float side = std::max(64.0f, std::min(avail.x - legend, avail.y - 150));
     state.layout.pictureSide = side;
