@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <sstream>
 
+#include "assets/image_io.h"
 #include "gl/context.h"
 #include "gl/objects.h"
 #include "grading/grade_step.h"
@@ -183,6 +185,89 @@ TEST(Headless, PrecomputedMapsAreCachedOnDiskAndReusedExactly) {
     resetCounters();
     render();
     EXPECT_EQ(eventCount(Counter::PrecomputePasses), 3);  // cube, irradiance, prefilter
+}
+
+TEST(Headless, CachedMapsAreFoundWithoutReadingTheEnvironment) {
+    test::TempDir cache;
+    Headless h;
+    IblSettings small;  // small maps: this test is about what is read, not quality
+    small.environmentSize = 32;
+    small.irradianceSize = 8;
+    small.prefilterSize = 16;
+    small.prefilterMips = 3;
+    small.lutWidth = small.lutHeight = 16;
+    IblPrecompute precompute(h.renderer.programs(), h.paths.shaders());
+    IblDiskCache disk(cache.path);
+    Image sky;
+    sky.width = 64;
+    sky.height = 32;
+    sky.channels = 3;
+    for (int i = 0; i < sky.width * sky.height; ++i)
+        for (int c = 0; c < 3; ++c) sky.pixels.push_back(float(1 + (i * 7 + c * 3) % 11));
+    int reads = 0;
+    auto source = [&](const std::string& key) {
+        return EquirectSource(key, [&] {
+            ++reads;
+            return sky;
+        });
+    };
+    // First: nothing on disk, the pixels are read once for the cube and the derived maps.
+    const EquirectSource first = source("test sky v1");
+    auto maps = precompute.buildEnvironment(first, small, &disk);
+    precompute.buildDerived(*maps, first, &disk);
+    EXPECT_EQ(reads, 1);
+    const auto cube = IblPrecompute::readCube(maps->environment.id(), 32, 6);
+    const auto irradiance = IblPrecompute::readCube(maps->irradiance.id(), 8, 1);
+    // The same key again: every map from disk, the pixels never read.
+    const EquirectSource again = source("test sky v1");
+    auto cached = precompute.buildEnvironment(again, small, &disk);
+    precompute.buildDerived(*cached, again, &disk);
+    EXPECT_EQ(reads, 1);
+    EXPECT_EQ(IblPrecompute::readCube(cached->environment.id(), 32, 6)[0][2].pixels,
+              cube[0][2].pixels);
+    EXPECT_EQ(IblPrecompute::readCube(cached->irradiance.id(), 8, 1)[0][4].pixels,
+              irradiance[0][4].pixels);
+    // Another key is another environment: read and computed.
+    const EquirectSource other = source("test sky v2");
+    precompute.buildEnvironment(other, small, &disk);
+    EXPECT_EQ(reads, 2);
+}
+
+TEST(Headless, AnEnvironmentFileChangedOnDiskIsReadAgain) {
+    // A file's source key is its path, size and time (no read): a new file under the same
+    // name gives other maps, not the cached ones of the old file.
+    test::TempDir cache, files;
+    Headless h;
+    const LoadedModule& m = h.modules.find("irradiance");
+    Scene scene = loadScene(h.paths.scene(m.desc->scene));
+    const std::filesystem::path file = files.path / "sky.hdr";
+    scene.environment = file.string();
+    const ParamValues params(m.desc->params);
+    auto skyOf = [](float level) {
+        Image sky;
+        sky.width = 64;
+        sky.height = 32;
+        sky.channels = 3;
+        sky.pixels.assign(size_t(64 * 32 * 3), level);
+        return sky;
+    };
+    auto render = [&] {
+        LabRenderer r = h.rendererCachedIn(cache);
+        RenderRequest request{&m, &params, &scene, {}, nullptr, 32, 32};
+        return r.render(request).value;
+    };
+    writeImage(file, skyOf(1.0f), FileDepth::Float32);
+    const Image dim = render();
+    EXPECT_EQ(render().pixels, dim.pixels);  // from the cache
+    const auto time = std::filesystem::last_write_time(file);
+    writeImage(file, skyOf(4.0f), FileDepth::Float32);
+    std::filesystem::last_write_time(file, time + std::chrono::seconds(2));
+    const Image bright = render();
+    EXPECT_NE(bright.pixels, dim.pixels);
+    double dimSum = 0, brightSum = 0;
+    for (size_t i = 0; i < dim.pixels.size(); i += 4) dimSum += dim.pixels[i];
+    for (size_t i = 0; i < bright.pixels.size(); i += 4) brightSum += bright.pixels[i];
+    EXPECT_NEAR(brightSum, 4 * dimSum, 1e-3 * brightSum);  // irradiance is linear in radiance
 }
 
 TEST(Headless, ARenderIsAFunctionOfItsRequest) {

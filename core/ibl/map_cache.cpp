@@ -106,11 +106,9 @@ void addFiles(Digest& f, std::vector<fs::path> files) {
 
 }  // namespace
 
-std::string IblPrecompute::mapsKey(const Image& equirect, const IblSettings& s) const {
+std::string IblPrecompute::mapsKey(const EquirectSource& equirect, const IblSettings& s) const {
     Digest f;
-    f.add(equirect.pixels.data(), equirect.pixels.size() * sizeof(float));
-    f.add(std::to_string(equirect.width) + "x" + std::to_string(equirect.height) + "x" +
-          std::to_string(equirect.channels) + s.key() + kCpuMapsVersion);
+    f.add(equirect.key() + s.key() + kCpuMapsVersion);
     // Every file that can compute the irradiance or the prefiltered map: the host's methods,
     // and the passes of the steps that provide the maps with what they link.
     addFiles(f, sources({kFilteredPrefilterShader, kRiemannIrradianceShader},
@@ -120,13 +118,38 @@ std::string IblPrecompute::mapsKey(const Image& equirect, const IblSettings& s) 
 
 // The environment cube is resampled on the CPU (equirectToCube): its texels depend on the
 // equirectangular pixels, the cube's size and mip count and that code, no shader.
-std::string IblPrecompute::environmentKey(const Image& equirect, int size, int levels) {
+std::string IblPrecompute::environmentKey(const EquirectSource& equirect, int size, int levels) {
     Digest f;
-    f.add(equirect.pixels.data(), equirect.pixels.size() * sizeof(float));
-    f.add(std::to_string(equirect.width) + "x" + std::to_string(equirect.height) + "x" +
-          std::to_string(equirect.channels) + " cube " + std::to_string(size) + " x" +
-          std::to_string(levels) + kCpuMapsVersion);
+    f.add(equirect.key() + " cube " + std::to_string(size) + " x" + std::to_string(levels) +
+          kCpuMapsVersion);
     return f.hex();
+}
+
+EquirectSource::EquirectSource(const Image& image) : image_(&image) {}
+
+EquirectSource::EquirectSource(std::string key, std::function<Image()> load)
+    : load_(std::move(load)), key_(std::move(key)) {}
+
+const std::string& EquirectSource::key() const {
+    if (key_.empty()) {
+        const Image& i = image();
+        Digest f;
+        f.add(i.pixels.data(), i.pixels.size() * sizeof(float));
+        f.add(std::to_string(i.width) + "x" + std::to_string(i.height) + "x" +
+              std::to_string(i.channels));
+        key_ = "pixels " + f.hex();
+    }
+    return key_;
+}
+
+const Image& EquirectSource::image() const {
+    if (image_) return *image_;
+    if (!loaded_) loaded_ = std::make_unique<Image>(load_());
+    return *loaded_;
+}
+
+void EquirectSource::release() {
+    loaded_.reset();
 }
 
 std::string IblPrecompute::lutKey(const IblSettings& s) const {

@@ -223,12 +223,13 @@ std::unique_ptr<IblMaps> IblPrecompute::makeMaps(const IblSettings& settings) {
 
 std::unique_ptr<IblMaps> IblPrecompute::build(const Image& equirect, const IblSettings& s,
                                               const IblDiskCache* cache) {
-    auto maps = buildEnvironment(equirect, s, cache);
-    buildDerived(*maps, equirect, cache);
+    const EquirectSource source(equirect);  // keyed once
+    auto maps = buildEnvironment(source, s, cache);
+    buildDerived(*maps, source, cache);
     return maps;
 }
 
-std::unique_ptr<IblMaps> IblPrecompute::buildEnvironment(const Image& equirect,
+std::unique_ptr<IblMaps> IblPrecompute::buildEnvironment(const EquirectSource& equirect,
                                                          const IblSettings& s,
                                                          const IblDiskCache* cache) {
     auto maps = makeMaps(s);
@@ -251,7 +252,7 @@ std::unique_ptr<IblMaps> IblPrecompute::buildEnvironment(const Image& equirect,
     {
         PassTimer timer(*maps, "environment",
                         "environment cube " + std::to_string(s.environmentSize), onPass);
-        cube = equirectToCube(equirect, s.environmentSize, levels);
+        cube = equirectToCube(equirect.image(), s.environmentSize, levels);
         uploadCube(maps->environment.id(), cube);
     }
     if (cache) storeQuietly(file, cube);
@@ -262,7 +263,7 @@ std::unique_ptr<IblMaps> IblPrecompute::buildEnvironment(const Image& equirect,
 // What the passes of one buildDerived share, made on first use: the source cube the GPU
 // passes read, and the environment's bins in uniform buffers.
 struct IblPrecompute::Inputs {
-    const Image& equirect;
+    const EquirectSource& equirect;
     const IblMaps& maps;
     std::vector<std::vector<Image>> sourceLevels;  // when made here
     gl::Handle ownSource;
@@ -274,7 +275,7 @@ struct IblPrecompute::Inputs {
         const IblSettings& s = maps.settings;
         const int n = s.source();
         if (maps.environment && s.environmentSize == n) return source = maps.environment.id();
-        sourceLevels = equirectToCube(equirect, n, fullMipCount(n));
+        sourceLevels = equirectToCube(equirect.image(), n, fullMipCount(n));
         ownSource = makeCube(n, fullMipCount(n));
         uploadCube(ownSource.id(), sourceLevels);
         return source = ownSource.id();
@@ -282,12 +283,13 @@ struct IblPrecompute::Inputs {
     const EnvironmentBins& bins() {
         if (!binned)
             binned = std::make_unique<EnvironmentBins>(
-                binEnvironment(equirect, std::clamp(maps.settings.bins, 1, 64)));
+                binEnvironment(equirect.image(), std::clamp(maps.settings.bins, 1, 64)));
         return *binned;
     }
 };
 
-void IblPrecompute::buildDerived(IblMaps& maps, const Image& equirect, const IblDiskCache* cache) {
+void IblPrecompute::buildDerived(IblMaps& maps, const EquirectSource& equirect,
+                                 const IblDiskCache* cache) {
     if (maps.derived) return;
     maps.derived = true;
     const IblSettings& s = maps.settings;
@@ -362,8 +364,9 @@ void IblPrecompute::buildPrefilter(IblMaps& maps, Inputs& inputs) {
             }
         }
         if (firstSampled == 0)
-            uploadCube(maps.prefilter.id(), {equirectToCube(inputs.equirect, s.prefilterSize * k,
-                                                            extra + 1)[size_t(extra)]});
+            uploadCube(maps.prefilter.id(),
+                       {equirectToCube(inputs.equirect.image(), s.prefilterSize * k,
+                                       extra + 1)[size_t(extra)]});
         firstSampled = 1;
     }
     if (firstSampled >= s.prefilterMips) return;

@@ -124,6 +124,26 @@ private:
     std::filesystem::path root_;
 };
 
+// An equirectangular environment for the precompute, read only when a map must be computed.
+// Its key names its pixels without them (a generated sky's name and generator version, a
+// file's path, size and modification time), so maps kept on disk are found without reading or
+// decoding it: a sun sky is 25 MB of floats. An image in memory is its own source, keyed by
+// its pixels.
+class EquirectSource {
+public:
+    EquirectSource(const Image& image);  // NOLINT(google-explicit-constructor): any image is one
+    EquirectSource(std::string key, std::function<Image()> load);
+    const std::string& key() const;
+    const Image& image() const;  // read on first use
+    void release();              // forget the pixels read (they are read again when needed)
+
+private:
+    const Image* image_ = nullptr;
+    std::function<Image()> load_;
+    mutable std::unique_ptr<Image> loaded_;
+    mutable std::string key_;
+};
+
 class IblPrecompute {
 public:
     IblPrecompute(ProgramCache& programs, std::filesystem::path shaders);
@@ -133,9 +153,11 @@ public:
     // The two halves of build(): the environment cube with its mips (what steps 17-19 read),
     // then the maps derived from the environment (what step 21 reads), only when something
     // samples them. `maps` may come from makeMaps() instead, without an environment cube.
-    std::unique_ptr<IblMaps> buildEnvironment(const Image& equirect, const IblSettings& settings,
+    std::unique_ptr<IblMaps> buildEnvironment(const EquirectSource& equirect,
+                                              const IblSettings& settings,
                                               const IblDiskCache* cache = nullptr);
-    void buildDerived(IblMaps& maps, const Image& equirect, const IblDiskCache* cache = nullptr);
+    void buildDerived(IblMaps& maps, const EquirectSource& equirect,
+                      const IblDiskCache* cache = nullptr);
     static std::unique_ptr<IblMaps> makeMaps(const IblSettings& settings);
     // Every map `maps` holds (the derived ones when built) read back, and maps made from such
     // images on another context: the same texels, no pass run.
@@ -180,8 +202,8 @@ private:
     // the step that provides it and every solution that pass links.
     std::vector<std::filesystem::path> sources(const std::vector<std::string>& hostShaders,
                                                const std::vector<const char*>& samplers) const;
-    std::string mapsKey(const Image& equirect, const IblSettings& settings) const;
-    static std::string environmentKey(const Image& equirect, int size, int levels);
+    std::string mapsKey(const EquirectSource& equirect, const IblSettings& settings) const;
+    static std::string environmentKey(const EquirectSource& equirect, int size, int levels);
     std::string lutKey(const IblSettings& settings) const;
     ProgramCache& programs_;
     std::filesystem::path shaders_;

@@ -259,7 +259,7 @@ private:
         std::unique_ptr<IblInputs> cpu;
         bool cpuDerived = false;
         std::uint64_t cubeDigest = 0, derivedDigest = 0;  // of the CPU copies' texels
-        Image equirect;                                   // kept for the derived maps' first use
+        std::unique_ptr<EquirectSource> source;           // read only if a map is not on disk
     };
     std::map<std::string, Environment> environments_;  // by source and settings key
     std::unique_ptr<IblPrecompute> precompute_;

@@ -66,6 +66,23 @@ Image loadEnvironmentImage(const std::string& source, const fs::path& cache) {
     return image;
 }
 
+// What names an environment's pixels without reading them (EquirectSource): a generated
+// one's name with the generators' version (kEnvironmentVersion, which also covers brightTexels
+// for "NAME#bright"), a file's absolute path, size and modification time.
+static std::string environmentSourceKey(const std::string& source) {
+    if (const size_t hash = source.rfind(kBrightSuffix);
+        hash != std::string::npos && hash + kBrightSuffix.size() == source.size())
+        return environmentSourceKey(source.substr(0, hash)) + kBrightSuffix;
+    if (isGeneratedEnvironment(source))
+        return "generated " + source + " v" + std::to_string(kEnvironmentVersion);
+    std::error_code ec;
+    const fs::path path = fs::absolute(source, ec);
+    const auto size = fs::file_size(path, ec);
+    const auto time = fs::last_write_time(path, ec).time_since_epoch().count();
+    if (ec) return "";  // not readable: keyed by its pixels, whose read names the problem
+    return "file " + path.string() + " " + std::to_string(size) + " " + std::to_string(time);
+}
+
 LabRenderer::Environment& LabRenderer::environment(const Scene& scene, const IblSettings& settings,
                                                    bool derived) {
     Environment& env = environments_[environmentKey(scene, settings)];
@@ -74,17 +91,22 @@ LabRenderer::Environment& LabRenderer::environment(const Scene& scene, const Ibl
             precompute_ = std::make_unique<IblPrecompute>(programs_, paths_.shaders());
         logLine("environment", scene.environment + " (" + settings.key() + ")");
         precompute_->onPass = options_.onPrecomputePass;
-        env.equirect = loadEnvironmentImage(scene.environment, options_.cacheRoot);
+        env.source = std::make_unique<EquirectSource>(
+            environmentSourceKey(scene.environment),
+            [source = scene.environment, cache = options_.cacheRoot] {
+                return loadEnvironmentImage(source, cache);
+            });
         IblDiskCache cache(options_.cacheRoot);
-        env.maps = precompute_->buildEnvironment(env.equirect, settings,
+        env.maps = precompute_->buildEnvironment(*env.source, settings,
                                                  options_.cacheRoot.empty() ? nullptr : &cache);
+        env.source->release();  // kept, if read, only until the derived maps are built
     }
     if (derived && !env.maps->derived) {
         precompute_->onPass = options_.onPrecomputePass;
         IblDiskCache cache(options_.cacheRoot);
-        precompute_->buildDerived(*env.maps, env.equirect,
+        precompute_->buildDerived(*env.maps, *env.source,
                                   options_.cacheRoot.empty() ? nullptr : &cache);
-        env.equirect = Image();  // nothing reads it any more
+        env.source->release();
     }
     return env;
 }

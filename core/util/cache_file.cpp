@@ -1,5 +1,8 @@
 #include "util/cache_file.h"
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdint>
@@ -45,21 +48,26 @@ bool CacheWriter::commit(const fs::path& file) const {
 }
 
 CacheReader::CacheReader(const fs::path& file, const char (&magic)[8]) {
-    std::ifstream in(file, std::ios::binary | std::ios::ate);
-    if (!in) return;
-    // One read of the whole size: the files are megabytes (a sun's sky is 25 MB), which a
-    // character iterator copies a byte at a time.
-    const std::streamoff size = in.tellg();
-    if (size < std::streamoff(8 + sizeof(std::uint64_t))) return;
-    // Uninitialised (the read overwrites it); not make_unique_for_overwrite, which the page's
-    // C++ library (Emscripten's libc++) does not have.
-    payload_.reset(new char[size_t(size)]);
-    in.seekg(0);
-    if (!in.read(payload_.get(), size) || std::memcmp(payload_.get(), magic, 8) != 0) return;
-    end_ = size_t(size) - sizeof(std::uint64_t);
+    const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return;
+    struct stat status {};
+    if (::fstat(fd, &status) == 0 && status.st_size >= off_t(8 + sizeof(std::uint64_t))) {
+        void* mapped = ::mmap(nullptr, size_t(status.st_size), PROT_READ, MAP_PRIVATE, fd, 0);
+        if (mapped != MAP_FAILED) {
+            payload_ = static_cast<const char*>(mapped);
+            size_ = size_t(status.st_size);
+        }
+    }
+    ::close(fd);
+    if (!payload_ || std::memcmp(payload_, magic, 8) != 0) return;
+    end_ = size_ - sizeof(std::uint64_t);
     std::uint64_t stored = 0;
-    std::memcpy(&stored, payload_.get() + end_, sizeof stored);
-    ok_ = stored == digestOf(payload_.get(), 8, end_);
+    std::memcpy(&stored, payload_ + end_, sizeof stored);
+    ok_ = stored == digestOf(payload_, 8, end_);
+}
+
+CacheReader::~CacheReader() {
+    if (payload_) ::munmap(const_cast<char*>(payload_), size_);
 }
 
 }  // namespace pbrlab

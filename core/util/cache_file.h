@@ -7,7 +7,6 @@
 
 #include <cstring>
 #include <filesystem>
-#include <memory>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -33,27 +32,27 @@ private:
 
 class CacheReader {
 public:
-    // Reads `file` whole; ok() only when it has this magic and its digest matches.
+    // Maps `file` (read-only, private); ok() only when it has this magic and its digest
+    // matches. Mapped, not read: the files are megabytes (a sun's sky is 25 MB), and a read
+    // copies them into fresh memory that each process pays page faults for. Safe against the
+    // writers, which rename a whole new file over the name and never change one in place.
     CacheReader(const std::filesystem::path& file, const char (&magic)[8]);
+    ~CacheReader();
+    CacheReader(const CacheReader&) = delete;
+    CacheReader& operator=(const CacheReader&) = delete;
     bool ok() const { return ok_; }
     // False past the end of the payload (or when not ok()).
     bool bytes(void* data, size_t size) {
         if (!ok_ || size > end_ - at_) return false;
-        std::memcpy(data, payload_.get() + at_, size);
+        std::memcpy(data, payload_ + at_, size);
         at_ += size;
         return true;
     }
-    // `count` floats into `out` (replacing what it held): written once, not zeroed first.
+    // `count` floats into `out` (replacing what it held).
     bool floats(std::vector<float>& out, size_t count) {
         if (!ok_ || count > (end_ - at_) / sizeof(float)) return false;
-        out.resize(0);
-        out.reserve(count);
-        const char* p = payload_.get() + at_;
-        for (size_t i = 0; i < count; ++i, p += sizeof(float)) {
-            float f;
-            std::memcpy(&f, p, sizeof f);
-            out.push_back(f);
-        }
+        out.resize(count);
+        std::memcpy(out.data(), payload_ + at_, count * sizeof(float));
         at_ += count * sizeof(float);
         return true;
     }
@@ -64,7 +63,8 @@ public:
     bool atEnd() const { return ok_ && at_ == end_; }
 
 private:
-    std::unique_ptr<char[]> payload_;  // the whole file, as read (not zeroed first)
+    const char* payload_ = nullptr;  // the whole file, mapped
+    size_t size_ = 0;
     size_t at_ = 8, end_ = 0;
     bool ok_ = false;
 };

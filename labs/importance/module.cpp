@@ -66,6 +66,7 @@ std::vector<InvariantResult> ggxSamplingInvariants(const Evaluator& evaluate) {
                                   {1, 0, 0}, {0, 1, 0},  {0.3, -0.5, 0.8}, {-0.6, 0.2, -0.75}};
     const double roughnesses[] = {0.1, 0.3, 0.6, 1.0};
     std::vector<Surface> surfaces;
+    surfaces.reserve(std::size(normals) * std::size(roughnesses) * kSamples);
     DomainRandom random(2024);
     for (const glm::dvec3& n : normals)
         for (double r : roughnesses)
@@ -77,10 +78,7 @@ std::vector<InvariantResult> ggxSamplingInvariants(const Evaluator& evaluate) {
                 s.extra = {random.uniform(), random.uniform(), 0, 1};
                 surfaces.push_back(s);
             }
-    const std::vector<glm::dvec3> H = [&] {
-        std::vector<Surface> in = surfaces;
-        return evaluate.run(in, "sample", {});
-    }();
+    const std::vector<glm::dvec3> H = evaluate.run(surfaces, "sample", {});
     const int cases = int(std::size(normals) * std::size(roughnesses));
     const double perCase = 1 - std::pow(1 - 1e-4, 1.0 / cases);
     double smallest = 1;
