@@ -35,13 +35,20 @@ uniform sampler2D uSurface8;
 uniform sampler2D uSurface9;
 uniform sampler2D uSurface10;
 uniform sampler2D uSurface11;
+// The side of the quad each point is drawn as (RenderRequest::isolatePoints): a point's
+// inputs are one texel, read by every pixel of its quad.
+uniform int uPointQuad;
 #else
 uniform vec3 uCameraPosition;
 #endif
 
 Surface loadSurface()
 {
+#ifdef PBRLAB_PROBE
+    ivec2 p = ivec2(gl_FragCoord.xy) / max(uPointQuad, 1);
+#else
     ivec2 p = ivec2(gl_FragCoord.xy);
+#endif
     vec4 t0 = texelFetch(uSurface0, p, 0);
     vec4 t1 = texelFetch(uSurface1, p, 0);
     vec4 t3 = texelFetch(uSurface3, p, 0);

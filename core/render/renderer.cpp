@@ -210,6 +210,7 @@ void LabRenderer::runView(const RenderRequest& request, const Scene& scene, bool
         gl::BindTexture(GL_TEXTURE_2D, inputs[i]);
         program->set("uSurface" + std::to_string(i), int(i));
     }
+    if (probe) program->set("uPointQuad", request.width > 0 ? width / request.width : 1);
     // Every slot past the scene's lights is a black light at the last one's position (see
     // common.glsl): it adds nothing, and no 0/0 where the real lights have none.
     std::vector<glm::vec3> positions, colors;
@@ -274,28 +275,6 @@ void LabRenderer::runView(const RenderRequest& request, const Scene& scene, bool
 
 namespace {
 
-// Each texel of a packed input as a q x q block (q = 2: the isolated points' quads; packing is
-// per point, so this equals packing every point q x q times), rows bottom-up as GL texture rows
-// run, like gl_FragCoord: one pass, whatever the number of points.
-Image quadsBottomUp(const Image& image, int q) {
-    const Image flipped = flipRows(image);  // the small one: q^2 times fewer rows to move
-    Image out;
-    out.width = image.width * q;
-    out.height = image.height * q;
-    out.channels = image.channels;
-    out.pixels.resize(size_t(out.width) * size_t(out.height) * size_t(out.channels));
-    const size_t c = size_t(image.channels), row = size_t(out.width) * c;
-    for (int y = 0; y < flipped.height; ++y) {
-        const float* in = flipped.pixels.data() + size_t(y) * size_t(flipped.width) * c;
-        float* first = out.pixels.data() + size_t(q * y) * row;
-        for (int x = 0; x < flipped.width; ++x)
-            for (int k = 0; k < q; ++k)
-                std::copy_n(in + size_t(x) * c, c, first + (size_t(x) * size_t(q) + size_t(k)) * c);
-        for (int k = 1; k < q; ++k) std::copy_n(first, row, first + size_t(k) * row);
-    }
-    return out;
-}
-
 // The view's value read back, its time added to the picture's (the read-back waits for the GPU,
 // where glFinish may not).
 void readValueTimed(gl::RenderTarget& target, RenderResult& result) {
@@ -341,7 +320,8 @@ RenderResult LabRenderer::render(const RenderRequest& request) {
     const int q = request.isolatePoints ? 2 : 1;  // quad side per point
     probeInputs_.clear();
     for (const Image& image : packed) {
-        probeInputs_.push_back(gl::uploadTexture(quadsBottomUp(image, q), false, GL_RGBA32F));
+        // Bottom-up (GL's rows), one texel a point: surface.glsl reads it for the point's quad.
+        probeInputs_.push_back(gl::uploadTexture(flipRows(image), false, GL_RGBA32F));
         inputs.push_back(probeInputs_.back().id());
     }
     runView(request, scene, true, inputs, q * request.width, q * request.height, glm::mat4(1),
