@@ -2,6 +2,7 @@
 // per (environment, settings) built on first use, CPU copies and digests for references, and
 // which of the maps a step may read (the rest read black).
 #include <array>
+#include <chrono>
 #include <cmath>
 
 #include "assets/envgen.h"
@@ -71,15 +72,21 @@ Image loadEnvironmentImage(const std::string& source, const fs::path& cache) {
 // for "NAME#bright"), a file's absolute path, size and modification time.
 static std::string environmentSourceKey(const std::string& source) {
     if (const size_t hash = source.rfind(kBrightSuffix);
-        hash != std::string::npos && hash + kBrightSuffix.size() == source.size())
-        return environmentSourceKey(source.substr(0, hash)) + kBrightSuffix;
+        hash != std::string::npos && hash + kBrightSuffix.size() == source.size()) {
+        const std::string base = environmentSourceKey(source.substr(0, hash));
+        return base.empty() ? base : base + kBrightSuffix;
+    }
     if (isGeneratedEnvironment(source))
         return "generated " + source + " v" + std::to_string(kEnvironmentVersion);
-    std::error_code ec;
-    const fs::path path = fs::absolute(source, ec);
-    const auto size = fs::file_size(path, ec);
-    const auto time = fs::last_write_time(path, ec).time_since_epoch().count();
-    if (ec) return "";  // not readable: keyed by its pixels, whose read names the problem
+    std::error_code pathError, sizeError, timeError;
+    const fs::path path = fs::absolute(source, pathError);
+    const auto size = fs::file_size(path, sizeError);
+    // In nanoseconds, a 64-bit count (libc++'s file clock counts in a 128-bit type).
+    const long long time = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                               fs::last_write_time(path, timeError).time_since_epoch())
+                               .count();
+    // Not readable: keyed by its pixels, whose read names the problem.
+    if (pathError || sizeError || timeError) return "";
     return "file " + path.string() + " " + std::to_string(size) + " " + std::to_string(time);
 }
 
