@@ -246,6 +246,7 @@ public:
                 {"view", l.view},
                 {"module", l.module},
                 {"pictureSide", l.pictureSide},
+                {"pictureOrigin", l.pictureOrigin},
                 {"viewToggle", l.viewToggle}};
     }
     nlohmann::json redrawJson() const {

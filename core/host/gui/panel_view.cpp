@@ -257,6 +257,7 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
     float side = std::max(64.0f, std::min(avail.x - legend, avail.y - 150));
     state.layout.pictureSide = side;
     ImVec2 origin = ImGui::GetCursorScreenPos();
+    state.layout.pictureOrigin = {origin.x, origin.y};
     const GLuint shownTexture = shown.liveTexture ? shown.liveTexture : shown.imageTexture.id();
     ImGui::InvisibleButton("picture", ImVec2(side, side));
     ImGui::GetWindowDrawList()->AddImage(

@@ -28,7 +28,8 @@ struct WindowLayout {
     bool compact = false;
     float steps = 0, view = 0, module = 0;  // the windows' widths
     float pictureSide = 0;
-    std::array<float, 4> viewToggle{};  // the one-click view button: x, y, width, height
+    std::array<float, 2> pictureOrigin{};  // the picture's top-left corner: x, y
+    std::array<float, 4> viewToggle{};     // the one-click view button: x, y, width, height
 };
 
 // A window narrower than this (a laptop's page beside its editor: 896 and 956 pixels at
