@@ -93,26 +93,29 @@ static std::string environmentSourceKey(const std::string& source) {
 LabRenderer::Environment& LabRenderer::environment(const Scene& scene, const IblSettings& settings,
                                                    bool derived) {
     Environment& env = environments_[environmentKey(scene, settings)];
-    if (!env.maps) {
-        if (!precompute_)
-            precompute_ = std::make_unique<IblPrecompute>(programs_, paths_.shaders());
-        logLine("environment", scene.environment + " (" + settings.key() + ")");
-        precompute_->onPass = options_.onPrecomputePass;
+    // Also for maps adopted from another context (adoptEnvironmentMaps), whose derived maps
+    // may still have to be built.
+    if (!env.source)
         env.source = std::make_unique<EquirectSource>(
             environmentSourceKey(scene.environment),
             [source = scene.environment, cache = options_.cacheRoot] {
                 return loadEnvironmentImage(source, cache);
             });
-        IblDiskCache cache(options_.cacheRoot);
-        env.maps = precompute_->buildEnvironment(*env.source, settings,
-                                                 options_.cacheRoot.empty() ? nullptr : &cache);
-        env.source->release();  // kept, if read, only until the derived maps are built
+    auto precompute = [&]() -> IblPrecompute& {
+        if (!precompute_)
+            precompute_ = std::make_unique<IblPrecompute>(programs_, paths_.shaders());
+        precompute_->onPass = options_.onPrecomputePass;
+        return *precompute_;
+    };
+    IblDiskCache cache(options_.cacheRoot);
+    const IblDiskCache* disk = options_.cacheRoot.empty() ? nullptr : &cache;
+    if (!env.maps) {
+        logLine("environment", scene.environment + " (" + settings.key() + ")");
+        // The pixels, if read, are kept until the derived maps are built.
+        env.maps = precompute().buildEnvironment(*env.source, settings, disk);
     }
     if (derived && !env.maps->derived) {
-        precompute_->onPass = options_.onPrecomputePass;
-        IblDiskCache cache(options_.cacheRoot);
-        precompute_->buildDerived(*env.maps, *env.source,
-                                  options_.cacheRoot.empty() ? nullptr : &cache);
+        precompute().buildDerived(*env.maps, *env.source, disk);
         env.source->release();
     }
     return env;
