@@ -64,6 +64,24 @@ TEST(Grade, ReferenceSolutionsScoreTheMaximum) {
     std::printf("[ measured ] a correct 21-step submission graded in %.1f s\n", r.seconds);
 }
 
+// One child at a time makes the start order visible in the order grades come in: an estimator
+// (irradiance) starts before an analytic step (ndotl), so that on several cores the longest
+// step does not run alone at the end. The report keeps the lab's order.
+TEST(Grade, EstimatorsStartFirstAndTheReportKeepsTheLabOrder) {
+    Grader g;
+    GradeOptions o;
+    o.submission = fs::canonical(g.kit(false));
+    o.modules = {"ndotl", "irradiance"};
+    o.jobs = 1;
+    std::vector<std::string> started;
+    o.progress = [&](const ModuleGrade& grade) { started.push_back(grade.id); };
+    const GradeReport r = gradeSubmission(g.modules, g.paths, o);
+    EXPECT_EQ(started, (std::vector<std::string>{"irradiance", "ndotl"}));
+    ASSERT_EQ(r.modules.size(), 2u);
+    EXPECT_EQ(r.modules[0].id, "ndotl");
+    EXPECT_EQ(r.modules[1].id, "irradiance");
+}
+
 TEST(Grade, UntouchedStubsScoreZeroAndNeverCrash) {
     Grader g;
     GradeReport r = g.grade(g.kit(false));

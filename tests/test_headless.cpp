@@ -187,6 +187,52 @@ TEST(Headless, PrecomputedMapsAreCachedOnDiskAndReusedExactly) {
     EXPECT_EQ(eventCount(Counter::PrecomputePasses), 3);  // cube, irradiance, prefilter
 }
 
+// Every cached file ends with a checksum of its payload: a file changed after it was written
+// (a byte flipped on disk, a copy cut short) is not used, its maps are computed again.
+TEST(Headless, ACachedMapChangedOnDiskIsComputedAgain) {
+    test::TempDir cache;
+    Headless h;
+    IblSettings small;
+    small.environmentSize = 32;
+    small.irradianceSize = 8;
+    small.prefilterSize = 16;
+    small.prefilterMips = 3;
+    small.prefilterSamples = 16;
+    small.lutWidth = small.lutHeight = 16;
+    small.lutSamples = 32;
+    const LoadedModule& m = h.modules.find("split_sum");
+    Scene scene = loadScene(h.paths.scene(m.desc->scene));
+    const ParamValues params(m.desc->params);
+    auto render = [&] {
+        RendererOptions options;
+        options.cacheRoot = cache.path;
+        LabRenderer r{h.paths, options};
+        RenderRequest request{&m, &params, &scene, {}, nullptr, 48, 48};
+        request.ibl = small;
+        return r.render(request).value;
+    };
+    const Image first = render();
+    int changed = 0;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(cache.path)) {
+        if (!entry.is_regular_file() || entry.path().extension() != ".bin") continue;
+        const std::string map = entry.path().stem().string();
+        if (map != "environment" && map != "irradiance" && map != "prefilter" && map != "lut")
+            continue;
+        std::fstream file(entry.path(), std::ios::in | std::ios::out | std::ios::binary);
+        const auto middle = std::streamoff(std::filesystem::file_size(entry.path()) / 2);
+        file.seekg(middle);
+        const char byte = char(file.get() ^ 0x10);
+        file.seekp(middle);
+        file.put(byte);
+        ++changed;
+    }
+    ASSERT_EQ(changed, 4);  // cube, irradiance, prefilter, LUT
+    resetCounters();
+    const Image again = render();
+    EXPECT_EQ(eventCount(Counter::PrecomputePasses), 4);
+    EXPECT_EQ(again.pixels, first.pixels);
+}
+
 TEST(Headless, CachedMapsAreFoundWithoutReadingTheEnvironment) {
     test::TempDir cache;
     Headless h;

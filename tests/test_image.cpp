@@ -18,6 +18,7 @@
 #include "assets/image_codecs.h"
 #include "assets/image_io.h"
 #include "assets/texgen.h"
+#include "gl/objects.h"
 #include "util/error.h"
 
 namespace fs = std::filesystem;
@@ -916,4 +917,49 @@ TEST_F(ImageTest, ShippedTexturesAreWhatTheGeneratorMakes) {
             worst = std::max(worst, double(std::abs(a.pixels[i] - b.pixels[i])));
         EXPECT_LE(worst, step * 1.01) << name;
     }
+}
+
+// Material maps get their mip levels on the CPU (gl/objects.h): 2x2 means where a size is
+// even, the exact covered area where it is odd, and every level keeps the image's mean, which
+// a filter dropping the odd row or column would not.
+TEST(Image, MipLevelsAverageTheAreaEachTexelCovers) {
+    pbrlab::Image even;
+    even.width = 4;
+    even.height = 2;
+    even.channels = 1;
+    even.pixels = {0, 1, 2, 3, 4, 5, 6, 7};
+    const pbrlab::Image half = pbrlab::gl::halfSize(even);
+    ASSERT_EQ(half.width, 2);
+    ASSERT_EQ(half.height, 1);
+    EXPECT_FLOAT_EQ(half.pixels[0], (0 + 1 + 4 + 5) / 4.0f);
+    EXPECT_FLOAT_EQ(half.pixels[1], (2 + 3 + 6 + 7) / 4.0f);
+
+    pbrlab::Image odd;
+    odd.width = 5;
+    odd.height = 3;
+    odd.channels = 2;
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> value(0, 1);
+    for (int i = 0; i < 5 * 3 * 2; ++i) odd.pixels.push_back(value(random));
+    auto mean = [](const pbrlab::Image& image, int c) {
+        double sum = 0;
+        for (size_t i = size_t(c); i < image.pixels.size(); i += size_t(image.channels))
+            sum += image.pixels[i];
+        return sum / double(image.width * image.height);
+    };
+    pbrlab::Image level = odd;
+    for (const auto& [w, h] : {std::pair{2, 1}, std::pair{1, 1}}) {
+        level = pbrlab::gl::halfSize(level);
+        ASSERT_EQ(level.width, w);
+        ASSERT_EQ(level.height, h);
+        ASSERT_EQ(level.channels, 2);
+        for (int c = 0; c < 2; ++c) EXPECT_NEAR(mean(level, c), mean(odd, c), 1e-6) << c;
+    }
+    // The left texel of 5 -> 2 covers source columns 0, 1 and half of 2.
+    pbrlab::Image row;
+    row.width = 5;
+    row.height = 1;
+    row.channels = 1;
+    row.pixels = {1, 2, 3, 4, 5};
+    EXPECT_FLOAT_EQ(pbrlab::gl::halfSize(row).pixels[0], (1 + 2 + 0.5f * 3) / 2.5f);
 }

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "native/huge_pages.h"
 #include "steps/plugin_host.h"
 #include "test_support.h"
 
@@ -85,4 +86,44 @@ TEST(Startup, ACommandAboutOneModuleOpensOnlyItsLibrary) {
     } catch (const std::exception& e) {
         EXPECT_NE(std::string(e.what()).find("ndotl"), std::string::npos) << e.what();
     }
+}
+
+// pbrlab restarts itself once with glibc's malloc asking for huge pages, where the kernel gives
+// them on request only, and never overrides a setting the user made.
+TEST(Startup, HugePagesAreAskedForOnceWhereTheKernelWaitsToBeAsked) {
+    const char* render[] = {"pbrlab", "render", "ndotl"};
+    const char* help[] = {"pbrlab", "grade", "--help"};
+    const std::string madvise = "always [madvise] never";
+    EXPECT_EQ(hugePageTunables(nullptr, madvise, 3, render), "glibc.malloc.hugetlb=1");
+    EXPECT_EQ(hugePageTunables("", madvise, 3, render), "glibc.malloc.hugetlb=1");
+    EXPECT_EQ(hugePageTunables("glibc.malloc.check=0", madvise, 3, render),
+              "glibc.malloc.check=0:glibc.malloc.hugetlb=1");
+    // Already asked (the restarted process itself), or kept small by the user.
+    EXPECT_EQ(hugePageTunables("glibc.malloc.hugetlb=1", madvise, 3, render), "");
+    EXPECT_EQ(hugePageTunables("glibc.malloc.hugetlb=0", madvise, 3, render), "");
+    // The kernel decides alone, or there are no huge pages.
+    EXPECT_EQ(hugePageTunables(nullptr, "[always] madvise never", 3, render), "");
+    EXPECT_EQ(hugePageTunables(nullptr, "always madvise [never]", 3, render), "");
+    EXPECT_EQ(hugePageTunables(nullptr, "", 3, render), "");
+    // Help costs nothing more.
+    EXPECT_EQ(hugePageTunables(nullptr, madvise, 3, help), "");
+}
+
+TEST(Startup, StatsSayWhichPagesTheProcessUses) {
+    std::ifstream policyFile("/sys/kernel/mm/transparent_hugepage/enabled");
+    std::string policy;
+    std::getline(policyFile, policy);
+    if (policy.find("[madvise]") == std::string::npos)
+        GTEST_SKIP() << "the kernel's huge-page policy is not madvise: " << policy;
+    test::TempDir dir;
+    const std::string command = std::string(PBRLAB_EXECUTABLE) +
+                                " render ndotl --size 16x16 --out " +
+                                (dir.path / "x.png").string() + " --stats";
+    const CommandRun asked = run(dir, "env -u GLIBC_TUNABLES " + command);
+    ASSERT_EQ(asked.status, 0) << asked.output;
+    EXPECT_NE(asked.output.find("memory pages: huge (glibc.malloc.hugetlb=1)"), std::string::npos)
+        << asked.output;
+    const CommandRun kept = run(dir, "env GLIBC_TUNABLES=glibc.malloc.hugetlb=0 " + command);
+    ASSERT_EQ(kept.status, 0) << kept.output;
+    EXPECT_NE(kept.output.find("memory pages: small"), std::string::npos) << kept.output;
 }

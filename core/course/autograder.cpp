@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -253,6 +254,23 @@ ModuleGrade finishChild(Child& c, const GradeOptions& o) {
     return g;
 }
 
+// The order children start in: the costliest kinds of step first, the lab order within a kind.
+// Estimators are judged by convergence over several sample counts and skies, and the other
+// steps that read the environment fill image-based maps; each takes several times an analytic
+// step. Started last, one of them would run alone at the end while the other cores idle.
+std::vector<size_t> startOrder(const std::vector<GradeJob>& work) {
+    auto cost = [&](size_t i) {
+        const ModuleDesc& d = *work[i].module->desc;
+        if (d.estimator) return 0;
+        return (d.needs & (NeedsEnvironment | NeedsPrecomputedMaps)) ? 1 : 2;
+    };
+    std::vector<size_t> order(work.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return cost(a) < cost(b); });
+    return order;
+}
+
 // Grades the jobs in children, at most `o.jobs` at a time, each within its time limit.
 void gradeInChildren(const std::vector<GradeJob>& work, const DataPaths& paths,
                      const GradeOptions& o, std::vector<ModuleGrade>& grades) {
@@ -267,15 +285,17 @@ void gradeInChildren(const std::vector<GradeJob>& work, const DataPaths& paths,
     const Clock::time_point budgetEnd =
         Clock::now() + std::chrono::milliseconds(long(o.budgetSeconds * 1000));
     std::vector<Child> running;
-    size_t next = 0;
+    const std::vector<size_t> order = startOrder(work);
+    size_t next = 0;  // position in `order`
     while (next < work.size() || !running.empty()) {
         while (running.size() < jobs && next < work.size()) {
             if (budgeted && Clock::now() >= budgetEnd) {
-                // Not started: said as such, in the order of the jobs.
+                // Not started: said as such, in the order they would have started.
                 for (; next < work.size(); ++next) {
-                    ModuleGrade& g = grades[next];
-                    g.id = work[next].module->desc->id;
-                    g.title = work[next].module->desc->title;
+                    const GradeJob& job = work[order[next]];
+                    ModuleGrade& g = grades[order[next]];
+                    g.id = job.module->desc->id;
+                    g.title = job.module->desc->title;
                     g.status = "timeout";
                     g.message = "not graded: grading the whole submission may take " +
                                 std::to_string(int(o.budgetSeconds)) +
@@ -286,8 +306,8 @@ void gradeInChildren(const std::vector<GradeJob>& work, const DataPaths& paths,
                 break;
             }
             GradeOptions each = o;
-            each.submission = work[next].submission;
-            Child c = startChild(*work[next].module, paths, each, next);
+            each.submission = work[order[next]].submission;
+            Child c = startChild(*work[order[next]].module, paths, each, order[next]);
             if (budgeted && budgetEnd < c.deadline) {
                 c.deadline = budgetEnd;
                 c.outOfBudget = true;  // meaningful only if it times out

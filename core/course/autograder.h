@@ -53,7 +53,8 @@ struct GradeJob {
     std::filesystem::path submission;
 };
 
-// Each job in a child process (options.jobs at a time), grades in the order of the jobs.
+// Each job in a child process (options.jobs at a time), costliest kinds of step first; the
+// grades come back in the order of the jobs.
 std::vector<ModuleGrade> gradeJobs(const std::vector<GradeJob>& jobs, const DataPaths& paths,
                                    const GradeOptions& options);
 

@@ -49,7 +49,13 @@ Handle makeRenderbuffer();
 
 // A 2D texture uploaded from an image (1-4 channels, float upload; internal format chosen
 // from the channel count: R32F, RG32F, RGB32F or RGBA32F unless `internalFormat` is given).
+// With `mipmaps`, every level down to 1x1, each made by halfSize from the one above.
 Handle uploadTexture(const Image& image, bool mipmaps, GLenum internalFormat = 0);
+
+// The next mip level of an image: half its size (rounded down, at least 1) as GL sizes levels,
+// each texel the mean of the source area it covers (2x2 texels where the size is even;
+// fractions of the texels at the seams where it is odd, so the level keeps the image's mean).
+Image halfSize(const Image& image);
 
 // Off-screen target: `colorCount` RGBA32F attachments plus a depth buffer.
 class RenderTarget {

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <thread>
@@ -18,9 +19,27 @@ namespace pbrlab {
 
 namespace {
 
+// The checksum of a file's payload: FNV-1a on four interleaved lanes of 64-bit words, folded
+// into one Digest. One lane is a chain of dependent multiplies (about 2 GB/s); four run side by
+// side, and a grading process checks a few hundred megabytes of cached maps.
 std::uint64_t digestOf(const char* data, size_t begin, size_t end) {
+    constexpr std::uint64_t kPrime = 1099511628211ull;
+    const std::uint64_t basis = Digest{}.h;
+    std::uint64_t lanes[4] = {basis, basis ^ 1, basis ^ 2, basis ^ 3};
+    const char* p = data + begin;
+    const size_t bytes = end - begin;
+    size_t i = 0;
+    for (; i + 32 <= bytes; i += 32) {
+        for (int lane = 0; lane < 4; ++lane) {
+            std::uint64_t word = 0;
+            std::memcpy(&word, p + i + 8 * size_t(lane), 8);
+            lanes[lane] = (lanes[lane] ^ word) * kPrime;
+        }
+    }
     Digest digest;
-    digest.add(data + begin, end - begin);
+    digest.add(lanes);
+    digest.add(p + i, bytes - i);  // the last bytes, fewer than 32
+    digest.add(bytes);
     return digest.h;
 }
 

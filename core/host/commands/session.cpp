@@ -4,6 +4,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "native/huge_pages.h"
 #include "render/display.h"
 #include "steps/contract.h"
 #include "util/error.h"
@@ -99,6 +100,7 @@ Scene sceneFor(const Session& session, const ModuleDesc& m, const std::string& s
 void printStats(const Session& session) {
     for (int c = 0; c < int(Counter::Count); ++c)
         std::cout << counterName(Counter(c)) << ": " << eventCount(Counter(c)) << "\n";
+    std::cout << "memory pages: " << memoryPagesDescription() << "\n";
     if (session.renderer)
         for (const CompiledProgram& p : session.renderer->programs().compiled())
             std::printf("  program %-30s {%s} %.1f ms\n", p.label.c_str(), p.defines.c_str(),
