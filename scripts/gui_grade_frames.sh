@@ -3,7 +3,7 @@
 # student's edit (`set`), 200 ms still, then the evaluation against the CPU reference on the
 # evaluation thread; one row per run with what `gui --frame-times` prints for it ("evaluation
 # 2") and, as the baseline of the same run, the frames while none ran. A benchmark, not a test
-# (docs/speed.md).
+# (docs/speed-history.md).
 #
 #   scripts/gui_grade_frames.sh [PBRLAB] [RUNS]    (default build/pbrlab, 3)
 #

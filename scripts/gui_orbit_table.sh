@@ -2,7 +2,7 @@
 # Frame times of the GUI while orbiting, for every step's default scene at the default window
 # size: one row per step with the median and 95th percentile that `gui ID --frames N --orbit`
 # prints (after its 3 warm-up frames) and the live picture's median side, each the median of
-# RUNS runs. A benchmark, not a test (docs/speed.md).
+# RUNS runs. A benchmark, not a test (docs/speed-history.md).
 #
 #   scripts/gui_orbit_table.sh [PBRLAB] [FRAMES] [RUNS]    (default build/pbrlab, 60, 3)
 #

@@ -1,7 +1,7 @@
 // The GUI's live view while the input moves (core/host/gui/frame.cpp), without a window: the
 // picture at a reduced side that follows a time budget (LiveSize), with coarse spheres, and
 // once the input is still the full-size picture, exactly what the headless renderer draws.
-// The mechanism, not its speed: docs/speed.md has the frame times.
+// The mechanism, not its speed: docs/speed-history.md has the frame times.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -220,7 +220,7 @@ TEST(LiveView, MovingFramesAreReducedAndTheStillFrameIsTheHeadlessRender) {
     Requests requests;
     lab.update(state, requests);  // still from the start: the evaluation starts
     // The frame did not wait for it: a 512x512 evaluation of the grid takes a second or more
-    // on llvmpipe (docs/speed.md), this frame returned with it still running.
+    // on llvmpipe (docs/speed-history.md), this frame returned with it still running.
     EXPECT_TRUE(lab.evaluating());
     EXPECT_TRUE(lab.shown().solutionValue.pixels.empty());
     framesUntilEvaluated(lab, state, requests);

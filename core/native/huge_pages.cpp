@@ -37,7 +37,10 @@ std::string hugePageTunables(const char* tunables, const std::string& kernelPoli
 
 void restartWithHugePages(int argc, char** argv) {
 #if defined(__linux__) && defined(__GLIBC__)
-    const std::string value = hugePageTunables(std::getenv(kTunables), kernelPolicy(), argc, argv);
+    const char* tunables = std::getenv(kTunables);
+    // Help and a setting already made answer without reading the kernel's policy.
+    if (hugePageTunables(tunables, "[madvise]", argc, argv).empty()) return;
+    const std::string value = hugePageTunables(tunables, kernelPolicy(), argc, argv);
     if (value.empty()) return;
     // Run by a loader (ld-linux.so pbrlab ...), /proc/self/exe is the loader, not pbrlab.
     char self[4096] = {};
