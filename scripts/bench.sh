@@ -12,7 +12,7 @@
 # Exit 1 when a ratio is above its recorded value times the margin recorded with it (the
 # measured noise and why: docs/speed.md); --record writes the ratios measured there instead,
 # keeping each figure's margin.
-# --pbrlab runs another program in pbrlab's place (tests/test_bench.sh: a slowed-down one must
+# --pbrlab runs another program in pbrlab's place (tests/bench_gate.sh: a slowed-down one must
 # fail). Figures:
 #   start            pbrlab --help                                  / /bin/true
 #   render           pbrlab render ndotl --size 256x256 --out x.png / trivial OSMesa draw

@@ -14,6 +14,7 @@
 #include "render/renderer.h"
 #include "steps/plugin_host.h"
 #include "test_support.h"
+#include "util/fs.h"
 
 using namespace pbrlab;
 
@@ -85,7 +86,7 @@ TEST(GlslEs, EveryPlantedMistakeCompilesInGlslEs300AsOnTheDesktop) {
             if (entry.path().extension() != ".glsl") continue;
             SCOPED_TRACE(entry.path().string());
             test::TempDir submission;
-            submission.write(m.desc->id + ".glsl", readWholeFile(entry.path()));
+            submission.write(m.desc->id + ".glsl", readFile(entry.path()));
             const StudentSource source{submission.path, false};
             const Image desktop = r.probe(r.desktop, m, source);
             Image es;
@@ -123,7 +124,7 @@ TEST(GlslEs, GradingAsWebGl2FiltersCubeMapsGivesNativeGradingsVerdicts) {
             for (const auto& entry : std::filesystem::directory_iterator(folder)) {
                 if (entry.path().extension() != ".glsl") continue;
                 submissions.push_back(std::make_unique<test::TempDir>());
-                submissions.back()->write(m.desc->id + ".glsl", readWholeFile(entry.path()));
+                submissions.back()->write(m.desc->id + ".glsl", readFile(entry.path()));
                 sources.push_back(
                     {entry.path().stem().string(), {submissions.back()->path, false}});
             }

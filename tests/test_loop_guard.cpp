@@ -19,6 +19,7 @@
 #include "steps/plugin_host.h"
 #include "test_support.h"
 #include "util/error.h"
+#include "util/fs.h"
 
 using namespace pbrlab;
 namespace fs = std::filesystem;
@@ -30,7 +31,7 @@ bool contains(const std::string& text, const std::string& part) {
 }
 
 std::string solutionOf(const std::string& id) {
-    return readWholeFile(fs::path(PBRLAB_SOURCE_DIR) / "labs" / id / "solution.glsl");
+    return readFile(fs::path(PBRLAB_SOURCE_DIR) / "labs" / id / "solution.glsl");
 }
 
 // The reference solution with `before` in front of its (last) `return`.

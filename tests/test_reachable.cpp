@@ -15,6 +15,7 @@
 #include "grading/mutants_helper.h"
 #include "steps/contract.h"
 #include "test_support.h"
+#include "util/fs.h"
 
 using namespace pbrlab;
 namespace fs = std::filesystem;
@@ -27,13 +28,6 @@ struct Lab {
     ModuleRegistry modules{PBRLAB_MODULE_DIR};
     LabRenderer renderer{paths};
 };
-
-std::string readFile(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 bool isBuiltIn(const std::string& type) {
     static const std::regex builtIn(R"((void|float|int|uint|bool|[iub]?vec[234]|mat[234]))");

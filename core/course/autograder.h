@@ -86,8 +86,6 @@ nlohmann::json toGradescope(const GradeReport& report);
 void writeHtml(const GradeReport& report, const std::filesystem::path& folder);
 // Temporary file in the same folder, then rename: a reader never sees half a report.
 void writeFileAtomically(const std::filesystem::path& file, const std::string& text);
-// The whole file's bytes; throws pbrlab::Error naming the file when it cannot be read.
-std::string readWholeFile(const std::filesystem::path& file);
 // A report as indented JSON text (any invalid UTF-8 left in it replaced).
 std::string jsonText(const nlohmann::json& report);
 

@@ -18,6 +18,7 @@
 #include "course/gradescope.h"
 #include "util/digest.h"
 #include "util/error.h"
+#include "util/fs.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -46,7 +47,7 @@ std::string folderDigest(const fs::path& folder) {
                     d.add("large " + std::to_string(size) + " " +
                           std::to_string(fs::last_write_time(file).time_since_epoch().count()));
                 else
-                    d.add(readWholeFile(file));
+                    d.add(readFile(file));
             }
         }
         return d.hex();
@@ -88,7 +89,7 @@ std::string configurationDigest(const ModuleRegistry& modules, const DataPaths& 
     d.add(s.stopAtFirstFailure);
     d.add(o.configuration);
     // Points, weights and time limit change grades: a changed assignment regrades everyone.
-    if (o.assignment) d.add(readWholeFile(o.assignment->file));
+    if (o.assignment) d.add(readFile(o.assignment->file));
     return d.hex();
 }
 
@@ -207,7 +208,7 @@ BatchSummary gradeBatch(const ModuleRegistry& modules, const DataPaths& paths,
         std::error_code ec;
         const bool unchanged = !digests[i].empty() && fs::exists(out / "report.json", ec) &&
                                fs::exists(out / "digest.txt", ec) &&
-                               trimmed(readWholeFile(out / "digest.txt")) == digests[i];
+                               trimmed(readFile(out / "digest.txt")) == digests[i];
         if (unchanged) {
             ++summary.skipped;
         } else {
@@ -259,7 +260,7 @@ BatchSummary gradeBatch(const ModuleRegistry& modules, const DataPaths& paths,
             totals[i].error =
                 std::string("the grading process died (") + strsignal(WTERMSIG(status)) + ")";
         else if (fs::exists(out / "error.txt"))
-            totals[i].error = trimmed(readWholeFile(out / "error.txt"));
+            totals[i].error = trimmed(readFile(out / "error.txt"));
         else if (WEXITSTATUS(status) != 0)
             totals[i].error =
                 "the grading process ended with status " + std::to_string(WEXITSTATUS(status));
@@ -276,7 +277,7 @@ BatchSummary gradeBatch(const ModuleRegistry& modules, const DataPaths& paths,
             continue;
         }
         try {
-            const json report = json::parse(readWholeFile(o.out / t.student / "report.json"));
+            const json report = json::parse(readFile(o.out / t.student / "report.json"));
             t.score = report.at("score").get<double>();
             t.maxScore = report.at("max_score").get<double>();
             t.seconds = report.value("seconds", 0.0);
@@ -319,7 +320,7 @@ void mergeBatches(const std::vector<fs::path>& shardOutputs, const fs::path& out
         const fs::path file = dir / "shard.json";
         json shard;
         try {
-            shard = json::parse(readWholeFile(file));
+            shard = json::parse(readFile(file));
         } catch (const std::exception& e) {
             throw Error(file.string() + ": " + e.what() +
                         " (not an output of pbrlab grade --batch?)");

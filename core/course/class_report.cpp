@@ -10,6 +10,7 @@
 
 #include "course/autograder.h"
 #include "util/error.h"
+#include "util/fs.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -39,7 +40,7 @@ std::string number(double v) {
 // The records of a CSV file (quoted fields may hold commas, quotes and line breaks), each with
 // the line it starts on.
 std::vector<std::pair<int, std::vector<std::string>>> readCsv(const fs::path& file) {
-    const std::string text = readWholeFile(file);
+    const std::string text = readFile(file);
     std::vector<std::pair<int, std::vector<std::string>>> records;
     std::vector<std::string> fields(1);
     int line = 1, start = 1;

@@ -10,6 +10,7 @@
 #include "steps/contract.h"
 #include "steps/paths.h"
 #include "util/error.h"
+#include "util/fs.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -133,7 +134,7 @@ void writeZip(const fs::path& zip, const std::vector<ZipEntry>& entries) {
     std::string directory;
     std::uint64_t offset = 0;
     for (const ZipEntry& e : entries) {
-        const std::string data = e.data.empty() && !e.file.empty() ? readWholeFile(e.file) : e.data;
+        const std::string data = e.data.empty() && !e.file.empty() ? readFile(e.file) : e.data;
         if (data.size() >= 0xFFFFFFFFu || offset >= 0xFFFFFFFFu)
             throw Error("zip: " + e.name + ": past 4 GB (no ZIP64 here)");
         const std::uint32_t crc =
@@ -300,7 +301,7 @@ fs::path writeAutograderBundle(AutograderOptions o, const ModuleRegistry& module
     for (size_t at; (at = run.find("BUDGET")) != std::string::npos;) run.replace(at, 6, budget);
     std::vector<ZipEntry> entries = {{"setup.sh", kSetup, {}, true},
                                      {"run_autograder", run, {}, true},
-                                     {"assignment.json", readWholeFile(o.assignment), {}, false}};
+                                     {"assignment.json", readFile(o.assignment), {}, false}};
     // The bundle's files in a fixed order: the same bundle makes the same zip.
     std::vector<fs::path> files;
     for (const auto& e : fs::recursive_directory_iterator(o.bundle)) {

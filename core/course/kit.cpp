@@ -7,20 +7,13 @@
 #include "steps/contract.h"
 #include "steps/solution_stub.h"
 #include "util/error.h"
+#include "util/fs.h"
 
 namespace fs = std::filesystem;
 
 namespace pbrlab {
 
 namespace {
-
-std::string readFile(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    if (!in) throw Error(p.string() + ": cannot read");
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 void writeFile(const fs::path& p, const std::string& text) {
     fs::create_directories(p.parent_path());

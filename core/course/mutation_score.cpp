@@ -16,6 +16,7 @@
 #include "grading/stability.h"
 #include "render/compare.h"
 #include "util/error.h"
+#include "util/fs.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -29,13 +30,6 @@ std::string number(double v) {
     o.precision(3);
     o << v;
     return o.str();
-}
-
-std::string readFile(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
 }
 
 // Runs `work` in a child process (GL lives and dies there) and returns what it returned.

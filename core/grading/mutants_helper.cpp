@@ -10,6 +10,7 @@
 
 #include "steps/contract.h"
 #include "util/error.h"
+#include "util/fs.h"
 
 namespace fs = std::filesystem;
 
@@ -22,14 +23,6 @@ std::string VisibleFunction::signature() const {
 }
 
 namespace {
-
-std::string readFile(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    if (!in) throw Error(p.string() + ": cannot read");
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 // The types and names of a parameter list ("float cosTheta, in vec3 F0"), qualifiers left out.
 void parseParameters(const std::string& list, std::vector<std::string>* types,

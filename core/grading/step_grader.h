@@ -103,7 +103,7 @@ public:
 
     StepResult run();
     // The estimator's statistical checks alone (convergence on every environment, the counts
-    // above): what the false-failure measurement repeats per seed (tests/estimator_seeds.cpp).
+    // above): what the false-failure measurement repeats per seed (tests/test_estimator_seeds.cpp).
     // `parts`: which of them (StatisticsPart bits; all by default), so that a sweep of many
     // seeds can measure one.
     enum StatisticsPart : unsigned { Convergence = 1, Sun = 2, Picture = 4 };

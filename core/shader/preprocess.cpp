@@ -129,11 +129,7 @@ bool pbrlab_powUndefined(float x, float y) { return x < 0.0 || (x == 0.0 && y <=
 namespace {
 
 std::string readText(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path.string() + ": cannot open shader file");
-    std::ostringstream s;
-    s << in.rdbuf();
-    std::string text = s.str();
+    std::string text = readFile(path);
     // GL reads the source as a C string: a NUL would silently cut the program short there.
     if (text.find('\0') != std::string::npos)
         throw Error(path.string() + ": contains NUL bytes (not text): refused");

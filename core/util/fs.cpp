@@ -5,9 +5,17 @@
 #include <iterator>
 #include <string>
 
+#include "util/error.h"
+
 namespace fs = std::filesystem;
 
 namespace pbrlab {
+
+std::string readFile(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw Error(file.string() + ": cannot read it");
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 
 bool isInside(const fs::path& path, const fs::path& root) {
     std::error_code ec1, ec2;

@@ -3,8 +3,12 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 
 namespace pbrlab {
+
+// The whole file's bytes. Throws pbrlab::Error naming the file when it cannot be read.
+std::string readFile(const std::filesystem::path& file);
 
 // True when `path` (made canonical) lies inside `root` (made canonical). A path that cannot be
 // resolved (a symlink loop, a component that is not a folder) is not inside anything.
