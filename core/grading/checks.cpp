@@ -215,8 +215,8 @@ void StepGrader::gradeInvariants(const Scene& scene) {
 // ulp when V = L), each built with the student's function and the reference solutions around
 // it, on callerSurfaces with the smallest roughness that view passes. NaN or Inf there fails
 // the step. Estimators (17-20) are graded by convergence, their values finite at every count.
-// Cost (2-core llvmpipe, warm caches, measured): 2-200 ms a step, 0.94 s over steps 1-16 and
-// 21, most in the callers' programs (f0: 199 ms, fresnel 185 ms; docs/grading.md).
+// Its cost is mostly compiling the callers' programs, so a step with many callers (f0,
+// fresnel) pays the most; `pbrlab -v check ID` prints it as "inputs its callers produce".
 void StepGrader::gradeCallerInputs(const Scene& scene) {
     if (d_.estimator) return;
     stage("inputs its callers produce");

@@ -478,10 +478,9 @@ std::string StepGrader::lightsDiagnosis(const Scene& scene, int count, const Gri
 // with the host's defaults and wrong with other values it meets in real use: a hard-coded host
 // value, named so (the lights: which ones it ignores). The IBL ones are not handed to the
 // feedback (whose references read the default maps).
-// Cost (2-core llvmpipe, warm caches, measured): 7 lights 25 ms (2048 points), 12, 33 and 64
-// lights 4-14 ms each (64 points); split_sum's two map settings ~200 and ~400 ms (each rebuilds
-// the 256^2 environment cube; the maps are precomputed once, then read from the disk cache). On
-// failure only: the lights' diagnosis 0.5-2 s, a map setting taken apart ~0.3 s a value.
+// The light counts are cheap (64 points each beyond 7 lights); split_sum's map settings each
+// rebuild the environment cube, whose maps are then read from the disk cache. The diagnosis (which
+// lights are ignored, which map setting is hard-coded) runs only once the check has failed.
 void StepGrader::gradeHostValues(const Scene& scene) {
     if (!d_.domain) return;
     const ParamValues defaults(d_.params);
