@@ -140,29 +140,43 @@ TEST(Headless, HotReloadKeepsTheLastGoodProgramWhenAnEditBreaksIt) {
     EXPECT_NE(fixed.pixels, good.pixels);
 }
 
-TEST(Headless, PrecomputedMapsAreCachedOnDiskAndReusedExactly) {
+namespace {
+
+// split_sum's picture with small maps (the tests that use it are about the disk cache, not
+// quality), each call by a fresh renderer (nothing in memory) that keeps its maps in `cache`.
+struct CachedSplitSum {
     test::TempDir cache;
     Headless h;
-    IblSettings small;  // small maps: this test is about the cache, not quality
-    small.environmentSize = 64;
-    small.irradianceSize = 8;
-    small.prefilterSize = 16;
-    small.prefilterMips = 3;
-    small.prefilterSamples = 16;
-    small.lutWidth = small.lutHeight = 16;
-    small.lutSamples = 32;
+    IblSettings small = [] {
+        IblSettings s;
+        s.environmentSize = 64;
+        s.irradianceSize = 8;
+        s.prefilterSize = 16;
+        s.prefilterMips = 3;
+        s.prefilterSamples = 16;
+        s.lutWidth = s.lutHeight = 16;
+        s.lutSamples = 32;
+        return s;
+    }();
     const LoadedModule& m = h.modules.find("split_sum");
     Scene scene = loadScene(h.paths.scene(m.desc->scene));
-    const ParamValues params(m.desc->params);
-    // Each run a fresh renderer (nothing in memory) that keeps its maps in `cache`.
-    auto render = [&] {
+    const ParamValues params = ParamValues(m.desc->params);
+    Image render() {
         RendererOptions options;
         options.cacheRoot = cache.path;
         LabRenderer r{h.paths, options};
         RenderRequest request{&m, &params, &scene, {}, nullptr, 48, 48};
         request.ibl = small;
         return r.render(request).value;
-    };
+    }
+};
+
+}  // namespace
+
+TEST(Headless, PrecomputedMapsAreCachedOnDiskAndReusedExactly) {
+    CachedSplitSum t;
+    IblSettings& small = t.small;
+    auto render = [&] { return t.render(); };
     resetCounters();
     Image first = render();
     EXPECT_EQ(eventCount(Counter::PrecomputePasses), 4);  // cube, irradiance, prefilter, LUT
@@ -190,30 +204,10 @@ TEST(Headless, PrecomputedMapsAreCachedOnDiskAndReusedExactly) {
 // Every cached file ends with a checksum of its payload: a file changed after it was written
 // (a byte flipped on disk, a copy cut short) is not used, its maps are computed again.
 TEST(Headless, ACachedMapChangedOnDiskIsComputedAgain) {
-    test::TempDir cache;
-    Headless h;
-    IblSettings small;
-    small.environmentSize = 32;
-    small.irradianceSize = 8;
-    small.prefilterSize = 16;
-    small.prefilterMips = 3;
-    small.prefilterSamples = 16;
-    small.lutWidth = small.lutHeight = 16;
-    small.lutSamples = 32;
-    const LoadedModule& m = h.modules.find("split_sum");
-    Scene scene = loadScene(h.paths.scene(m.desc->scene));
-    const ParamValues params(m.desc->params);
-    auto render = [&] {
-        RendererOptions options;
-        options.cacheRoot = cache.path;
-        LabRenderer r{h.paths, options};
-        RenderRequest request{&m, &params, &scene, {}, nullptr, 48, 48};
-        request.ibl = small;
-        return r.render(request).value;
-    };
-    const Image first = render();
+    CachedSplitSum t;
+    const Image first = t.render();
     int changed = 0;
-    for (const auto& entry : std::filesystem::recursive_directory_iterator(cache.path)) {
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(t.cache.path)) {
         if (!entry.is_regular_file() || entry.path().extension() != ".bin") continue;
         const std::string map = entry.path().stem().string();
         if (map != "environment" && map != "irradiance" && map != "prefilter" && map != "lut")
@@ -228,7 +222,7 @@ TEST(Headless, ACachedMapChangedOnDiskIsComputedAgain) {
     }
     ASSERT_EQ(changed, 4);  // cube, irradiance, prefilter, LUT
     resetCounters();
-    const Image again = render();
+    const Image again = t.render();
     EXPECT_EQ(eventCount(Counter::PrecomputePasses), 4);
     EXPECT_EQ(again.pixels, first.pixels);
 }

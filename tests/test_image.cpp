@@ -18,7 +18,6 @@
 #include "assets/image_codecs.h"
 #include "assets/image_io.h"
 #include "assets/texgen.h"
-#include "gl/objects.h"
 #include "util/error.h"
 
 namespace fs = std::filesystem;
@@ -919,7 +918,7 @@ TEST_F(ImageTest, ShippedTexturesAreWhatTheGeneratorMakes) {
     }
 }
 
-// Material maps get their mip levels on the CPU (gl/objects.h): 2x2 means where a size is
+// Material maps get their mip levels on the CPU (assets/image_io.h): 2x2 means where a size is
 // even, the exact covered area where it is odd, and every level keeps the image's mean, which
 // a filter dropping the odd row or column would not.
 TEST(Image, MipLevelsAverageTheAreaEachTexelCovers) {
@@ -928,7 +927,7 @@ TEST(Image, MipLevelsAverageTheAreaEachTexelCovers) {
     even.height = 2;
     even.channels = 1;
     even.pixels = {0, 1, 2, 3, 4, 5, 6, 7};
-    const pbrlab::Image half = pbrlab::gl::halfSize(even);
+    const pbrlab::Image half = pbrlab::halfSize(even);
     ASSERT_EQ(half.width, 2);
     ASSERT_EQ(half.height, 1);
     EXPECT_FLOAT_EQ(half.pixels[0], (0 + 1 + 4 + 5) / 4.0f);
@@ -949,7 +948,7 @@ TEST(Image, MipLevelsAverageTheAreaEachTexelCovers) {
     };
     pbrlab::Image level = odd;
     for (const auto& [w, h] : {std::pair{2, 1}, std::pair{1, 1}}) {
-        level = pbrlab::gl::halfSize(level);
+        level = pbrlab::halfSize(level);
         ASSERT_EQ(level.width, w);
         ASSERT_EQ(level.height, h);
         ASSERT_EQ(level.channels, 2);
@@ -961,5 +960,5 @@ TEST(Image, MipLevelsAverageTheAreaEachTexelCovers) {
     row.height = 1;
     row.channels = 1;
     row.pixels = {1, 2, 3, 4, 5};
-    EXPECT_FLOAT_EQ(pbrlab::gl::halfSize(row).pixels[0], (1 + 2 + 0.5f * 3) / 2.5f);
+    EXPECT_FLOAT_EQ(pbrlab::halfSize(row).pixels[0], (1 + 2 + 0.5f * 3) / 2.5f);
 }

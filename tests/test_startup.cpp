@@ -93,20 +93,29 @@ TEST(Startup, ACommandAboutOneModuleOpensOnlyItsLibrary) {
 TEST(Startup, HugePagesAreAskedForOnceWhereTheKernelWaitsToBeAsked) {
     const char* render[] = {"pbrlab", "render", "ndotl"};
     const char* help[] = {"pbrlab", "grade", "--help"};
-    const std::string madvise = "always [madvise] never";
-    EXPECT_EQ(hugePageTunables(nullptr, madvise, 3, render), "glibc.malloc.hugetlb=1");
-    EXPECT_EQ(hugePageTunables("", madvise, 3, render), "glibc.malloc.hugetlb=1");
-    EXPECT_EQ(hugePageTunables("glibc.malloc.check=0", madvise, 3, render),
+    auto madvise = [] { return std::string("always [madvise] never"); };
+    EXPECT_EQ(hugePageTunables(nullptr, 3, render, madvise), "glibc.malloc.hugetlb=1");
+    EXPECT_EQ(hugePageTunables("", 3, render, madvise), "glibc.malloc.hugetlb=1");
+    EXPECT_EQ(hugePageTunables("glibc.malloc.check=0", 3, render, madvise),
               "glibc.malloc.check=0:glibc.malloc.hugetlb=1");
     // Already asked (the restarted process itself), or kept small by the user.
-    EXPECT_EQ(hugePageTunables("glibc.malloc.hugetlb=1", madvise, 3, render), "");
-    EXPECT_EQ(hugePageTunables("glibc.malloc.hugetlb=0", madvise, 3, render), "");
+    EXPECT_EQ(hugePageTunables("glibc.malloc.hugetlb=1", 3, render, madvise), "");
+    EXPECT_EQ(hugePageTunables("glibc.malloc.hugetlb=0", 3, render, madvise), "");
     // The kernel decides alone, or there are no huge pages.
-    EXPECT_EQ(hugePageTunables(nullptr, "[always] madvise never", 3, render), "");
-    EXPECT_EQ(hugePageTunables(nullptr, "always madvise [never]", 3, render), "");
-    EXPECT_EQ(hugePageTunables(nullptr, "", 3, render), "");
-    // Help costs nothing more.
-    EXPECT_EQ(hugePageTunables(nullptr, madvise, 3, help), "");
+    EXPECT_EQ(
+        hugePageTunables(nullptr, 3, render, [] { return std::string("[always] madvise never"); }),
+        "");
+    EXPECT_EQ(
+        hugePageTunables(nullptr, 3, render, [] { return std::string("always madvise [never]"); }),
+        "");
+    EXPECT_EQ(hugePageTunables(nullptr, 3, render, [] { return std::string(); }), "");
+    // Help costs nothing more: not even a read of the kernel's policy.
+    auto unread = [] {
+        ADD_FAILURE() << "the policy was read for --help";
+        return std::string("always [madvise] never");
+    };
+    EXPECT_EQ(hugePageTunables(nullptr, 3, help, unread), "");
+    EXPECT_EQ(hugePageTunables("glibc.malloc.hugetlb=0", 3, render, unread), "");
 }
 
 TEST(Startup, StatsSayWhichPagesTheProcessUses) {

@@ -35,6 +35,54 @@ Image flipRows(Image image) {
     return image;
 }
 
+Image halfSize(const Image& image) {
+    // Each axis: the destination texel i covers [i, i + 1) * from / to of the source, and each
+    // source texel counts by the length of its overlap (a box filter over the exact area).
+    struct Tap {
+        int source;
+        float weight;
+    };
+    auto taps = [](int from, int to) {
+        std::vector<std::vector<Tap>> all(static_cast<size_t>(to));
+        const double scale = double(from) / double(to);
+        for (int i = 0; i < to; ++i) {
+            const double begin = i * scale, end = (i + 1) * scale;
+            for (int s = int(begin); s < from && s < end; ++s) {
+                const double overlap = std::min(end, double(s + 1)) - std::max(begin, double(s));
+                if (overlap > 0) all[size_t(i)].push_back({s, float(overlap / scale)});
+            }
+        }
+        return all;
+    };
+    const int channels = image.channels;
+    Image half;
+    half.width = std::max(1, image.width / 2);
+    half.height = std::max(1, image.height / 2);
+    half.channels = channels;
+    half.sourceBitsPerChannel = image.sourceBitsPerChannel;
+    half.sourceIsSrgb = image.sourceIsSrgb;
+    const auto across = taps(image.width, half.width), down = taps(image.height, half.height);
+    // Rows first (full height, half width), then columns.
+    std::vector<float> rows(size_t(half.width) * size_t(image.height) * size_t(channels), 0.0f);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < half.width; ++x)
+            for (const Tap& t : across[size_t(x)])
+                for (int c = 0; c < channels; ++c)
+                    rows[(size_t(y) * size_t(half.width) + size_t(x)) * size_t(channels) +
+                         size_t(c)] +=
+                        t.weight *
+                        image.pixels[(size_t(y) * size_t(image.width) + size_t(t.source)) *
+                                         size_t(channels) +
+                                     size_t(c)];
+    half.pixels.assign(size_t(half.width) * size_t(half.height) * size_t(channels), 0.0f);
+    for (int y = 0; y < half.height; ++y)
+        for (const Tap& t : down[size_t(y)])
+            for (size_t i = 0; i < size_t(half.width) * size_t(channels); ++i)
+                half.pixels[size_t(y) * size_t(half.width) * size_t(channels) + i] +=
+                    t.weight * rows[size_t(t.source) * size_t(half.width) * size_t(channels) + i];
+    return half;
+}
+
 namespace {
 
 namespace fs = std::filesystem;

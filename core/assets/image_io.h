@@ -17,6 +17,11 @@ namespace pbrlab {
 // Takes the image by value: pass std::move(image) to flip without a copy.
 Image flipRows(Image image);
 
+// The next mip level of an image: half its size (rounded down, at least 1) as GL sizes levels,
+// each texel the mean of the source area it covers (2x2 texels where the size is even;
+// fractions of the texels at the seams where it is odd, so the level keeps the image's mean).
+Image halfSize(const Image& image);
+
 // Reads any file OpenImageIO knows (PNG and Radiance HDR are told by their first bytes, other
 // formats by OpenImageIO, which tries the extension's format first). Values are the stored code
 // values scaled to [0, 1] for integer formats (16-bit stays 16-bit precise: no detour through 8

@@ -52,11 +52,6 @@ Handle makeRenderbuffer();
 // With `mipmaps`, every level down to 1x1, each made by halfSize from the one above.
 Handle uploadTexture(const Image& image, bool mipmaps, GLenum internalFormat = 0);
 
-// The next mip level of an image: half its size (rounded down, at least 1) as GL sizes levels,
-// each texel the mean of the source area it covers (2x2 texels where the size is even;
-// fractions of the texels at the seams where it is odd, so the level keeps the image's mean).
-Image halfSize(const Image& image);
-
 // Off-screen target: `colorCount` RGBA32F attachments plus a depth buffer.
 class RenderTarget {
 public:

@@ -21,26 +21,23 @@ std::string kernelPolicy() {
 
 }  // namespace
 
-std::string hugePageTunables(const char* tunables, const std::string& kernelPolicy, int argc,
-                             const char* const* argv) {
+std::string hugePageTunables(const char* tunables, int argc, const char* const* argv,
+                             std::string (*kernelPolicy)()) {
     if (tunables && std::strstr(tunables, "glibc.malloc.hugetlb")) return {};
-    // "always [madvise] never": the bracketed word is the policy in force.
-    if (kernelPolicy.find("[madvise]") == std::string::npos) return {};
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "-h") || !std::strcmp(argv[i], "--help") ||
             !std::strcmp(argv[i], "--version"))
             return {};
     }
+    // "always [madvise] never": the bracketed word is the policy in force.
+    if (kernelPolicy().find("[madvise]") == std::string::npos) return {};
     return tunables && *tunables ? std::string(tunables) + ":" + kHugePages
                                  : std::string(kHugePages);
 }
 
 void restartWithHugePages(int argc, char** argv) {
 #if defined(__linux__) && defined(__GLIBC__)
-    const char* tunables = std::getenv(kTunables);
-    // Help and a setting already made answer without reading the kernel's policy.
-    if (hugePageTunables(tunables, "[madvise]", argc, argv).empty()) return;
-    const std::string value = hugePageTunables(tunables, kernelPolicy(), argc, argv);
+    const std::string value = hugePageTunables(std::getenv(kTunables), argc, argv, &kernelPolicy);
     if (value.empty()) return;
     // Run by a loader (ld-linux.so pbrlab ...), /proc/self/exe is the loader, not pbrlab.
     char self[4096] = {};
@@ -58,11 +55,11 @@ void restartWithHugePages(int argc, char** argv) {
 
 std::string memoryPagesDescription() {
     const char* tunables = std::getenv(kTunables);
+    const std::string policy = kernelPolicy();
     if (tunables && std::strstr(tunables, kHugePages) &&
-        kernelPolicy().find("[never]") == std::string::npos)
+        policy.find("[never]") == std::string::npos)
         return std::string("huge (") + kHugePages + ")";
-    return kernelPolicy().find("[always]") != std::string::npos ? "huge (the kernel's default)"
-                                                                : "small";
+    return policy.find("[always]") != std::string::npos ? "huge (the kernel's default)" : "small";
 }
 
 }  // namespace pbrlab

@@ -14,12 +14,13 @@ namespace pbrlab {
 // setting only at start-up, hence the restart. Child processes inherit it.
 void restartWithHugePages(int argc, char** argv);
 
-// The GLIBC_TUNABLES value to restart with, or "" to go on as is: when the kernel's policy
-// (the first line of /sys/kernel/mm/transparent_hugepage/enabled) gives huge pages to every
-// process or to none, when `tunables` (the variable's value, null if unset) already names the
-// setting (glibc.malloc.hugetlb=0 keeps small pages), and for --help and --version.
-std::string hugePageTunables(const char* tunables, const std::string& kernelPolicy, int argc,
-                             const char* const* argv);
+// The GLIBC_TUNABLES value to restart with, or "" to go on as is: when `tunables` (the
+// variable's value, null if unset) already names the setting (glibc.malloc.hugetlb=0 keeps
+// small pages), for --help and --version, and when the kernel's policy (`kernelPolicy()`, the
+// first line of /sys/kernel/mm/transparent_hugepage/enabled, read only if those do not answer)
+// gives huge pages to every process or to none.
+std::string hugePageTunables(const char* tunables, int argc, const char* const* argv,
+                             std::string (*kernelPolicy)());
 
 // What --stats says of this process's pages: "huge (glibc.malloc.hugetlb=1)" or "small".
 std::string memoryPagesDescription();
