@@ -52,6 +52,18 @@ grep -qE '^ndf +passed' "$work/grade.txt"
 "$pbrlab" --modules "$modules" grade "$work/kit" --steps half_lambert | tee "$work/stub.txt"
 grep -qE '^half_lambert +failed +0 / 1 ' "$work/stub.txt"
 
+echo "== feedback names the step's own terms (its namedTerms)"
+mkdir "$work/unsquared"
+sed 's/return wrapped \* wrapped;/return wrapped;/' "$work/solutions/half_lambert.glsl" \
+    > "$work/unsquared/half_lambert.glsl"
+if cmp -s "$work/solutions/half_lambert.glsl" "$work/unsquared/half_lambert.glsl"; then
+    echo "the template's solution changed: no square to remove"; exit 1
+fi
+"$pbrlab" --modules "$modules" grade "$work/unsquared" --steps half_lambert \
+    --json "$work/unsquared.json" > "$work/unsquared.txt" || true
+grep -qE '^half_lambert +failed' "$work/unsquared.txt"
+grep -qF '(0.5 N.L + 0.5)^1 where the reference has (0.5 N.L + 0.5)^2' "$work/unsquared.json"
+
 echo "== gallery"
 "$pbrlab" --modules "$modules" gallery --out "$work/gallery" --size 48x48 > /dev/null
 test -s "$work/gallery/05-half_lambert.png"
@@ -72,4 +84,4 @@ if command -v xvfb-run > /dev/null; then
 else
     echo "(xvfb-run not installed: the GUI part is left out)"
 fi
-echo "out-of-tree step: listed, rendered, checked, in the kit, graded, in the gallery and the GUI"
+echo "out-of-tree step: listed, rendered, checked, in the kit, graded with its named terms, in the gallery and the GUI"

@@ -1,5 +1,6 @@
 // Feedback names the mistake from the shape of the error: each pattern, on synthetic values
-// made from a reference by a known mistake (no GL: the classifier sees values only).
+// made from a reference by a known mistake (no GL: the classifier sees values only; the named
+// terms are the built steps' own, from their libraries).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +9,7 @@
 #include "grading/input_fits.h"
 #include "grading/term_fits.h"
 #include "shader/code_facts.h"
+#include "steps/plugin_host.h"
 
 using namespace pbrlab;
 
@@ -192,11 +194,19 @@ TEST(Feedback, InputsAreDescribedByWhatTheDomainVaries) {
 // Steps with named terms (term_fits.h): values made from the CPU reference by a known change.
 namespace {
 
+// The built steps, loaded once: their named terms are code in their libraries.
+const ModuleRegistry& builtSteps() {
+    static const ModuleRegistry registry{PBRLAB_MODULE_DIR};
+    return registry;
+}
+
 // Inputs of step `id` over `domain`, with the context the term fits read.
 template <class Truth, class Student>
 FeedbackInputs stepInputs(ModuleDesc& d, const std::string& id, DomainFn domain,
                           const ReferenceContext& context, Truth truth, Student student) {
     d.id = id;
+    d.namedTerms = builtSteps().find(id).desc->namedTerms;
+    d.namedTermPoints = builtSteps().find(id).desc->namedTermPoints;
     d.components = 3;
     d.domain = std::move(domain);
     FeedbackInputs in = inputs(d, truth, student);

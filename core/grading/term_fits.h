@@ -1,9 +1,7 @@
 // Feedback that names a missing or extra term (docs/grading.md, "Feedback: the missing or
-// extra term"). For the steps built from named terms (D, G, each G1, F, F0, the Schlick
-// factor, N.L, N.V, the inverse square, ao, kD, gamma, alpha, k ...), each step's value is
-// written once more in double with every term raised to an exponent of its own (its "knob";
-// the reference's exponents give the reference). A term missing is its exponent 0, a term
-// applied twice its exponent doubled, an input at a wrong power (1/d^3, gamma 3,
+// extra term"). A step declares the named parts of its formula (ModuleDesc::namedTerms): its
+// value recomputed in double with one part at another exponent. A term missing is its exponent
+// 0, a term applied twice its exponent doubled, an input at a wrong power (1/d^3, gamma 3,
 // alpha = roughness^4) the exponent that fits. Each candidate is measured on the failed
 // check's points: the share of points where it is within twice the band of the student's
 // value, over all points and over the points the reference does not explain. The one that

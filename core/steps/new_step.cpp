@@ -58,7 +58,9 @@ constexpr const char* kModule =
 // side turned away from the light. (The template of `pbrlab new-step`: rewrite it for your
 // step; docs/authoring-a-module.md says what each field is for.)
 #include "pbrlab/module.h"
+#include "pbrlab/named_terms.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -69,6 +71,18 @@ namespace {
 double halfLambert(const glm::dvec3& N, const glm::dvec3& L) {
     const double wrapped = 0.5 * glm::dot(N, L) + 0.5;
     return wrapped * wrapped;
+}
+
+// The formula once more with its parts as fields (defaults: the reference), so that feedback
+// can name the part a student got wrong (docs/authoring-a-module.md, "Feedback that names a
+// term").
+struct Knobs {
+    double square = 2;     // the power of the wrapped cosine
+    double unwrapped = 0;  // 1: max(N.L, 0) where the wrapped cosine 0.5 N.L + 0.5 belongs
+};
+glm::dvec3 halfLambertTerms(const Surface& s, const ReferenceContext&, const Knobs& k) {
+    const double c = glm::dot(s.normal, s.light);
+    return glm::dvec3(power(k.unwrapped != 0 ? std::max(c, 0.0) : 0.5 * c + 0.5, k.square));
 }
 
 ModuleDesc describeModule() {
@@ -90,6 +104,13 @@ ModuleDesc describeModule() {
     d.reference = [](const Surface& s, const ReferenceContext&) {
         return glm::dvec3(halfLambert(s.normal, s.light));
     };
+    d.namedTerms = namedTerms<Knobs>(
+        halfLambertTerms,
+        {exponent<Knobs>("^2", "the square", &Knobs::square, 2, 0.5, 4,
+                         [](double e) { return "(0.5 N.L + 0.5)^" + exponentText(e); }),
+         onOff<Knobs>("max(N.L, 0) (Lambert's cosine) where the wrapped cosine 0.5 N.L + 0.5 "
+                      "belongs",
+                      &Knobs::unwrapped)});
     // What the GUI can show over any picture (its view chooser, `gui --view @ID@`).
     d.termViews = {{"@ID@", TermView::Encode::None, [](const Surface& s) {
                         return glm::dvec3(halfLambert(s.normal, s.light));

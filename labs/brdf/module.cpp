@@ -5,9 +5,25 @@
 #include <cmath>
 #include <numbers>
 
+#include "pbrlab/shading_terms.h"
+
 using namespace pbrlab;
 
 namespace {
+
+// Named terms for feedback (pbrlab/shading_terms.h): the lobe's and the diffuse term's
+// factors, and the cosine N.L, which belongs to the reflectance equation.
+std::vector<NamedTerm> brdfTerms() {
+    using K = ShadingKnobs;
+    return namedTerms<K>(
+        [](const Surface& s, const ReferenceContext&, const K& k) {
+            return grazingBand(s) * shadingBrdf(s, s.light, k);
+        },
+        joined(joined(specularLobeTerms(false), diffuseTerms()),
+               {wholeFactor<K>(
+                   "N.L", "the cosine N.L (it belongs to the reflectance equation, not to f_r)",
+                   {&K::cosine}, 0)}));
+}
 
 ModuleDesc describeModule() {
     ModuleDesc d;
@@ -86,6 +102,7 @@ ModuleDesc describeModule() {
                    {"diffuse", TermView::Encode::Radiance, [diffuseWeight](const Surface& s) {
                         return diffuseWeight(s) * s.albedo / ref::kPi * incidentIrradiance(s);
                     }}};
+    d.namedTerms = brdfTerms();
     return d;
 }
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "pbrlab/ibl_reference.h"
+#include "pbrlab/shading_terms.h"
 
 using namespace pbrlab;
 
@@ -15,6 +16,42 @@ namespace {
 // N·V as the view passes it: floored at 1e-3, so that correct guards between 1e-4 and 1e-3
 // inside integrateBRDF see the same input (README.md, edge cases).
 constexpr double kViewMinNdotV = 1e-3;
+
+// Named terms for feedback (pbrlab/shading_terms.h): A and B on the same samples with a factor
+// of G_vis = G V.H / (N.H N.V) or of the Schlick factor changed.
+glm::dvec3 scaleAndBias(const Surface& s, const ReferenceContext& c, const ShadingKnobs& k) {
+    const double NdotV = std::clamp(std::max(glm::dot(s.normal, s.view), 1e-3), 1e-4, 1.0);
+    const glm::dvec3 N(0, 0, 1), V(std::sqrt(1 - NdotV * NdotV), 0, NdotV);
+    const auto n = std::max(std::uint32_t(std::max(c.params.number("samples"), 1.0)), 1u);
+    double A = 0, B = 0;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const glm::dvec3 H = ref::importanceSampleGGX(ref::hammersley(i, n), N, s.roughness);
+        double VdotH = glm::dot(V, H);
+        const glm::dvec3 L = 2.0 * VdotH * H - V;
+        if (L.z <= 0) continue;
+        const double NdotH = std::max(H.z, ref::kIblMinNdotH);
+        VdotH = std::clamp(VdotH, 0.0, 1.0);
+        const double G1v = shadingG1(NdotV, s.roughness, k, 1);
+        const double G1l = k.g1vTwice != 0 ? G1v : shadingG1(L.z, s.roughness, k, 1);
+        const double G = power(G1v, k.G1V) * power(G1l, k.G1L);
+        const double Gvis = G * power(VdotH, k.VH) * power(NdotH, k.NH) * power(NdotV, k.NV);
+        const double Fc = power(1.0 - (k.fresnelAtNdotV != 0 ? NdotV : VdotH), k.schlick);
+        A += (1 - Fc) * Gvis;
+        B += Fc * Gvis;
+    }
+    return glm::dvec3(A / n, B / n, 0);
+}
+std::vector<NamedTerm> scaleAndBiasTerms() {
+    using K = ShadingKnobs;
+    KnobbedTerms<K> terms = estimatorWeightTerms("G_vis = G V.H / (N.H N.V)");
+    terms.push_back(exponentTried<K>(
+        "(1 - V.H)", "the Schlick factor", &K::schlick, 5, {1, 2, 3, 4, 6},
+        [](double e) { return "the Schlick factor Fc = (1 - V.H)^" + exponentText(e); }));
+    terms.push_back(
+        onOff("Fc = (1 - N.V)^5, where each sample has (1 - V.H)^5", &K::fresnelAtNdotV));
+    terms.push_back(directRemappingTerm());
+    return namedTerms<K>(scaleAndBias, terms);
+}
 
 ModuleDesc describeModule() {
     ModuleDesc d;
@@ -90,6 +127,7 @@ ModuleDesc describeModule() {
         s.roughness = r.range(0.05, 1);
         return s;
     };
+    d.namedTerms = scaleAndBiasTerms();
     return d;
 }
 

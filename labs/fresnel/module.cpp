@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "pbrlab/shading_terms.h"
+
 using namespace pbrlab;
 
 namespace {
@@ -16,6 +18,27 @@ double viewCosine(const Surface& s, int cosine) {
     if (cosine == kHdotV)
         return std::max(glm::dot(ref::halfwayVector(s.light, s.view), s.view), 0.0);
     return std::max(glm::dot(s.normal, s.view), 0.0);
+}
+
+// Named terms for feedback (pbrlab/named_terms.h): the Schlick factor's power fitted, (1 - F0)
+// missing or twice, F0 multiplying the factor.
+std::vector<NamedTerm> fresnelTerms() {
+    using K = ShadingKnobs;
+    return namedTerms<K>(
+        [](const Surface& s, const ReferenceContext& c, const K& k) {
+            const double cosine =
+                c.params.number("cosine") == 1
+                    ? std::max(glm::dot(ref::halfwayVector(s.light, s.view), s.view), 0.0)
+                    : std::max(glm::dot(s.normal, s.view), 0.0);
+            return shadingFresnel(cosine, ref::baseReflectivity(s.albedo, s.metallic), k);
+        },
+        {exponent<K>("(1 - cos)", "the Schlick factor", &K::schlick, 5, 0.5, 10,
+                     [](double e) { return "the Schlick factor (1 - cos)^" + exponentText(e); }),
+         factor<K>("(1 - F0)", "the factor (1 - F0) in front of the Schlick factor",
+                   {&K::oneMinusF0}),
+         onOff("F0 multiplying the Schlick factor (F0 + F0 (1 - cos)^5), where the "
+               "reference has F0 + (1 - F0)(1 - cos)^5",
+               &K::f0TimesSchlick)});
 }
 
 ModuleDesc describeModule() {
@@ -92,6 +115,7 @@ ModuleDesc describeModule() {
     };
     d.termViews = {{"F", TermView::Encode::None, fresnelOnHalfway},
                    {"kS", TermView::Encode::None, fresnelOnHalfway}};
+    d.namedTerms = fresnelTerms();
     return d;
 }
 

@@ -4,9 +4,29 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pbrlab/shading_terms.h"
+
 using namespace pbrlab;
 
 namespace {
+
+// Named terms for feedback (pbrlab/named_terms.h): G1 without N.X in its numerator, with k and
+// 1 - k swapped, or with another remapping of k.
+std::vector<NamedTerm> g1Terms() {
+    using K = ShadingKnobs;
+    KnobbedTerms<K> terms = {wholeFactor<K>("N.X", "N.X in the numerator", {&K::NX}),
+                             kSwappedTerm()};
+    for (size_t i = 1; i < kRemappings().size(); ++i)
+        terms.push_back(
+            onOff(kRemappings()[i].name + std::string(", where the direct-light remapping is k = "
+                                                      "(roughness + 1)^2 / 8"),
+                  &K::kChoice, double(i)));
+    return namedTerms<K>(
+        [](const Surface& s, const ReferenceContext&, const K& k) {
+            return glm::dvec3(shadingG1(glm::dot(s.normal, s.view), s.roughness, k, 0));
+        },
+        terms);
+}
 
 ModuleDesc describeModule() {
     ModuleDesc d;
@@ -30,6 +50,7 @@ ModuleDesc describeModule() {
     };
     // x: N·X (here N·V) from 0 (grazing) to 1 (along the normal); y: roughness 0.05 to 1.
     d.probe = viewCosineRoughnessProbe();
+    d.namedTerms = g1Terms();
     return d;
 }
 

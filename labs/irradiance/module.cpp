@@ -8,6 +8,8 @@
 #include <numbers>
 #include <vector>
 
+#include "pbrlab/named_terms.h"
+
 using namespace pbrlab;
 
 namespace {
@@ -112,6 +114,53 @@ glm::dvec3 convergedIrradiance(const glm::dvec3& N, const CubeSampler& env) {
     return sum / std::numbers::pi;
 }
 
+// Named terms for feedback (pbrlab/named_terms.h): the reference's texel sum with the cosine at
+// another power, light from below the horizon counted, or the solid angle without its
+// sin(theta).
+struct Knobs {
+    double cosine = 1, wholeSphere = 0;
+    double sinTheta = 1;  // the sin(theta) of the solid angle sin(theta) dtheta dphi
+};
+glm::dvec3 texelSum(const Surface& s, const ReferenceContext& c, const Knobs& k) {
+    if (!c.ibl) return glm::dvec3(0);
+    const TexelTable& t = current(c.ibl->environment);
+    glm::dvec3 sum(0.0);
+    for (size_t i = 0; i < t.direction.size(); ++i) {
+        double cosine = glm::dot(s.normal, t.direction[i]);
+        if (k.wholeSphere != 0) cosine = std::abs(cosine);
+        // The solid angle without its sin(theta) (a Riemann sum over dtheta dphi) weighs a
+        // texel by 1/sin(theta): near N that is averaged over the texel as over a disc of its
+        // angular radius r (2/r), as the student's sum over small steps of theta does, not
+        // read at the texel's centre (a fraction of a degree from N at the sizes graded).
+        const double radius = std::sqrt(t.solidAngle[i] / std::numbers::pi);
+        const double solidAngle =
+            k.sinTheta == 1
+                ? t.solidAngle[i]
+                : t.solidAngle[i] *
+                      std::pow(std::max(std::sqrt(std::max(1 - cosine * cosine, 0.0)), radius / 2),
+                               k.sinTheta - 1);
+        if (cosine > 0) sum += t.radiance[i] * (power(cosine, k.cosine) * solidAngle);
+    }
+    return sum / std::numbers::pi;
+}
+std::vector<NamedTerm> texelSumTerms() {
+    return namedTerms<Knobs>(
+        texelSum,
+        {exponentTried<Knobs>("N.L", "the cosine N.L", &Knobs::cosine, 1, {0, 2},
+                              [](double e) {
+                                  return e == 0   ? std::string("no cosine N.L")
+                                         : e == 1 ? std::string("the cosine N.L")
+                                                  : "the cosine to the power " + exponentText(e) +
+                                                        " (N.L)^" + exponentText(e);
+                              }),
+         onOff<Knobs>("light from below the horizon counted (|N.L| over the whole sphere, where "
+                      "the reference has max(N.L, 0) over the hemisphere)",
+                      &Knobs::wholeSphere),
+         factorTried<Knobs>("sin(theta)",
+                            "the sin(theta) of the solid angle dw = sin(theta) dtheta dphi",
+                            {&Knobs::sinTheta}, 1, {0})});
+}
+
 ModuleDesc describeModule() {
     ModuleDesc d;
     d.title = "Irradiance E(N)/PI by convolution";
@@ -159,6 +208,8 @@ ModuleDesc describeModule() {
         s.view = s.normal;
         return s;
     };
+    d.namedTerms = texelSumTerms();
+    d.namedTermPoints = 48;  // each value is a sum over 6144 texels
     return d;
 }
 

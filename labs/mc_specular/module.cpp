@@ -6,10 +6,48 @@
 #include <cstdint>
 
 #include "pbrlab/ibl_reference.h"
+#include "pbrlab/shading_terms.h"
 
 using namespace pbrlab;
 
 namespace {
+
+// Named terms for feedback (pbrlab/shading_terms.h): the estimate on the same samples with a
+// factor of each sample's weight G F V.H / (N.H N.V) changed.
+glm::dvec3 weightedEstimate(const Surface& s, const ReferenceContext& c, const ShadingKnobs& k) {
+    if (!c.ibl || glm::dot(s.normal, s.view) < 0) return glm::dvec3(0);
+    const glm::dvec3 &N = s.normal, &V = s.view;
+    const double NdotV = std::max(glm::dot(N, V), ref::kIblMinNdotV);
+    const glm::dvec3 F0 = ref::baseReflectivity(s.albedo, s.metallic);
+    const auto n = std::max(std::uint32_t(std::max(c.params.number("samples"), 0.0)), 1u);
+    glm::dvec3 sum(0.0);
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const glm::dvec3 H = ref::importanceSampleGGX(ref::hammersley(i, n), N, s.roughness);
+        double VdotH = glm::dot(V, H);
+        const glm::dvec3 L = 2.0 * VdotH * H - V;
+        const double NdotL = glm::dot(N, L);
+        if (NdotL <= 0) continue;
+        const double NdotH = std::max(glm::dot(N, H), ref::kIblMinNdotH);
+        VdotH = std::max(VdotH, 0.0);
+        const double G1v = shadingG1(NdotV, s.roughness, k, 1);
+        const double G1l = k.g1vTwice != 0 ? G1v : shadingG1(NdotL, s.roughness, k, 1);
+        const double G = power(G1v, k.G1V) * power(G1l, k.G1L);
+        const glm::dvec3 F =
+            k.f0ForF != 0 ? F0 : shadingFresnel(k.fresnelAtNdotV != 0 ? NdotV : VdotH, F0, k);
+        sum += c.ibl->environment.sample(L, 0) * power(F, k.F) * G * power(VdotH, k.VH) *
+               power(NdotH, k.NH) * power(NdotV, k.NV);
+    }
+    return sum / double(n);
+}
+std::vector<NamedTerm> weightTerms() {
+    using K = ShadingKnobs;
+    KnobbedTerms<K> terms = estimatorWeightTerms("the weight G V.H / (N.H N.V)");
+    terms.insert(terms.begin() + 3, factor<K>("F", "the Fresnel term F", {&K::F}));
+    terms.push_back(onOff("F0 where F belongs (F = F0 + (1 - F0)(1 - V.H)^5)", &K::f0ForF));
+    terms.push_back(onOff("F evaluated at N.V, where each sample has V.H", &K::fresnelAtNdotV));
+    terms.push_back(directRemappingTerm());
+    return namedTerms<K>(weightedEstimate, terms);
+}
 
 ModuleDesc describeModule() {
     ModuleDesc d;
@@ -87,6 +125,7 @@ ModuleDesc describeModule() {
         s.ao = 1;
         return s;
     };
+    d.namedTerms = weightTerms();
     return d;
 }
 

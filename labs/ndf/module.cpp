@@ -5,9 +5,29 @@
 #include <cstdio>
 #include <numbers>
 
+#include "pbrlab/shading_terms.h"
+
 using namespace pbrlab;
 
 namespace {
+
+// Named terms for feedback (pbrlab/named_terms.h): D with each exponent of its formula fitted.
+std::vector<NamedTerm> ndfTerms() {
+    using K = ShadingKnobs;
+    return namedTerms<K>(
+        [](const Surface& s, const ReferenceContext&, const K& k) {
+            return glm::dvec3(shadingGgx(glm::dot(s.normal, ref::halfwayVector(s.light, s.view)),
+                                         s.roughness, k));
+        },
+        {exponent<K>("alpha", "alpha", &K::alphaPower, 2, 0.25, 8,
+                     [](double e) { return "alpha = roughness^" + exponentText(e); }),
+         exponent<K>("alpha^2", "the numerator alpha^2", &K::alpha2, 1, 0, 3,
+                     [](double e) { return "(alpha^2)^" + exponentText(e) + " in the numerator"; }),
+         exponent<K>("N.H", "N.H", &K::NHpower, 2, 0.25, 6,
+                     [](double e) { return "(N.H)^" + exponentText(e) + " in the denominator"; }),
+         exponent<K>("denominator", "the denominator", &K::denominator, 2, 0.25, 4,
+                     [](double e) { return "the denominator to the power " + exponentText(e); })});
+}
 
 ModuleDesc describeModule() {
     ModuleDesc d;
@@ -97,6 +117,7 @@ ModuleDesc describeModule() {
                             s.normal, ref::halfwayVector(s.light, s.view), s.roughness);
                         return glm::dvec3(D / (1 + D));  // compresses the peak for display
                     }}};
+    d.namedTerms = ndfTerms();
     return d;
 }
 

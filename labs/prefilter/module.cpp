@@ -21,7 +21,7 @@ std::uint32_t samples(const ReferenceContext& c) {
 // The reference's lobe average with its weights N.L raised to `weight` (1: the reference) and
 // divided by the mean weight sum(N.L^weight) / n raised to `normalised` (1: the reference, a
 // weighted average; 0: the weighted sum divided by the sample count): the parts of the formula
-// feedback names (ModuleDesc::formulaTerms).
+// feedback names (ModuleDesc::namedTerms).
 glm::dvec3 lobeAverage(const Surface& s, const ReferenceContext& c, double weight,
                        double normalised) {
     if (!c.ibl) return glm::dvec3(0);
@@ -107,17 +107,16 @@ ModuleDesc describeModule() {
     // 1.65x, 4 of the 28 points outside; every correct variant at most 0.33x (docs/grading.md).
     e.systematicAtLargestCount = Tolerance{1e-3, 3e-3, 0, 0.04};
     d.estimator = e;
-    d.formulaTerms = {
-        {"N.L", "the N.L weight of each sample",
-         [](const Surface& s, const ReferenceContext& c, double e) {
-             return lobeAverage(s, c, e, 1);
-         }},
-        {"sum(N.L) / n",
-         "the division by the mean weight sum(N.L) / n (the weighted sum divided by the sample "
-         "count instead of the sum of weights)",
-         [](const Surface& s, const ReferenceContext& c, double e) {
-             return lobeAverage(s, c, 1, e);
-         }},
+    d.namedTerms = {
+        {.symbol = "N.L",
+         .name = "the N.L weight of each sample",
+         .value = [](const Surface& s, const ReferenceContext& c,
+                     double e) { return lobeAverage(s, c, e, 1); }},
+        {.symbol = "sum(N.L) / n",
+         .name = "the division by the mean weight sum(N.L) / n (the weighted sum divided by the "
+                 "sample count instead of the sum of weights)",
+         .value = [](const Surface& s, const ReferenceContext& c,
+                     double e) { return lobeAverage(s, c, 1, e); }},
     };
     // N anywhere, V in its hemisphere, roughness 0 to 1.
     d.domain = [](DomainRandom& r) {

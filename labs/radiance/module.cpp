@@ -1,9 +1,27 @@
 // radiance: the radiance a point light delivers at a point, falling off as 1/d^2.
 #include "pbrlab/module.h"
 
+#include "pbrlab/shading_terms.h"
+
 using namespace pbrlab;
 
 namespace {
+
+// Named terms for feedback (pbrlab/named_terms.h): the radiance with the inverse square at
+// another power of d, or without the light's colour.
+struct Knobs {
+    double lightColor = 1, distance = -2;
+};
+std::vector<NamedTerm> radianceTerms() {
+    return namedTerms<Knobs>(
+        [](const Surface& s, const ReferenceContext&, const Knobs& k) {
+            const glm::dvec3 d = s.lightPosition - s.position;
+            return power(s.lightColor, k.lightColor) *
+                   power(std::max(glm::dot(d, d), ref::kMinDistance2), k.distance / 2);
+        },
+        {exponent<Knobs>("d", "the inverse square", &Knobs::distance, -2, -6, 2, falloffText),
+         wholeFactor<Knobs>("the light's colour", "the light's colour", {&Knobs::lightColor})});
+}
 
 ModuleDesc describeModule() {
     ModuleDesc d;
@@ -52,6 +70,7 @@ ModuleDesc describeModule() {
         s.lightColor = glm::dvec3(10 * y);
         return s;
     };
+    d.namedTerms = radianceTerms();
     return d;
 }
 

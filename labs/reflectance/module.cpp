@@ -2,9 +2,40 @@
 // lights of f_r L_i N·L, plus the ambient term 0.03 albedo ao.
 #include "pbrlab/module.h"
 
+#include "pbrlab/shading_terms.h"
+
 using namespace pbrlab;
 
 namespace {
+
+// Named terms for feedback (pbrlab/shading_terms.h): the BRDF's, and the reflectance
+// equation's own: the light's radiance and N.L per light, the ambient term.
+struct Knobs : ShadingKnobs {
+    double lightColor = 1, distance = -2, NLcos = 1, ambient = 1, ao = 1;
+};
+glm::dvec3 reflected(const Surface& s, const ReferenceContext& c, const Knobs& k) {
+    glm::dvec3 sum(0.0);
+    for (const ref::PointLight& light : c.lights) {
+        const glm::dvec3 L = ref::safeNormalize(light.position - s.position, glm::dvec3(0.0));
+        const glm::dvec3 d = light.position - s.position;
+        const glm::dvec3 radiance =
+            power(light.color, k.lightColor) *
+            power(std::max(glm::dot(d, d), ref::kMinDistance2), k.distance / 2);
+        sum +=
+            shadingBrdf(s, L, k) * radiance * power(std::max(glm::dot(s.normal, L), 0.0), k.NLcos);
+    }
+    return sum + k.ambient * ref::kAmbient * s.albedo * power(s.ao, k.ao) + s.emissive;
+}
+std::vector<NamedTerm> reflectanceTerms() {
+    return namedTerms<Knobs>(
+        reflected,
+        joined<Knobs>(
+            derivedTerms<Knobs>(joined(specularLobeTerms(false), diffuseTerms())),
+            {factor<Knobs>("N.L", "the cosine N.L", {&Knobs::NLcos}),
+             exponent<Knobs>("d", "the inverse square", &Knobs::distance, -2, -6, 2, falloffText),
+             factor<Knobs>("ao", "ao in the ambient term", {&Knobs::ao}),
+             removed<Knobs>("the ambient term 0.03 albedo ao", &Knobs::ambient)}));
+}
 
 ModuleDesc describeModule() {
     ModuleDesc d;
@@ -63,6 +94,7 @@ ModuleDesc describeModule() {
         s.ao = 1;
         return s;
     };
+    d.namedTerms = reflectanceTerms();
     return d;
 }
 

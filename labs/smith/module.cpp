@@ -3,9 +3,32 @@
 
 #include <cmath>
 
+#include "pbrlab/shading_terms.h"
+
 using namespace pbrlab;
 
 namespace {
+
+// Named terms for feedback (pbrlab/named_terms.h): either G1 missing or used for both
+// directions, k swapped or remapped as for IBL.
+std::vector<NamedTerm> smithTerms() {
+    using K = ShadingKnobs;
+    return namedTerms<K>(
+        [](const Surface& s, const ReferenceContext&, const K& k) {
+            const double l = shadingG1(glm::dot(s.normal, s.light), s.roughness, k, 0);
+            const double v =
+                k.g1lTwice != 0 ? l : shadingG1(glm::dot(s.normal, s.view), s.roughness, k, 0);
+            return glm::dvec3(power(v, k.G1V) * power(k.g1vTwice != 0 ? v : l, k.G1L));
+        },
+        {wholeFactor<K>("G1(N.V)", "the masking term G1(N.V)", {&K::G1V}),
+         wholeFactor<K>("G1(N.L)", "the shadowing term G1(N.L)", {&K::G1L}),
+         onOff("G1(N.V) for the light too, where the reference has G1(N.L)", &K::g1vTwice),
+         onOff("G1(N.L) for the view too, where the reference has G1(N.V)", &K::g1lTwice),
+         kSwappedTerm(),
+         onOff("k = roughness^2 / 2 (the IBL remapping), where direct light has "
+               "k = (roughness + 1)^2 / 8",
+               &K::kChoice)});
+}
 
 ModuleDesc describeModule() {
     ModuleDesc d;
@@ -70,6 +93,7 @@ ModuleDesc describeModule() {
                         return glm::dvec3(
                             ref::geometrySmith(s.normal, s.view, s.light, s.roughness));
                     }}};
+    d.namedTerms = smithTerms();
     return d;
 }
 

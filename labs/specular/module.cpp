@@ -6,9 +6,21 @@
 #include <cstdio>
 #include <numbers>
 
+#include "pbrlab/shading_terms.h"
+
 using namespace pbrlab;
 
 namespace {
+
+// Named terms for feedback (pbrlab/shading_terms.h): each factor of the lobe, which is the
+// step's whole value.
+std::vector<NamedTerm> specularTerms() {
+    return namedTerms<ShadingKnobs>(
+        [](const Surface& s, const ReferenceContext&, const ShadingKnobs& k) {
+            return grazingBand(s) * cookTorranceLobe(s, s.light, k).specular;
+        },
+        specularLobeTerms(true));
+}
 
 ModuleDesc describeModule() {
     ModuleDesc d;
@@ -87,6 +99,7 @@ ModuleDesc describeModule() {
                                    ref::baseReflectivity(s.albedo, s.metallic), s.roughness) *
                                incidentIrradiance(s);
                     }}};
+    d.namedTerms = specularTerms();
     return d;
 }
 

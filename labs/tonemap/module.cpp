@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "pbrlab/named_terms.h"
+
 using namespace pbrlab;
 
 namespace {
@@ -19,6 +21,44 @@ glm::dvec3 hdrInput(const Surface& s, const ReferenceContext& c) {
     return ref::reflectedRadiance(s.position, s.normal, s.view, s.albedo, s.metallic, s.roughness,
                                   s.ao, c.lights.data(), int(c.lights.size())) +
            s.emissive;
+}
+
+// Named terms for feedback (pbrlab/named_terms.h): the gamma's and Reinhard's exponents fitted,
+// or the gamma applied first.
+struct Knobs {
+    double reinhard = -1, gamma = 1 / 2.2, gammaFirst = 0;
+};
+std::string gammaText(double e) {
+    // The exponent is 1 / gamma; above 1 it decodes instead of encoding.
+    if (std::abs(e) < 1e-9) return "the exponent 0 (every value 1)";
+    if (std::abs(e - 1) < 1e-9) return "no gamma (exponent 1)";
+    if (e > 1)
+        return "the exponent " + exponentText(e) + " (it decodes: the display needs 1/" +
+               exponentText(e) + ")";
+    return "gamma " + exponentText(1 / e) + " (exponent 1/" + exponentText(1 / e) + ")";
+}
+std::vector<NamedTerm> tonemapTerms() {
+    return namedTerms<Knobs>(
+        [](const Surface& s, const ReferenceContext& c, const Knobs& k) {
+            const glm::dvec3 h = glm::max(hdrInput(s, c), glm::dvec3(0.0));
+            if (k.gammaFirst != 0) {
+                const glm::dvec3 g = power(h, 1 / 2.2);
+                return g / (g + 1.0);
+            }
+            return power(h * power(h + 1.0, k.reinhard), k.gamma);
+        },
+        {exponent<Knobs>("gamma", "the gamma", &Knobs::gamma, 1 / 2.2, 0.1, 3, gammaText),
+         exponent<Knobs>("(1 + hdr)", "Reinhard's denominator", &Knobs::reinhard, -1, -3, 1,
+                         [](double e) {
+                             return e == 0
+                                        ? std::string(
+                                              "no Reinhard denominator (hdr, not "
+                                              "hdr / (1 + hdr))")
+                                        : "hdr (1 + hdr)^" + exponentText(e) + " before the gamma";
+                         }),
+         onOff<Knobs>("the gamma applied before Reinhard's x / (1 + x), where the reference "
+                      "tonemaps first",
+                      &Knobs::gammaFirst)});
 }
 
 ModuleDesc describeModule() {
@@ -56,6 +96,7 @@ ModuleDesc describeModule() {
         return s;
     };
     d.extraName = "hdr";  // the radiance the function encodes (extra.xyz), for feedback
+    d.namedTerms = tonemapTerms();
     return d;
 }
 

@@ -22,7 +22,7 @@
 namespace pbrlab {
 
 // Bump when ModuleDesc or anything it contains changes layout.
-constexpr int kModuleAbiVersion = 8;
+constexpr int kModuleAbiVersion = 9;
 
 // Everything a contract function may take, per pixel. The GPU fills the same fields in
 // GLSL (shaders/surface.glsl) from the G-buffer (scene) or from uploaded textures (probe), so
@@ -311,15 +311,35 @@ inline glm::dvec3 atCosine(const glm::dvec3& n, const glm::dvec3& d, double c) {
     return n * c + t * std::sqrt(std::max(0.0, 1 - c * c));
 }
 
-// A part of the step's formula, named, for feedback (the named-term fits of docs/grading.md):
-// the reference with that part raised to the power e (e = 1: the reference). The fits try it
-// missing (e = 0) and applied twice (e = 2), and name the one the student's values equal. For
-// the steps whose formula the grader does not write itself (an estimator's weights, its
-// normalisation).
-struct FormulaTerm {
+// A part of the step's formula, named, for feedback (docs/grading.md, "Feedback: the missing or
+// extra term"): the step's value recomputed in double with that part raised to an exponent of
+// its own. The grader tries each term missing, applied twice, at a fitted power, or switched to
+// a common wrong form, on the points of a failed check, and names the one that explains the
+// student's values when no other does as well. pbrlab/named_terms.h builds them from a model
+// written once with all its exponents in a struct (the built-in steps and `pbrlab new-step`'s
+// template do so).
+struct NamedTerm {
+    // Factor: a quantity the value is multiplied by, tried missing, twice, or extra.
+    // Exponent: the power of an input, fitted over [lo, hi] (or tried at `tries`).
+    // Switch: another way of writing the step, tried as a whole (`name` says what it is).
+    enum class Kind { Factor, Exponent, Switch };
+    Kind kind = Kind::Factor;
     std::string symbol;  // as the formula writes it: "N.L"
     std::string name;    // what it is: "the N.L weight of each sample"
+    // The step's value with this term at exponent e, every other part as the reference has it.
     std::function<glm::dvec3(const Surface&, const ReferenceContext&, double e)> value;
+    // The exponent the reference has: 0 where it has no such factor; a Switch's reference is 0
+    // (off) for a form tried on, 1 for a part tried removed.
+    double reference = 1;
+    // The exponents tried. Empty: a Factor tries 0 and twice its reference (1 and -1 when the
+    // reference has none); an Exponent with lo < hi is fitted instead.
+    std::vector<double> tries;
+    double lo = 0, hi = 0;
+    std::function<std::string(double e)> format;  // Exponent: e in the input's terms
+    bool whole = false;  // Factor: multiplies the whole value (said as a ratio to the reference)
+    // The exponents this term sets, as ids the step chooses: two terms that share one (G and
+    // G1(N.V)) are not independent factors. Empty: its own.
+    std::vector<int> knobs;
 };
 
 // A scalar the step's function receives, in the lesson's terms, as its view derives it from
@@ -462,8 +482,12 @@ struct ModuleDesc {
     std::vector<InputAxis> inputAxes;
     // What the surface's extra inputs are to the step's function ("hdr", "Xi"), for feedback.
     std::string extraName = "extra";
-    // The named parts of the step's formula (FormulaTerm), for feedback; optional.
-    std::vector<FormulaTerm> formulaTerms;
+    // The named parts of the step's formula (NamedTerm), for feedback; optional.
+    std::vector<NamedTerm> namedTerms;
+    // How many of a failed check's points the term fits evaluate, each fit evaluating the
+    // step's value about 150 times there. 0: 192, or 32 for an estimator (its value costs its
+    // sample count).
+    int namedTermPoints = 0;
 
     const Tolerance& toleranceFor(int component) const {
         return componentTolerances.empty() ? tolerance
