@@ -13,6 +13,7 @@
 #include "grading/grade_step.h"
 #include "ibl/precompute.h"
 #include "render/evaluate.h"
+#include "render/input_digest.h"
 #include "test_support.h"
 #include "util/error.h"
 #include "util/log.h"
@@ -565,6 +566,151 @@ TEST(Headless, ABandIsReusedOnlyForTheInputsItWasBuiltFrom) {
     EXPECT_EQ(counts(), Counts(6, 2));
     evaluateBoth(splitSum, splitSumParams, sky, {}, smaller);
     EXPECT_EQ(counts(), Counts(6, 3));
+}
+
+// The keys of what is kept of a render and of a band (render/input_digest.h): each input
+// changed on its own changes the key; a student's files give no key.
+TEST(InputDigest, EveryDoubleOfASurfaceIsInItsKey) {
+    auto key = [](const Surface& s) {
+        Digest d;
+        addInputs(d, s);
+        return d.h;
+    };
+    Surface base;
+    base.covered = true;
+    const std::uint64_t baseKey = key(base);
+    Surface uncovered = base;
+    uncovered.covered = false;
+    EXPECT_NE(key(uncovered), baseKey);
+    // Every double after `covered`, found by its place, not by a list of names: a field added
+    // to Surface is checked here without a change.
+    const size_t first = offsetof(Surface, position) / sizeof(double);
+    const size_t count = sizeof(Surface) / sizeof(double);
+    ASSERT_GT(count, first + 30);
+    for (size_t i = first; i < count; ++i) {
+        Surface changed = base;
+        double* slots = reinterpret_cast<double*>(&changed);
+        slots[i] += 0.125;
+        EXPECT_NE(key(changed), baseKey) << "double " << i << " of Surface";
+    }
+}
+
+TEST(InputDigest, EveryInputOfARenderIsInItsKey) {
+    Headless h;
+    const LoadedModule& ndf = h.modules.find("ndf");
+    const Scene scene = loadScene(h.paths.scene("sphere-grid"));
+    const ParamValues params(ndf.desc->params);
+    ASSERT_FALSE(scene.lights.empty());
+    ASSERT_FALSE(scene.materials.empty());
+    ASSERT_FALSE(scene.objects.empty());
+    const RenderRequest base{&ndf, &params, &scene, {}, nullptr, 32, 32};
+    const std::optional<std::uint64_t> baseKey = renderInputs(h.renderer, base);
+    ASSERT_TRUE(baseKey.has_value());
+    EXPECT_EQ(renderInputs(h.renderer, base), baseKey);  // a function of the request
+
+    auto changedScene = [&](const char* what, const std::function<void(Scene&)>& change) {
+        Scene s = scene;
+        change(s);
+        RenderRequest r = base;
+        r.scene = &s;
+        EXPECT_NE(renderInputs(h.renderer, r), baseKey) << what;
+    };
+    changedScene("camera position", [](Scene& s) { s.camera.position.x += 0.1; });
+    changedScene("camera target", [](Scene& s) { s.camera.target.y += 0.1; });
+    changedScene("field of view", [](Scene& s) { s.camera.fovY += 1; });
+    changedScene("light position", [](Scene& s) { s.lights[0].position.z += 0.1; });
+    changedScene("light colour", [](Scene& s) { s.lights[0].color.r += 0.1; });
+    changedScene("one light more", [](Scene& s) { s.lights.push_back(s.lights[0]); });
+    changedScene("material albedo", [](Scene& s) { s.materials[0].albedo.g += 0.1; });
+    changedScene("metallic", [](Scene& s) { s.materials[0].metallic += 0.1; });
+    changedScene("roughness", [](Scene& s) { s.materials[0].roughness += 0.1; });
+    changedScene("ao", [](Scene& s) { s.materials[0].ao -= 0.1; });
+    changedScene("occlusion strength", [](Scene& s) { s.materials[0].occlusionStrength -= 0.1; });
+    changedScene("normal scale", [](Scene& s) { s.materials[0].normalScale += 0.1; });
+    changedScene("emissive", [](Scene& s) { s.materials[0].emissive.b += 0.1; });
+    changedScene("a map", [](Scene& s) { s.materials[0].normalMap.key = "other.png"; });
+    changedScene("a map's wrap",
+                 [](Scene& s) { s.materials[0].albedoMap.wrapU = TextureSource::Wrap::Mirror; });
+    changedScene("object place", [](Scene& s) { s.objects[0].translate.x += 0.1; });
+    changedScene("object scale", [](Scene& s) { s.objects[0].scale += 0.1; });
+    changedScene("object material", [](Scene& s) { s.objects[0].material += 1; });
+    changedScene("object model", [](Scene& s) { s.objects[0].model += 1; });
+    changedScene("environment", [](Scene& s) { s.environment = "other.hdr"; });
+
+    auto changedRequest = [&](const char* what, const std::function<void(RenderRequest&)>& change) {
+        RenderRequest r = base;
+        change(r);
+        EXPECT_NE(renderInputs(h.renderer, r), baseKey) << what;
+    };
+    ParamValues turned = params;
+    turned.set("light_dir", glm::normalize(glm::dvec3(-3, 4, 6)));
+    changedRequest("a parameter", [&](RenderRequest& r) { r.params = &turned; });
+    changedRequest("width", [](RenderRequest& r) { r.width = 33; });
+    changedRequest("height", [](RenderRequest& r) { r.height = 31; });
+    changedRequest("view", [](RenderRequest& r) { r.view = "other"; });
+    changedRequest("coarse spheres", [](RenderRequest& r) { r.coarseSpheres = true; });
+    changedRequest("seamless cubes", [](RenderRequest& r) { r.seamlessCubes = false; });
+    changedRequest("isolated points", [](RenderRequest& r) { r.isolatePoints = true; });
+    changedRequest("read surfaces", [](RenderRequest& r) { r.readSurfaces = true; });
+    changedRequest("IBL settings", [](RenderRequest& r) { r.ibl.irradianceSize *= 2; });
+    changedRequest("another module", [&](RenderRequest& r) { r.module = &h.modules.find("g1"); });
+    const std::vector<Surface> points(4);
+    changedRequest("given surfaces", [&](RenderRequest& r) { r.surfaces = &points; });
+    // Not inputs: where a G-buffer comes from (drawn, on disk, kept) returns the same values.
+    RenderRequest cached = base;
+    cached.cacheGBuffer = cached.reuseGBuffer = true;
+    EXPECT_EQ(renderInputs(h.renderer, cached), baseKey);
+    // A student's files are read, not digested: no key.
+    RenderRequest student = base;
+    student.source.dir = "/nonexistent";
+    EXPECT_FALSE(renderInputs(h.renderer, student).has_value());
+}
+
+TEST(InputDigest, EveryInputOfABandIsInItsKey) {
+    Headless h;
+    const ModuleDesc& ndf = *h.modules.find("ndf").desc;
+    const Scene scene = loadScene(h.paths.scene("sphere"));
+    const ParamValues params(ndf.params);
+    const IblSettings ibl = test::smallMaps();
+    std::vector<Surface> surfaces(3);
+    const ReferenceContext context{params, {{glm::dvec3(1, 2, 3), glm::dvec3(1)}}, glm::dvec3(0)};
+    const std::uint64_t baseKey = bandInputs(h.renderer, ndf, scene, context, ibl, surfaces);
+    EXPECT_EQ(bandInputs(h.renderer, ndf, scene, context, ibl, surfaces), baseKey);
+    ParamValues other = params;
+    other.set("light_dir", glm::normalize(glm::dvec3(-3, 4, 6)));
+    EXPECT_NE(bandInputs(h.renderer, ndf, scene, {other, context.lights, context.cameraPosition},
+                         ibl, surfaces),
+              baseKey);
+    EXPECT_NE(
+        bandInputs(h.renderer, ndf, scene,
+                   {params, {{glm::dvec3(1, 2, 4), glm::dvec3(1)}}, glm::dvec3(0)}, ibl, surfaces),
+        baseKey);
+    EXPECT_NE(bandInputs(h.renderer, ndf, scene, {params, {}, glm::dvec3(0)}, ibl, surfaces),
+              baseKey);
+    EXPECT_NE(bandInputs(h.renderer, ndf, scene, {params, context.lights, glm::dvec3(0, 0, 1)}, ibl,
+                         surfaces),
+              baseKey);
+    std::vector<Surface> moved = surfaces;
+    moved[2].roughness = 0.9;
+    EXPECT_NE(bandInputs(h.renderer, ndf, scene, context, ibl, moved), baseKey);
+    moved.pop_back();
+    EXPECT_NE(bandInputs(h.renderer, ndf, scene, context, ibl, moved), baseKey);
+    // The module: another, or the same one with another tolerance (a grader's altered copy).
+    EXPECT_NE(bandInputs(h.renderer, *h.modules.find("g1").desc, scene, context, ibl, surfaces),
+              baseKey);
+    ModuleDesc altered = ndf;
+    altered.tolerance.relative *= 2;
+    const std::uint64_t alteredKey = bandInputs(h.renderer, altered, scene, context, ibl, surfaces);
+    ModuleDesc alteredAgain = altered;
+    alteredAgain.tolerance.relative *= 2;
+    EXPECT_NE(bandInputs(h.renderer, alteredAgain, scene, context, ibl, surfaces), alteredKey);
+    // The environment's maps, for a module that reads them: other settings, another key.
+    const ModuleDesc& splitSum = *h.modules.find("split_sum").desc;
+    const Scene sky = loadScene(h.paths.scene(splitSum.scene));
+    IblSettings smaller = ibl;
+    smaller.irradianceSize = 4;
+    EXPECT_NE(bandInputs(h.renderer, splitSum, sky, context, ibl, surfaces),
+              bandInputs(h.renderer, splitSum, sky, context, smaller, surfaces));
 }
 
 TEST(Headless, BandCacheKeepsTheMostRecentlyUsed) {

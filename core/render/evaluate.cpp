@@ -2,59 +2,9 @@
 
 #include <cstdint>
 
-#include "util/digest.h"
+#include "render/input_digest.h"
 
 namespace pbrlab {
-
-namespace {
-
-// What referenceBand(module, surfaces, context) reads, field by field (a Surface's padding is
-// no input). The module by its id, address, tolerances and alternatives' names: a reference is
-// code, which has no digest here (a grader's altered copy of a module, at another address or at
-// the same one later, differs in its tolerances or alternatives).
-std::uint64_t bandInputs(LabRenderer& renderer, const ModuleDesc& module, const Scene& scene,
-                         const ReferenceContext& context, const IblSettings& ibl,
-                         const std::vector<Surface>& surfaces) {
-    Digest digest;
-    digest.add(module.id);
-    digest.add(reinterpret_cast<std::uintptr_t>(&module));
-    digest.add(module.components);
-    for (int c = 0; c < module.components; ++c) {
-        const Tolerance& t = module.toleranceFor(c);
-        digest.add(glm::dvec4(t.absolute, t.relative, t.ulps, t.outlierFraction));
-    }
-    for (const AcceptedAlternative& a : module.alternatives) {
-        digest.add(a.name);
-        digest.add(a.range);
-    }
-    for (const auto& [name, value] : context.params.all()) {
-        digest.add(name);
-        digest.add(value);
-    }
-    for (const ref::PointLight& light : context.lights) {
-        digest.add(light.position);
-        digest.add(light.color);
-    }
-    digest.add(context.cameraPosition);
-    if (module.needs & NeedsEnvironment)
-        digest.add(
-            renderer.environmentDigest(scene, ibl, (module.needs & NeedsPrecomputedMaps) != 0));
-    digest.add(surfaces.size());
-    for (const Surface& s : surfaces) {
-        digest.add(s.covered);
-        for (const glm::dvec3& v :
-             {s.position, s.normal, s.view, s.light, s.lightPosition, s.lightColor, s.albedoTexel,
-              s.albedo, s.normalTexel, s.emissive})
-            digest.add(v);
-        digest.add(s.tangent);
-        digest.add(s.uv);
-        digest.add(glm::dvec3(s.metallic, s.roughness, s.ao));
-        digest.add(s.extra);
-    }
-    return digest.h;
-}
-
-}  // namespace
 
 const Band* BandCache::find(std::uint64_t inputs) {
     for (auto it = bands_.begin(); it != bands_.end(); ++it)

@@ -10,8 +10,8 @@
 #include "ibl/map_error.h"
 #include "render/converge.h"
 #include "render/evaluate.h"
+#include "render/input_digest.h"
 #include "steps/contract.h"
-#include "util/digest.h"
 #include "util/error.h"
 #include "util/log.h"
 
@@ -241,80 +241,21 @@ Image referencePicture(LabRenderer& renderer, const EvaluationJob& job, const Ib
     return picture;
 }
 
-}  // namespace
-
-namespace {
-
 std::vector<std::shared_ptr<const ModelData>> modelsOf(const Scene& scene) {
     std::vector<std::shared_ptr<const ModelData>> models;
     for (const SceneModel& model : scene.models) models.push_back(model.data);
     return models;
 }
 
-// What the solution's stage reads: the module, its parameters, the scene, the environment's
-// maps and settings, the picture's side; the student's files not, unless a step the view links
-// has its solution withheld (an assignment's site links the student's file of that step in its
-// place; for a step that reads the environment's maps, any step: their passes link steps too):
-// then none, and the stage runs every time.
-std::optional<std::uint64_t> solutionInputs(LabRenderer& renderer, const EvaluationJob& job,
-                                            const IblSettings& ibl) {
-    const ModuleDesc& d = *job.module->desc;
-    const ContractStep* own = findContractStep(d.id);
-    std::vector<const ContractStep*> linked;
-    if (own && !(d.needs & NeedsEnvironment))
-        linked = stepsVisibleFrom(*own);
-    else
-        for (const ContractStep& step : contractSteps()) linked.push_back(&step);
-    for (const ContractStep* step : linked)
-        if (solutionWithheld(*step)) return std::nullopt;
-    Digest digest;
-    digest.add(reinterpret_cast<std::uintptr_t>(job.module));  // the registry outlives us
-    digest.add(d.id);
-    for (const auto& [name, value] : job.params.all()) {
-        digest.add(name);
-        digest.add(value);
-    }
-    const Scene& scene = job.scene;
-    digest.add(scene.camera.position);
-    digest.add(scene.camera.target);
-    digest.add(scene.camera.fovY);
-    digest.add(scene.lights.size());
-    for (const PointLightDesc& light : scene.lights) {
-        digest.add(light.position);
-        digest.add(light.color);
-    }
-    digest.add(scene.materials.size());
-    for (const MaterialDesc& m : scene.materials) {
-        digest.add(m.name);
-        digest.add(m.albedo);
-        digest.add(glm::dvec4(m.metallic, m.roughness, m.ao, m.occlusionStrength));
-        digest.add(m.normalScale);
-        digest.add(m.emissive);
-        for (const TextureSource* map : {&m.albedoMap, &m.metallicRoughnessMap, &m.roughnessMap,
-                                         &m.metallicMap, &m.aoMap, &m.normalMap, &m.emissiveMap}) {
-            digest.add(map->key);
-            digest.add(map->wrapU);
-            digest.add(map->wrapV);
-        }
-    }
-    digest.add(scene.objects.size());
-    for (const ObjectDesc& object : scene.objects) {
-        digest.add(object.model);
-        digest.add(object.translate);
-        digest.add(object.scale);
-        digest.add(object.material);
-    }
-    // A model by its address: the kept solution holds the models, so none other takes it.
-    for (const SceneModel& model : scene.models) {
-        digest.add(reinterpret_cast<std::uintptr_t>(model.data.get()));
-        digest.add(model.materialOffset);
-    }
-    digest.add(scene.environment);
-    digest.add(ibl.key());
-    if (d.needs & NeedsEnvironment)
-        digest.add(renderer.environmentDigest(scene, ibl, (d.needs & NeedsPrecomputedMaps) != 0));
-    digest.add(job.side);
-    return digest.h;
+// The solution's picture as the first stage draws it: what its kept copy is keyed by too
+// (renderInputs), so the key holds whatever the drawing reads. Its probe is the module's.
+RenderRequest solutionRequest(const EvaluationJob& job, const IblSettings& ibl) {
+    RenderRequest request{job.module, &job.params, &job.scene, {}, nullptr, job.side, job.side};
+    request.readSurfaces = true;
+    request.reuseGBuffer = true;  // a parameter's or a light's edit draws none
+    request.seamlessCubes = false;
+    request.ibl = ibl;
+    return request;
 }
 
 }  // namespace
@@ -328,11 +269,7 @@ void EvaluationWorker::runSolution(LabRenderer& renderer, const EvaluationJob& j
     const ModuleDesc& d = *m.desc;
     enter(++stage, stages, "the solution's picture and the reference");
     EvalRequest request;
-    request.render = {&m, &job.params, &job.scene, {}, nullptr, job.side, job.side};
-    request.render.readSurfaces = true;
-    request.render.reuseGBuffer = true;  // a parameter's or a light's edit draws none
-    request.render.seamlessCubes = false;
-    request.render.ibl = ibl;
+    request.render = solutionRequest(job, ibl);
     // Asked between points of the CPU reference (microseconds each): the browser at every
     // 64th (before each stage, stopRequested asks it every time). With a thread, the
     // reference's threads call this at once: the count is only a page's, which has one.
@@ -399,7 +336,7 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
         // The solution's stage depends on these inputs only (none: it may link a student's
         // file).
         const std::optional<std::uint64_t> inputs =
-            job.errorBudget > 0 ? std::nullopt : solutionInputs(renderer, job, ibl);
+            job.errorBudget > 0 ? std::nullopt : renderInputs(renderer, solutionRequest(job, ibl));
         if (inputs && keptSolution_ && keptSolution_->inputs == *inputs) {
             // The same picture, band and probe as the last evaluation's: taken, not drawn.
             const KeptSolution& kept = *keptSolution_;
