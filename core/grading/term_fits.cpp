@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 
 #include "pbrlab/named_terms.h"
 
@@ -165,103 +166,73 @@ std::string messageFor(const NamedTerm& t, double e) {
     return head + ": " + question;
 }
 
-}  // namespace
-
-std::string nameTerm(const FeedbackInputs& in) {
-    // PBRLAB_TERM_FITS_DEBUG: every candidate's shares and the time taken, on stderr (how the
-    // figures of docs/grading.md were measured).
-    struct Timer {
-        std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
-        ~Timer() {
-            if (std::getenv("PBRLAB_TERM_FITS_DEBUG"))
-                std::fprintf(stderr, "term fit: %.1f ms\n",
-                             std::chrono::duration<double, std::milli>(
-                                 std::chrono::steady_clock::now() - start)
-                                 .count());
-        }
-    } timer;
-    if (!in.module || !in.context || in.values.empty()) return "";
-    const std::vector<NamedTerm>& terms = in.module->namedTerms;
-    if (terms.empty()) return "";
-    Evaluation ev{
-        in, *in.context, {}, in.module->estimator && in.module->estimator->scaleTolerance > 0};
-    // Up to `budget` points: half of them among the wrong ones, the rest spread over all.
+// Up to `budget` of the failed check's covered points: half of them among those the reference
+// does not explain, the rest spread over all. No index when the reference explains every one.
+Points choosePoints(const FeedbackInputs& in, size_t budget) {
     std::vector<size_t> wrong, right;
     for (size_t i = 0; i < in.values.size(); ++i) {
         if (!in.surfaces[i].covered) continue;
         (near(in, i, in.expected[i]) ? right : wrong).push_back(i);
     }
-    if (wrong.empty()) return "";
-    const size_t budget = in.module->namedTermPoints > 0 ? size_t(in.module->namedTermPoints)
-                          : in.module->estimator         ? 32
-                                                         : 192;
+    Points points;
+    if (wrong.empty()) return points;
     auto spread = [](const std::vector<size_t>& from, size_t count, std::vector<size_t>& to) {
         const size_t n = std::min(count, from.size());
         for (size_t k = 0; k < n; ++k) to.push_back(from[k * from.size() / n]);
     };
-    std::vector<size_t> chosen;
-    spread(wrong, budget - std::min(right.size(), budget / 2), chosen);
-    const size_t fromWrong = chosen.size();
-    spread(right, budget - fromWrong, chosen);
-    ev.points.index = chosen;
-    for (size_t p = 0; p < chosen.size(); ++p) ev.points.wrong.push_back(p < fromWrong);
-    ev.points.wrongCount = int(fromWrong);
+    spread(wrong, budget - std::min(right.size(), budget / 2), points.index);
+    const size_t fromWrong = points.index.size();
+    spread(right, budget - fromWrong, points.index);
+    for (size_t p = 0; p < points.index.size(); ++p) points.wrong.push_back(p < fromWrong);
+    points.wrongCount = int(fromWrong);
+    return points;
+}
 
-    std::vector<Candidate> candidates;
-    auto consider = [&](const NamedTerm& t, double e) {
-        const std::vector<double> d = ev.distances({&t, e});
-        candidates.push_back({&t, e, ev.shareOf(d), Evaluation::medianOf(d), messageFor(t, e)});
-    };
-    for (const NamedTerm& t : terms) {
-        if (t.kind == Kind::Exponent && t.lo < t.hi) {
-            // The exponent that fits: the smallest median distance on a grid over the range,
-            // then golden-section search in the cells around it; then the nice values near it
-            // (2, 1/3, 1/2.2 ...) when they fit as well.
-            const int steps = 80;
-            const double cell = (t.hi - t.lo) / steps;
-            double best = t.lo, bestDistance = 1e300;
-            for (int g = 0; g <= steps; ++g) {
-                const double e = t.lo + cell * g;
-                const double m = ev.medianDistance({&t, e});
-                if (m < bestDistance) bestDistance = m, best = e;
-            }
-            const double golden = 0.5 * (std::sqrt(5.0) - 1);
-            double a = best - cell, b = best + cell;
-            for (int it = 0; it < 30; ++it) {
-                const double x1 = b - golden * (b - a), x2 = a + golden * (b - a);
-                if (ev.medianDistance({&t, x1}) < ev.medianDistance({&t, x2}))
-                    b = x2;
-                else
-                    a = x1;
-            }
-            best = 0.5 * (a + b);
-            const double bestShare = ev.share({&t, best}).all;
-            double chosenExponent = best;
-            for (double nice : niceNear(best)) {
-                if (nice == t.reference) continue;
-                const double s = ev.share({&t, nice}).all;
-                if (s >= bestShare - 0.02) {
-                    chosenExponent = nice;
-                    break;
-                }
-            }
-            if (std::abs(chosenExponent - t.reference) > 1e-6) consider(t, chosenExponent);
-            continue;
-        }
-        std::vector<double> tries = t.tries;
-        if (tries.empty() && t.kind == Kind::Factor)
-            tries = t.reference != 0 ? std::vector<double>{0, 2 * t.reference}
-                                     : std::vector<double>{1, -1};
-        for (double e : tries) consider(t, e);
+// The exponent of `t` that fits: the smallest median distance on a grid over [lo, hi], then
+// golden-section search in the cells around it; then the nice values near it (2, 1/3, 1/2.2
+// ...) when they fit as well. None when the reference's exponent fits best.
+std::optional<double> fittedExponent(Evaluation& ev, const NamedTerm& t) {
+    const int steps = 80;
+    const double cell = (t.hi - t.lo) / steps;
+    double best = t.lo, bestDistance = 1e300;
+    for (int g = 0; g <= steps; ++g) {
+        const double e = t.lo + cell * g;
+        const double m = ev.medianDistance({&t, e});
+        if (m < bestDistance) bestDistance = m, best = e;
     }
-    // Two factors of the whole value added or averaged where the reference multiplies them:
-    // the value with one missing is the rest times the other.
+    const double golden = 0.5 * (std::sqrt(5.0) - 1);
+    double a = best - cell, b = best + cell;
+    for (int it = 0; it < 30; ++it) {
+        const double x1 = b - golden * (b - a), x2 = a + golden * (b - a);
+        if (ev.medianDistance({&t, x1}) < ev.medianDistance({&t, x2}))
+            b = x2;
+        else
+            a = x1;
+    }
+    best = 0.5 * (a + b);
+    const double bestShare = ev.share({&t, best}).all;
+    double chosen = best;
+    for (double nice : niceNear(best)) {
+        if (nice == t.reference) continue;
+        if (ev.share({&t, nice}).all >= bestShare - 0.02) {
+            chosen = nice;
+            break;
+        }
+    }
+    if (std::abs(chosen - t.reference) <= 1e-6) return std::nullopt;
+    return chosen;
+}
+
+// Two factors of the whole value added or averaged where the reference multiplies them: the
+// value with one missing is the rest times the other.
+void addSumsOfFactors(Evaluation& ev, const std::vector<NamedTerm>& terms,
+                      std::vector<Candidate>& candidates) {
+    auto product = [](const NamedTerm& t) {
+        return t.kind == Kind::Factor && t.whole && t.reference == 1;
+    };
     for (size_t a = 0; a < terms.size(); ++a)
         for (size_t b = a + 1; b < terms.size(); ++b) {
             const NamedTerm &ta = terms[a], &tb = terms[b];
-            auto product = [](const NamedTerm& t) {
-                return t.kind == Kind::Factor && t.whole && t.reference == 1;
-            };
             if (!product(ta) || !product(tb)) continue;
             bool shared = false;
             for (int x : ta.knobs)
@@ -280,10 +251,17 @@ std::string nameTerm(const FeedbackInputs& in) {
                                           " instead of multiplied?"});
             }
         }
-    // The best explanation: most of the points the reference does not explain, and most of
-    // all; named only when it explains 90% of both and no other (with another message)
-    // comes within 0.1 of it (the two shares summed). Measured on tests/naming: the named one
-    // explains 100% of both, the next at most 1.37 summed (1.91 for the N.V case below).
+}
+
+// The best explanation: most of the points the reference does not explain, and most of all;
+// named only when it explains 90% of both and no other (with another message) comes within
+// 0.1 of it (the two shares summed). Measured on tests/naming: the named one explains 100% of
+// both, the next at most 1.37 summed (1.91 for the N.V case that follows). Or when its values
+// are 10x closer to the student's (median distance): an estimator's band is wide (5 sigma /
+// sqrt(n)), and two candidates may both lie inside it where only one equals the student's
+// same-sample values (measured: brdf_lut and mc_specular without the division by N.V, 1e-6
+// against 0.27-0.34 for the next candidate).
+std::string bestExplanation(std::vector<Candidate>& candidates) {
     std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
         return a.share.wrong + a.share.all > b.share.wrong + b.share.all;
     });
@@ -294,10 +272,6 @@ std::string nameTerm(const FeedbackInputs& in) {
                          c.median, c.message.c_str());
     const Candidate& best = candidates.front();
     if (best.share.wrong < 0.9 || best.share.all < 0.9) return "";
-    // Or when its values are 10x closer to the student's (median distance): an estimator's
-    // band is wide (5 sigma / sqrt(n)), and two candidates may both lie inside it where only
-    // one equals the student's same-sample values (measured: brdf_lut and mc_specular
-    // without the division by N.V, 1e-6 against 0.27-0.34 for the next candidate).
     for (size_t k = 1; k < candidates.size(); ++k)
         if (candidates[k].message != best.message &&
             candidates[k].share.wrong + candidates[k].share.all >=
@@ -305,6 +279,51 @@ std::string nameTerm(const FeedbackInputs& in) {
             candidates[k].median < 10 * best.median)
             return "";
     return best.message;
+}
+
+}  // namespace
+
+std::string nameTerm(const FeedbackInputs& in) {
+    // PBRLAB_TERM_FITS_DEBUG: every candidate's shares and the time taken, on stderr (how the
+    // figures of docs/grading-measurements.md were measured).
+    struct Timer {
+        std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+        ~Timer() {
+            if (std::getenv("PBRLAB_TERM_FITS_DEBUG"))
+                std::fprintf(stderr, "term fit: %.1f ms\n",
+                             std::chrono::duration<double, std::milli>(
+                                 std::chrono::steady_clock::now() - start)
+                                 .count());
+        }
+    } timer;
+    if (!in.module || !in.context || in.values.empty()) return "";
+    const std::vector<NamedTerm>& terms = in.module->namedTerms;
+    if (terms.empty()) return "";
+    const size_t budget = in.module->namedTermPoints > 0 ? size_t(in.module->namedTermPoints)
+                          : in.module->estimator         ? 32
+                                                         : 192;
+    Evaluation ev{in, *in.context, choosePoints(in, budget),
+                  in.module->estimator && in.module->estimator->scaleTolerance > 0};
+    if (ev.points.index.empty()) return "";
+
+    std::vector<Candidate> candidates;
+    auto consider = [&](const NamedTerm& t, double e) {
+        const std::vector<double> d = ev.distances({&t, e});
+        candidates.push_back({&t, e, ev.shareOf(d), Evaluation::medianOf(d), messageFor(t, e)});
+    };
+    for (const NamedTerm& t : terms) {
+        if (t.kind == Kind::Exponent && t.lo < t.hi) {
+            if (const std::optional<double> e = fittedExponent(ev, t)) consider(t, *e);
+            continue;
+        }
+        std::vector<double> tries = t.tries;
+        if (tries.empty() && t.kind == Kind::Factor)
+            tries = t.reference != 0 ? std::vector<double>{0, 2 * t.reference}
+                                     : std::vector<double>{1, -1};
+        for (double e : tries) consider(t, e);
+    }
+    addSumsOfFactors(ev, terms, candidates);
+    return bestExplanation(candidates);
 }
 
 }  // namespace pbrlab
