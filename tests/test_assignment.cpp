@@ -87,8 +87,9 @@ TEST(Assignment, DefaultsCommentsAndVisibilityPrecedence) {
     EXPECT_EQ(a.points.at("ndotl"), 2);
     EXPECT_EQ(a.points.at("specular"), 4);
     EXPECT_TRUE(a.partialCredit);
-    EXPECT_EQ(a.weights.at("robustness"), 0);  // reported, not deducted, unless weighted
-    EXPECT_EQ(a.weights.at("probe"), 1);
+    EXPECT_EQ(a.weights.at(CheckCategory::Robustness),
+              0);  // reported, not deducted, unless weighted
+    EXPECT_EQ(a.weights.at(CheckCategory::Probe), 1);
     EXPECT_EQ(a.timeLimitSeconds, 60);
     EXPECT_EQ(a.visibilityOf("specular", "probe"), "visible");
     EXPECT_EQ(a.visibilityOf("specular", "scenes"), "after_due_date");
@@ -134,13 +135,13 @@ TEST(Assignment, PartialCreditIsTheWeightsShareOfTheChecksPassedOnceOneShowsWork
     const ModuleGrade& ndotl = r.modules[0];
     const ModuleGrade& ndf = r.modules[1];
     const ModuleGrade& fresnel = r.modules[2];
-    EXPECT_EQ(ndotl.status, "passed");
+    EXPECT_EQ(ndotl.status, GradeStatus::Passed);
     EXPECT_EQ(ndotl.score, 2);  // exactly
     EXPECT_EQ(ndotl.maxScore, 2);
-    EXPECT_EQ(ndf.status, "failed");
+    EXPECT_EQ(ndf.status, GradeStatus::Failed);
     EXPECT_EQ(ndf.maxScore, 3);
     EXPECT_EQ(ndf.score, 0);
-    EXPECT_EQ(fresnel.status, "failed");
+    EXPECT_EQ(fresnel.status, GradeStatus::Failed);
     // contract 1 + scenes 2 x 1/4 + invariants 2 of the weights 1 + 2 + 2 + 2 + 1 + 2 = 10,
     // exactly: every score is a whole number of micro-points.
     EXPECT_EQ(fresnel.score, 0.7);
@@ -265,7 +266,7 @@ TEST(Assignment, AFreshKitScoresZeroAndTheSolutionsFullMarksUnderEveryExampleAss
         const GradeReport k = scored(kit, a);
         EXPECT_EQ(k.score, 0) << a.file;
         for (const ModuleGrade& m : k.modules) {
-            EXPECT_EQ(m.status, "failed") << a.file << " " << m.id;
+            EXPECT_EQ(m.status, GradeStatus::Failed) << a.file << " " << m.id;
             EXPECT_EQ(m.score, 0) << a.file << " " << m.id;
             for (const CategoryScore& c : categoryScores(m, a))
                 EXPECT_EQ(c.score, 0) << a.file << " " << m.id << " " << c.category;
@@ -275,7 +276,7 @@ TEST(Assignment, AFreshKitScoresZeroAndTheSolutionsFullMarksUnderEveryExampleAss
         EXPECT_EQ(s.score, s.maxScore) << a.file;
         EXPECT_GT(s.maxScore, 0) << a.file;
         for (const ModuleGrade& m : s.modules) {
-            EXPECT_EQ(m.status, "passed") << a.file << " " << m.id;
+            EXPECT_EQ(m.status, GradeStatus::Passed) << a.file << " " << m.id;
             EXPECT_EQ(m.score, m.maxScore) << a.file << " " << m.id;
         }
         EXPECT_EQ(toGradescope(s, a)["score"].get<double>(), s.maxScore) << a.file;

@@ -76,7 +76,7 @@ bool contains(const std::string& text, const std::string& part) {
     return text.find(part) != std::string::npos;
 }
 
-using RowKey = std::tuple<std::string, std::string, std::string, double, std::string>;
+using RowKey = std::tuple<std::string, std::string, GradeStatus, double, std::string>;
 std::set<RowKey> rowSet(const std::vector<ClassRow>& rows) {
     std::set<RowKey> set;
     for (const ClassRow& r : rows) set.insert({r.student, r.step, r.status, r.score, r.mistake});
@@ -94,23 +94,23 @@ TEST(Batch, TheClassRowsNameEachStudentsMistakesAndThePageShowsThem) {
     EXPECT_EQ(s.errors, 0u);
     const auto rows = readClassCsv(out / "class.csv");
     ASSERT_EQ(rows.size(), 10u);
-    EXPECT_EQ(row(rows, "alice", "ndf").status, "passed");
-    EXPECT_EQ(row(rows, "alice", "fresnel").status, "passed");
+    EXPECT_EQ(row(rows, "alice", "ndf").status, GradeStatus::Passed);
+    EXPECT_EQ(row(rows, "alice", "fresnel").status, GradeStatus::Passed);
     EXPECT_EQ(row(rows, "alice", "ndf").mistake, "");
-    EXPECT_EQ(row(rows, "bob", "ndf").status, "failed");
+    EXPECT_EQ(row(rows, "bob", "ndf").status, GradeStatus::Failed);
     EXPECT_EQ(row(rows, "bob", "ndf").score, 0);
     EXPECT_TRUE(contains(row(rows, "bob", "ndf").mistake, "alpha = roughness"))
         << row(rows, "bob", "ndf").mistake;
     // The term fit names it first (alpha = roughness^1), exactly; the typical mistake agrees.
-    EXPECT_EQ(row(rows, "bob", "ndf").namedBy, "pattern");
-    EXPECT_EQ(row(rows, "bob", "fresnel").status, "passed");
+    EXPECT_EQ(row(rows, "bob", "ndf").namedBy, NamedBy::Pattern);
+    EXPECT_EQ(row(rows, "bob", "fresnel").status, GradeStatus::Passed);
     EXPECT_EQ(row(rows, "bob", "fresnel").score, 1);
     EXPECT_TRUE(contains(row(rows, "carol", "ndf").mistake, "alpha = roughness"));
     EXPECT_TRUE(contains(row(rows, "carol", "fresnel").mistake, "^4 instead of ^5"))
         << row(rows, "carol", "fresnel").mistake;
-    EXPECT_EQ(row(rows, "dave", "fresnel").status, "compile_error");
-    EXPECT_EQ(row(rows, "erin", "fresnel").status, "missing");
-    EXPECT_EQ(row(rows, "erin", "ndf").status, "passed");
+    EXPECT_EQ(row(rows, "dave", "fresnel").status, GradeStatus::CompileError);
+    EXPECT_EQ(row(rows, "erin", "fresnel").status, GradeStatus::Missing);
+    EXPECT_EQ(row(rows, "erin", "ndf").status, GradeStatus::Passed);
 
     const auto totals = readSummaryCsv(out / "summary.csv");
     ASSERT_EQ(totals.size(), 5u);
@@ -149,7 +149,7 @@ TEST(Batch, ARerunGradesOnlyTheStudentsWhoseFilesChanged) {
     BatchSummary fixed = gradeBatch(c.modules, c.paths, c.options(out));
     EXPECT_EQ(fixed.graded, 1u);
     EXPECT_EQ(fixed.skipped, 4u);
-    EXPECT_EQ(row(readClassCsv(out / "class.csv"), "bob", "ndf").status, "passed");
+    EXPECT_EQ(row(readClassCsv(out / "class.csv"), "bob", "ndf").status, GradeStatus::Passed);
     EXPECT_EQ(fs::last_write_time(out / "alice" / "report.json"), aliceBefore);
 
     // Other settings (here the seed) are other grades: everyone again.

@@ -70,7 +70,7 @@ std::vector<Family> seededFamilies() {
 
 // The statistic a check is judged by, as "larger is worse" where it has one.
 double statistic(const CheckReport& c) {
-    if (c.kind == "values") return c.worstExcess;  // x the tolerance
+    if (c.kind == CheckKind::Values) return c.worstExcess;  // x the tolerance
     if (c.name.rfind("no systematic error", 0) == 0) return std::abs(c.measured);  // |z|
     if (c.name.rfind("the error falls", 0) == 0) return -c.measured;  // the fall, negated
     return c.measured;  // points with the same value; the overall scale

@@ -59,7 +59,8 @@ TEST(Grade, ReferenceSolutionsScoreTheMaximum) {
     ASSERT_EQ(g.modules.modules().size(), contractSteps().size()) << "not all 21 modules load";
     GradeReport r = g.grade(g.kit(true));
     ASSERT_EQ(r.modules.size(), contractSteps().size());
-    for (const auto& m : r.modules) EXPECT_EQ(m.status, "passed") << m.id << ": " << m.message;
+    for (const auto& m : r.modules)
+        EXPECT_EQ(m.status, GradeStatus::Passed) << m.id << ": " << m.message;
     EXPECT_EQ(r.score, r.maxScore);
     std::printf("[ measured ] a correct 21-step submission graded in %.1f s\n", r.seconds);
 }
@@ -87,7 +88,7 @@ TEST(Grade, UntouchedStubsScoreZeroAndNeverCrash) {
     GradeReport r = g.grade(g.kit(false));
     int named = 0;
     for (const auto& m : r.modules) {
-        EXPECT_EQ(m.status, "failed") << m.id << ": " << m.message;
+        EXPECT_EQ(m.status, GradeStatus::Failed) << m.id << ": " << m.message;
         named += contains(m.mistake, "still the kit's stub");
     }
     EXPECT_EQ(r.score, 0);
@@ -108,7 +109,7 @@ TEST(Grade, AnEndlessLoopIsNamedAsSuchNotAsTheStub) {
     const ModuleGrade& m = Grader::find(r, "ndotl");
     // Refused at the loop: in a program of steps 1..4 Mesa keeps the return after the loop and
     // the values are right, so no value check can see it (it gave 0 in a program of all 21).
-    EXPECT_EQ(m.status, "compile_error") << m.message;
+    EXPECT_EQ(m.status, GradeStatus::CompileError) << m.message;
     EXPECT_TRUE(contains(m.message, "ndotl.glsl:3: error: a loop that never ends")) << m.message;
     EXPECT_FALSE(contains(m.message, "stub")) << m.message;
 }
@@ -125,20 +126,20 @@ TEST(Grade, EachProblemCostsOnlyItsOwnStep) {
     std::ofstream(kit / "f0.glsl", std::ios::binary) << std::string("vec3 x\0y;\n", 10);
     fs::remove(kit / "smith.glsl");
     GradeReport r = g.grade(kit, {"albedo", "halfway", "ndotl", "ndf", "g1", "smith", "f0"});
-    EXPECT_EQ(Grader::find(r, "ndf").status, "failed");
+    EXPECT_EQ(Grader::find(r, "ndf").status, GradeStatus::Failed);
     // The typical mistake is named, as a whole sentence.
     EXPECT_TRUE(contains(Grader::find(r, "ndf").message,
                          "typical mistake: alpha = roughness (perceptual roughness not squared)."))
         << Grader::find(r, "ndf").message;
-    EXPECT_EQ(Grader::find(r, "halfway").status, "compile_error");
+    EXPECT_EQ(Grader::find(r, "halfway").status, GradeStatus::CompileError);
     EXPECT_TRUE(
         contains(Grader::find(r, "halfway").message, (kit / "halfway.glsl").string() + ":4"))
         << Grader::find(r, "halfway").message;
     EXPECT_TRUE(contains(Grader::find(r, "albedo").message, "outside the submission"));
     EXPECT_TRUE(contains(Grader::find(r, "f0").message, "NUL bytes"));
-    EXPECT_EQ(Grader::find(r, "smith").status, "missing");
-    EXPECT_EQ(Grader::find(r, "ndotl").status, "passed");
-    EXPECT_EQ(Grader::find(r, "g1").status, "passed");
+    EXPECT_EQ(Grader::find(r, "smith").status, GradeStatus::Missing);
+    EXPECT_EQ(Grader::find(r, "ndotl").status, GradeStatus::Passed);
+    EXPECT_EQ(Grader::find(r, "g1").status, GradeStatus::Passed);
     EXPECT_EQ(r.score, 2);
 }
 
@@ -155,13 +156,13 @@ TEST(Grade, ASymlinkLoopIsRefusedAndEveryOtherStepIsGraded) {
                                       "{\n    return mix(vec3(0.04), albedo, metallic);\n}\n";
     GradeReport r = g.grade(kit, {"halfway", "ndotl", "f0", "fresnel"});
     ASSERT_EQ(r.modules.size(), 4u);
-    EXPECT_EQ(Grader::find(r, "ndotl").status, "failed");
+    EXPECT_EQ(Grader::find(r, "ndotl").status, GradeStatus::Failed);
     EXPECT_TRUE(contains(Grader::find(r, "ndotl").message, "cannot be resolved"))
         << Grader::find(r, "ndotl").message;
-    EXPECT_NE(Grader::find(r, "f0").status, "passed");
+    EXPECT_NE(Grader::find(r, "f0").status, GradeStatus::Passed);
     EXPECT_TRUE(contains(Grader::find(r, "f0").message, "loop-a")) << Grader::find(r, "f0").message;
-    EXPECT_EQ(Grader::find(r, "halfway").status, "passed");
-    EXPECT_EQ(Grader::find(r, "fresnel").status, "passed");
+    EXPECT_EQ(Grader::find(r, "halfway").status, GradeStatus::Passed);
+    EXPECT_EQ(Grader::find(r, "fresnel").status, GradeStatus::Passed);
     EXPECT_EQ(r.score, 2);
     // The report is written.
     const fs::path report = g.dir.path / "report.json";
@@ -179,7 +180,7 @@ TEST(Grade, ANulByteInAnIncludedFileIsRefusedNamingTheFile) {
                                       "{\n    return mix(vec3(0.04), albedo, metallic);\n}\n";
     GradeReport r = g.grade(kit, {"f0"});
     const ModuleGrade& m = Grader::find(r, "f0");
-    EXPECT_NE(m.status, "passed");
+    EXPECT_NE(m.status, GradeStatus::Passed);
     EXPECT_TRUE(contains(m.message, (kit / "helpers.glsl").string()) && contains(m.message, "NUL"))
         << m.message;
 }
@@ -191,8 +192,9 @@ TEST(Grade, BytesThatAreNotUtf8InAMessageStillGiveAReport) {
     std::ofstream(kit / "ndotl.glsl", std::ios::binary)
         << "float lambertCosine(vec3 N, vec3 L)\n{\n    return \xff\xfe(N, L);\n}\n";
     GradeReport r = g.grade(kit, {"ndotl", "g1"});
-    EXPECT_EQ(Grader::find(r, "ndotl").status, "compile_error") << Grader::find(r, "ndotl").message;
-    EXPECT_EQ(Grader::find(r, "g1").status, "passed");
+    EXPECT_EQ(Grader::find(r, "ndotl").status, GradeStatus::CompileError)
+        << Grader::find(r, "ndotl").message;
+    EXPECT_EQ(Grader::find(r, "g1").status, GradeStatus::Passed);
     // Valid JSON, every byte of it.
     const std::string text = jsonText(toJson(r));
     EXPECT_EQ(validUtf8(text), text);
@@ -210,11 +212,11 @@ TEST(Grade, AMacroThatBlowsUpTheCompilerIsReportedAsSuch) {
     std::ofstream(kit / "ndotl.glsl") << bomb;
     GradeReport r = g.grade(kit, {"ndotl", "g1"}, 30);
     const ModuleGrade& m = Grader::find(r, "ndotl");
-    EXPECT_NE(m.status, "passed");
+    EXPECT_NE(m.status, GradeStatus::Passed);
     // Whatever the compiler does with it (a crash, an endless expansion, an error), the
     // message says it happened while compiling, and the next step is graded.
     EXPECT_TRUE(contains(m.message, "compil")) << m.status << ": " << m.message;
-    EXPECT_EQ(Grader::find(r, "g1").status, "passed");
+    EXPECT_EQ(Grader::find(r, "g1").status, GradeStatus::Passed);
 }
 
 TEST(Grade, ATimeLimitKillsTheModuleAndTheReportStillComesOut) {
@@ -225,7 +227,7 @@ TEST(Grade, ATimeLimitKillsTheModuleAndTheReportStillComesOut) {
     GradeReport r = g.grade(kit, {"ndotl", "g1"}, 0.05);
     ASSERT_EQ(r.modules.size(), 2u);
     for (const auto& m : r.modules) {
-        EXPECT_EQ(m.status, "timeout") << m.id;
+        EXPECT_EQ(m.status, GradeStatus::Timeout) << m.id;
         EXPECT_EQ(m.score, 0) << m.id;
     }
     nlohmann::json gs = toGradescope(r);
@@ -247,11 +249,11 @@ TEST(Grade, ATimeBudgetForTheWholeSubmissionEndsItAndSaysWhichStepsItCut) {
     GradeReport r = gradeSubmission(g.modules, g.paths, o);
     ASSERT_EQ(r.modules.size(), 3u);
     const ModuleGrade& first = Grader::find(r, "ndotl");
-    EXPECT_EQ(first.status, "timeout");
+    EXPECT_EQ(first.status, GradeStatus::Timeout);
     EXPECT_TRUE(contains(first.message, "may take 0 s, and that ran out during")) << first.message;
     for (const char* id : {"g1", "smith"}) {
         const ModuleGrade& m = Grader::find(r, id);
-        EXPECT_EQ(m.status, "timeout") << id;
+        EXPECT_EQ(m.status, GradeStatus::Timeout) << id;
         EXPECT_EQ(m.score, 0) << id;
         EXPECT_TRUE(contains(m.message, "not graded: grading the whole submission may take"))
             << id << ": " << m.message;
@@ -260,7 +262,7 @@ TEST(Grade, ATimeBudgetForTheWholeSubmissionEndsItAndSaysWhichStepsItCut) {
     // A budget that does not run out changes nothing.
     o.modules = {"ndotl"};
     o.budgetSeconds = 600;
-    EXPECT_EQ(gradeSubmission(g.modules, g.paths, o).modules.at(0).status, "passed");
+    EXPECT_EQ(gradeSubmission(g.modules, g.paths, o).modules.at(0).status, GradeStatus::Passed);
 }
 
 TEST(Grade, ACpuQuotaSetsHowManyProcessesGradeAtOnce) {
@@ -310,7 +312,7 @@ TEST(Grade, InvariantsAreMeasuredOnTheStudentsFunctionAndDeduct) {
                   fs::copy_options::overwrite_existing);
     GradeReport bad = g.grade(kit, {"ndf"});
     const ModuleGrade& m = bad.modules[0];
-    EXPECT_EQ(m.status, "failed");
+    EXPECT_EQ(m.status, GradeStatus::Failed);
     const nlohmann::json* integral = Grader::check(m, "integral of D");
     ASSERT_NE(integral, nullptr);
     EXPECT_FALSE((*integral)["passed"]);
@@ -396,7 +398,7 @@ TEST(Grade, ARedefinedContractFunctionGetsAHint) {
         << "float lambertCosine(vec3 N, vec3 L) { return max(dot(N, L), 0.0); }\n"
            "float distributionGGX(vec3 N, vec3 H, float roughness) { return 1.0; }\n";
     GradeReport r = g.grade(kit, {"ndf"});
-    EXPECT_EQ(r.modules[0].status, "compile_error");
+    EXPECT_EQ(r.modules[0].status, GradeStatus::CompileError);
     EXPECT_TRUE(contains(r.modules[0].message, "lambertCosine is a contract function"))
         << r.modules[0].message;
 }

@@ -57,7 +57,8 @@ TEST(EstimatorBand, AnEstimatorOffByTenPercentAtTheZenithFailsItsValuesChecks) {
     const StepResult r = gradeStep(renderer, modules.find("irradiance"), paths, source, settings);
     int failedValues = 0;
     for (const CheckReport& c : r.checks)
-        failedValues += c.kind == "values" && c.category == "estimator" && !c.passed;
+        failedValues +=
+            c.kind == CheckKind::Values && c.category == CheckCategory::Estimator && !c.passed;
     EXPECT_FALSE(r.passed);
     EXPECT_GT(failedValues, 0) << "no values check against the converged integral failed";
 }
@@ -71,7 +72,7 @@ TEST(Assignment, AFailedContractCheckScoresTheStepZero) {
                                          "a.json", {"ndf"});
     ModuleGrade g;
     g.id = "ndf";
-    g.status = "failed";
+    g.status = GradeStatus::Failed;
     g.checks = nlohmann::json::parse(R"([
         {"category": "contract", "kind": "contract", "passed": false},
         {"category": "probe", "kind": "values", "passed": true, "shows_work": true},

@@ -98,7 +98,7 @@ vec3 cookTorranceSpecular(vec3 N, vec3 V, vec3 L, vec3 F0, float roughness)
     o.timeoutSeconds = 300;
     const GradeReport r = gradeSubmission(modules, paths, o);
     ASSERT_EQ(r.modules.size(), 1u);
-    EXPECT_EQ(r.modules[0].status, "failed");
+    EXPECT_EQ(r.modules[0].status, GradeStatus::Failed);
     EXPECT_NE(r.modules[0].message.find("NaN on an input its callers produce"), std::string::npos)
         << r.modules[0].message;
     EXPECT_NE(r.modules[0].message.find("your step 9 fresnel"), std::string::npos)
@@ -106,7 +106,7 @@ vec3 cookTorranceSpecular(vec3 N, vec3 V, vec3 L, vec3 F0, float roughness)
     // Stepwise, the student's specular is right: the reference fresnel is clamped.
     o.cumulative = false;
     const GradeReport stepwise = gradeSubmission(modules, paths, o);
-    EXPECT_EQ(stepwise.modules[0].status, "passed") << stepwise.modules[0].message;
+    EXPECT_EQ(stepwise.modules[0].status, GradeStatus::Passed) << stepwise.modules[0].message;
 }
 
 // Per step, the host values its code can read and the values the grade gave each

@@ -103,13 +103,14 @@ Named gradeAndName(const std::vector<Mistake>& all, const GradeSettings& setting
         for (const ModuleGrade& g : r.modules) {
             const Mistake& m = *inRound.at(g.id);
             ++n.graded;
-            EXPECT_EQ(g.status, "failed") << m.file << ": " << g.message;
+            EXPECT_EQ(g.status, GradeStatus::Failed) << m.file << ": " << g.message;
             const bool ok = !m.expect.empty() && g.message.find(m.expect) != std::string::npos;
             n.named += ok;
-            std::printf("[ measured ] %s/%s: %s by %s (%.1f s)%s%s\n", g.id.c_str(),
-                        m.file.filename().c_str(), ok ? "named" : "NOT named",
-                        g.namedBy.empty() ? "nothing" : g.namedBy.c_str(), g.seconds,
-                        ok ? "" : "\n    ", ok ? "" : g.message.c_str());
+            std::printf(
+                "[ measured ] %s/%s: %s by %s (%.1f s)%s%s\n", g.id.c_str(),
+                m.file.filename().c_str(), ok ? "named" : "NOT named",
+                g.namedBy == NamedBy::Nothing ? "nothing" : std::string(nameOf(g.namedBy)).c_str(),
+                g.seconds, ok ? "" : "\n    ", ok ? "" : g.message.c_str());
         }
     }
     EXPECT_EQ(n.graded, int(all.size()));

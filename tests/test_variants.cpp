@@ -127,18 +127,18 @@ TEST_P(VariantTest, CorrectPassesMistakeFailsByAMargin) {
     ASSERT_EQ(r.modules.size(), 1u);
     const ModuleGrade& m = r.modules[0];
     if (v.kind == "correct") {
-        EXPECT_EQ(m.status, "passed") << m.message;
+        EXPECT_EQ(m.status, GradeStatus::Passed) << m.message;
         return;
     }
     // A mistake that does not compile proves nothing about the grader.
-    EXPECT_EQ(m.status, "failed") << m.message;
+    EXPECT_EQ(m.status, GradeStatus::Failed) << m.message;
     const double margin = failureMargin(m);
     std::printf("[ measured ] %s/%s: fails by %.3g x the tolerance\n", v.module.c_str(),
                 v.file.c_str(), margin);
     EXPECT_GE(margin, marginFloor(v.path)) << m.message;
     // A mistake matched to a mutant of the reference is named by the mutant's family; the
     // change itself quotes the reference solution and goes to the instructor only.
-    if (m.namedBy == "mutant") {
+    if (m.namedBy == NamedBy::Mutant) {
         EXPECT_EQ(m.message.find('`'), std::string::npos) << m.message;
         EXPECT_FALSE(m.instructorNote.empty());
     }

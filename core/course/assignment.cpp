@@ -110,8 +110,7 @@ struct Reader {
 };
 
 bool isCategory(const std::string& c) {
-    const auto& all = checkCategories();
-    return std::find(all.begin(), all.end(), c) != all.end();
+    return verdictNamed<CheckCategory>(c).has_value();
 }
 
 }  // namespace
@@ -178,16 +177,18 @@ Assignment parseAssignment(const json& j, const std::string& fileName,
     }
     for (const std::string& s : a.steps) a.points[s] = points.count(s) ? points[s] : defaultPoints;
     // checks: a weight per category; robustness is reported, not deducted, unless weighted.
-    for (const std::string& c : checkCategories()) a.weights[c] = c == "robustness" ? 0 : 1;
+    for (const CheckCategory c : allOf<CheckCategory>())
+        a.weights[c] = c == CheckCategory::Robustness ? 0 : 1;
     if (j.contains("checks")) {
         for (const auto& [key, value] : r.object("checks", j["checks"]).items()) {
-            if (!isCategory(key)) {
+            const std::optional<CheckCategory> category = verdictNamed<CheckCategory>(key);
+            if (!category) {
                 std::string known;
-                for (const std::string& c : checkCategories())
-                    known += (known.empty() ? "" : ", ") + c;
+                for (const CheckCategory c : allOf<CheckCategory>())
+                    known += (known.empty() ? "" : ", ") + std::string(nameOf(c));
                 r.fail("checks." + key, "not a check category (" + known + ")");
             }
-            a.weights[key] = r.number("checks." + key, value, 0, 1e6);
+            a.weights[*category] = r.number("checks." + key, value, 0, 1e6);
         }
     }
     if (j.contains("partial_credit"))
@@ -246,7 +247,8 @@ Assignment loadAssignment(const fs::path& file, const std::vector<std::string>& 
 
 std::vector<CategoryScore> categoryScores(const ModuleGrade& g, const Assignment& a) {
     std::vector<CategoryScore> out;
-    if (!a.partialCredit || (g.status != "passed" && g.status != "failed")) return out;
+    if (!a.partialCredit || (g.status != GradeStatus::Passed && g.status != GradeStatus::Failed))
+        return out;
     // Points say that something of the step was done: none until a values check passed that
     // the kit's stub fails (the grader marks it shows_work). The stub passes the contract,
     // invariants such as 0 <= G <= 1, finite values, robustness, values where the reference
@@ -254,14 +256,14 @@ std::vector<CategoryScore> categoryScores(const ModuleGrade& g, const Assignment
     bool workShown = false;
     for (const json& check : g.checks)
         workShown = workShown || (check.value("shows_work", false) && check.value("passed", false));
-    for (const std::string& c : checkCategories()) {
+    for (const CheckCategory c : allOf<CheckCategory>()) {
         CategoryScore s;
         s.category = c;
         for (const json& check : g.checks) {
-            if (check.value("category", "") != c) continue;
+            if (check.value("category", "") != nameOf(c)) continue;
             // A contract violation reads black where the step may not read: nothing else it
             // measured means anything.
-            if (c == "contract" && !check.value("passed", false)) return {};
+            if (c == CheckCategory::Contract && !check.value("passed", false)) return {};
             const bool passed = check.value("passed", false);
             ++s.checks;
             s.passed += passed;
@@ -298,7 +300,7 @@ void scoreGrade(ModuleGrade& g, const Assignment& a) {
     g.maxScore = roundPoints(a.points.count(g.id) ? a.points.at(g.id) : 1);
     const std::vector<CategoryScore> scores = categoryScores(g, a);
     if (scores.empty()) {
-        g.score = g.status == "passed" ? g.maxScore : 0;
+        g.score = g.status == GradeStatus::Passed ? g.maxScore : 0;
         return;
     }
     g.score = 0;

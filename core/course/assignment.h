@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "grading/verdict.h"
+
 namespace pbrlab {
 
 struct ModuleGrade;
@@ -20,9 +22,9 @@ class ModuleRegistry;
 struct Assignment {
     std::filesystem::path file;
     std::string name;
-    std::vector<std::string> steps;         // in the order of the steps
-    std::map<std::string, double> points;   // every step of `steps`
-    std::map<std::string, double> weights;  // every category of checkCategories()
+    std::vector<std::string> steps;           // in the order of the steps
+    std::map<std::string, double> points;     // every step of `steps`
+    std::map<CheckCategory, double> weights;  // every category
     bool partialCredit = true;
     // Gradescope's visibility by "default", step id, category or "step.category".
     std::map<std::string, std::string> visibility;
@@ -49,7 +51,7 @@ Assignment parseAssignment(const nlohmann::json& j, const std::string& fileName,
 
 // One category of one step's checks, and the points it is worth.
 struct CategoryScore {
-    std::string category;
+    CheckCategory category = CheckCategory::Contract;
     int checks = 0, passed = 0;
     int earning = 0;  // of the passed checks, those that earn (all, or none: categoryScores)
     double score = 0, maxScore = 0;

@@ -174,7 +174,7 @@ Child startChild(const LoadedModule& m, const DataPaths& paths, const GradeOptio
             ModuleGrade failed;
             failed.id = m.desc->id;
             failed.title = m.desc->title;
-            failed.status = "crashed";
+            failed.status = GradeStatus::Crashed;
             failed.message = e.what();
             out = dumpJson(sanitized(gradeJson(failed)));
         }
@@ -213,7 +213,7 @@ ModuleGrade finishChild(Child& c, const GradeOptions& o) {
     }
     const bool compiling = stage.size() >= 7 && stage.compare(stage.size() - 7, 7, "compile") == 0;
     if (c.timedOut && c.outOfBudget) {
-        g.status = "timeout";
+        g.status = GradeStatus::Timeout;
         g.message = "not finished: grading the whole submission may take " +
                     std::to_string(int(o.budgetSeconds)) + " s, and that ran out during " +
                     (stage.empty() ? std::string("this step") : stage) +
@@ -221,25 +221,19 @@ ModuleGrade finishChild(Child& c, const GradeOptions& o) {
         return g;
     }
     if (c.timedOut) {
-        g.status = "timeout";
+        g.status = GradeStatus::Timeout;
         g.message = "killed after " + std::to_string(int(o.timeoutSeconds)) + " s" +
                     (compiling ? " while compiling the shader (a macro that expands without end?)"
                                : " during " + stage + " (an endless loop in the shader?)");
         return g;
     }
     try {
-        json j = json::parse(result);
-        g.status = j.at("status");
-        g.maxScore = j.at("max_score");
-        g.message = j.at("message");
-        g.mistake = j.value("mistake", "");
-        g.namedBy = j.value("named_by", "");
-        g.mistakeGroup = j.value("mistake_group", "");
-        g.instructorNote = j.value("instructor_note", "");
-        g.checks = j.value("checks", json::array());
-        g.seconds = j.value("seconds", 0.0);
+        ModuleGrade child = gradeFromJson(json::parse(result));
+        child.id = g.id;  // the module graded, whatever the child wrote
+        child.title = g.title;
+        g = std::move(child);
     } catch (const std::exception&) {
-        g.status = "crashed";
+        g.status = GradeStatus::Crashed;
         const std::string how = WIFSIGNALED(status) ? std::string("the grading process died (") +
                                                           strsignal(WTERMSIG(status)) + ")"
                                                     : "the grading process ended without a result";
@@ -250,7 +244,7 @@ ModuleGrade finishChild(Child& c, const GradeOptions& o) {
                               : how + (stage.empty() ? "" : " during " + stage);
     }
     // The score follows from the status here, whatever the child wrote.
-    g.score = g.status == "passed" ? g.maxScore : 0;
+    g.score = g.status == GradeStatus::Passed ? g.maxScore : 0;
     return g;
 }
 
@@ -296,7 +290,7 @@ void gradeInChildren(const std::vector<GradeJob>& work, const DataPaths& paths,
                     ModuleGrade& g = grades[order[next]];
                     g.id = job.module->desc->id;
                     g.title = job.module->desc->title;
-                    g.status = "timeout";
+                    g.status = GradeStatus::Timeout;
                     g.message = "not graded: grading the whole submission may take " +
                                 std::to_string(int(o.budgetSeconds)) +
                                 " s, and that ran out before this step (the steps graded "
@@ -445,10 +439,10 @@ GradeReport gradeSubmission(const ModuleRegistry& modules, const DataPaths& path
             std::error_code ec;
             const bool present = fs::exists(fs::symlink_status(file, ec));
             if (!present) {
-                g.status = "missing";
+                g.status = GradeStatus::Missing;
                 g.message = file.filename().string() + " not found";
             } else if (std::string why = screenStudentFile(file, o.submission); !why.empty()) {
-                g.status = "failed";
+                g.status = GradeStatus::Failed;
                 g.message = file.string() + ": " + why;
             } else {
                 work.push_back({&m, o.submission});
@@ -456,7 +450,7 @@ GradeReport gradeSubmission(const ModuleRegistry& modules, const DataPaths& path
             }
         } catch (const std::exception& e) {
             // Whatever went wrong with this file costs this step only.
-            g.status = "failed";
+            g.status = GradeStatus::Failed;
             g.message = file.string() + ": " + e.what();
         }
         report.modules.push_back(std::move(g));
@@ -467,7 +461,7 @@ GradeReport gradeSubmission(const ModuleRegistry& modules, const DataPaths& path
         if (o.scoring)
             o.scoring(g);
         else
-            g.score = g.status == "passed" ? g.maxScore : 0;
+            g.score = g.status == GradeStatus::Passed ? g.maxScore : 0;
         g.message = validUtf8(g.message);
         g.score = roundPoints(g.score);
         g.maxScore = roundPoints(g.maxScore);
@@ -507,13 +501,14 @@ json toGradescope(const GradeReport& r) {
     json tests = json::array();
     std::string summary;
     for (const auto& g : r.modules) {
-        std::string output = g.status + (g.message.empty() ? "" : ": " + g.message);
+        std::string output =
+            std::string(nameOf(g.status)) + (g.message.empty() ? "" : ": " + g.message);
         tests.push_back({{"name", g.id + ": " + g.title},
                          {"score", roundPoints(g.score)},
                          {"max_score", roundPoints(g.maxScore)},
-                         {"status", g.status == "passed" ? "passed" : "failed"},
+                         {"status", g.status == GradeStatus::Passed ? "passed" : "failed"},
                          {"output", output}});
-        summary += g.id + " " + g.status + "\n";
+        summary += g.id + " " + std::string(nameOf(g.status)) + "\n";
     }
     return {{"score", roundPoints(r.score)},
             {"execution_time", r.seconds},

@@ -99,6 +99,14 @@ std::vector<std::pair<int, std::vector<std::string>>> readTable(const fs::path& 
     return records;
 }
 
+// A status or a named_by as class.csv writes them (nameOf).
+template <class E>
+E parseName(const std::string& text, const fs::path& file, int line, const char* what) {
+    if (const std::optional<E> v = verdictNamed<E>(text)) return *v;
+    throw Error(file.string() + ":" + std::to_string(line) + ": " + what + " \"" + text +
+                "\" is not one");
+}
+
 double parseNumber(const std::string& text, const fs::path& file, int line, const char* what) {
     try {
         size_t used = 0;
@@ -121,12 +129,12 @@ std::string escape(const std::string& s) {
     return o;
 }
 
-const char* statusColour(const std::string& status) {
-    return status == "passed"          ? "#6d6"
-           : status == "failed"        ? "#f85"
-           : status == "compile_error" ? "#e5c07b"
-           : status == "missing"       ? "#777"
-                                       : "#c678dd";  // timeout, crashed
+const char* statusColour(GradeStatus status) {
+    return status == GradeStatus::Passed         ? "#6d6"
+           : status == GradeStatus::Failed       ? "#f85"
+           : status == GradeStatus::CompileError ? "#e5c07b"
+           : status == GradeStatus::Missing      ? "#777"
+                                                 : "#c678dd";  // timeout, crashed
 }
 
 // The steps in the order they first appear, and each step's rows.
@@ -255,11 +263,11 @@ std::vector<ClassRow> classRows(const std::string& student, const json& report) 
         ClassRow r;
         r.student = student;
         r.step = m.at("id").get<std::string>();
-        r.status = m.at("status").get<std::string>();
+        r.status = m.at("status").get<GradeStatus>();
         r.score = m.at("score").get<double>();
         r.maxScore = m.at("max_score").get<double>();
         r.mistake = m.value("mistake", "");
-        r.namedBy = m.value("named_by", "");
+        r.namedBy = m.value("named_by", NamedBy::Nothing);
         r.group = m.value("mistake_group", "");
         rows.push_back(std::move(r));
     }
@@ -269,17 +277,20 @@ std::vector<ClassRow> classRows(const std::string& student, const json& report) 
 std::string classCsv(const std::vector<ClassRow>& rows) {
     std::string text = std::string(kClassHeader) + "\n";
     for (const ClassRow& r : rows)
-        text += csvField(r.student) + "," + csvField(r.step) + "," + csvField(r.status) + "," +
-                formatPoints(r.score) + "," + formatPoints(r.maxScore) + "," + csvField(r.mistake) +
-                "," + csvField(r.namedBy) + "," + csvField(r.group) + "\n";
+        text += csvField(r.student) + "," + csvField(r.step) + "," +
+                csvField(std::string(nameOf(r.status))) + "," + formatPoints(r.score) + "," +
+                formatPoints(r.maxScore) + "," + csvField(r.mistake) + "," +
+                csvField(std::string(nameOf(r.namedBy))) + "," + csvField(r.group) + "\n";
     return text;
 }
 
 std::vector<ClassRow> readClassCsv(const fs::path& file) {
     std::vector<ClassRow> rows;
     for (const auto& [line, f] : readTable(file, kClassHeader))
-        rows.push_back({f[0], f[1], f[2], parseNumber(f[3], file, line, "score"),
-                        parseNumber(f[4], file, line, "max_score"), f[5], f[6], f[7]});
+        rows.push_back({f[0], f[1], parseName<GradeStatus>(f[2], file, line, "status"),
+                        parseNumber(f[3], file, line, "score"),
+                        parseNumber(f[4], file, line, "max_score"), f[5],
+                        parseName<NamedBy>(f[6], file, line, "named_by"), f[7]});
     return rows;
 }
 
@@ -333,13 +344,14 @@ std::string classHtml(const std::vector<ClassRow>& rows, const std::vector<Stude
     h << "</p><h2>Steps</h2><table><tr><th>step</th><th>passed</th><th>outcomes</th>"
       << "<th>most common named mistakes (share of the class)</th></tr>\n";
     for (const StepRows& s : byStep(rows)) {
-        std::map<std::string, size_t> statuses;
+        std::map<GradeStatus, size_t> statuses;
         for (const ClassRow* r : s.rows) ++statuses[r->status];
         h << "<tr><td>" << escape(s.step) << "</td><td>"
-          << passBar(statuses["passed"], s.rows.size()) << "<br><small class=muted>"
-          << statuses["passed"] << " of " << s.rows.size() << "</small></td><td>";
-        for (const char* status :
-             {"passed", "failed", "compile_error", "timeout", "crashed", "missing"})
+          << passBar(statuses[GradeStatus::Passed], s.rows.size()) << "<br><small class=muted>"
+          << statuses[GradeStatus::Passed] << " of " << s.rows.size() << "</small></td><td>";
+        for (const GradeStatus status :
+             {GradeStatus::Passed, GradeStatus::Failed, GradeStatus::CompileError,
+              GradeStatus::Timeout, GradeStatus::Crashed, GradeStatus::Missing})
             if (statuses.count(status) && statuses[status])
                 h << "<span class=count><span class=dot style=background:" << statusColour(status)
                   << "></span>" << status << " " << statuses[status] << "</span> ";

@@ -8,14 +8,17 @@
 #include <string>
 #include <vector>
 
+#include "grading/verdict.h"
+
 namespace pbrlab {
 
 // One student's grade at one step, as class.csv holds it.
 struct ClassRow {
     std::string student, step;
-    std::string status;  // passed | failed | compile_error | timeout | missing | crashed
+    GradeStatus status = GradeStatus::Missing;
     double score = 0, maxScore = 0;
-    std::string mistake, namedBy;  // the named mistake and how it was named, or empty
+    std::string mistake;  // the named mistake, or empty
+    NamedBy namedBy = NamedBy::Nothing;
     std::string group;  // the mistake without this student's figures: what the chart counts
 };
 

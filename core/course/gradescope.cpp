@@ -51,7 +51,7 @@ json toGradescope(const GradeReport& r, const Assignment& a) {
         // The step's feedback goes with its first failed row (it names the mistake once).
         bool feedbackGiven = g.message.empty();
         if (categories.empty()) {
-            std::string output = "**" + g.status + "**\n\n";
+            std::string output = "**" + std::string(nameOf(g.status)) + "**\n\n";
             if (!g.message.empty()) output += mdBlock(g.message);
             tests.push_back(
                 {{"name", g.id + ": " + g.title},
@@ -67,10 +67,11 @@ json toGradescope(const GradeReport& r, const Assignment& a) {
         }
         for (size_t k = 0; k < categories.size(); ++k) {
             const CategoryScore& c = categories[k];
+            const std::string category(nameOf(c.category));
             json checks = json::array();
             std::string list;
             for (const json& check : g.checks) {
-                if (check.value("category", "") != c.category) continue;
+                if (check.value("category", "") != category) continue;
                 checks.push_back(check);
                 list += "- " + std::string(check.value("passed", false) ? "passed" : "**failed**") +
                         ": " + mdText(check.value("name", "")) + " (" +
@@ -87,26 +88,26 @@ json toGradescope(const GradeReport& r, const Assignment& a) {
                 output += "\n**Feedback**\n\n" + mdBlock(g.message);
                 feedbackGiven = true;
             }
-            tests.push_back({{"name", g.id + ": " + c.category},
+            tests.push_back({{"name", g.id + ": " + category},
                              {"number", number + "." + std::to_string(k + 1)},
                              {"score", c.score},
                              {"max_score", c.maxScore},
                              {"status", c.earning == c.checks ? "passed" : "failed"},
                              {"output", output},
                              {"output_format", "md"},
-                             {"tags", {g.id, c.category}},
-                             {"visibility", a.visibilityOf(g.id, c.category)},
+                             {"tags", {g.id, category}},
+                             {"visibility", a.visibilityOf(g.id, category)},
                              {"extra_data",
                               {{"step", g.id},
                                {"status", g.status},
-                               {"category", c.category},
+                               {"category", category},
                                {"checks", checks}}}});
         }
         // The summary is shown with the result as a whole: steps whose rows are not visible
         // now are left out of it.
         if (a.visibilityOf(g.id) == "visible")
-            summary += "| " + g.id + " | " + g.status + " | " + formatPoints(g.score) + " / " +
-                       formatPoints(g.maxScore) + " |\n";
+            summary += "| " + g.id + " | " + std::string(nameOf(g.status)) + " | " +
+                       formatPoints(g.score) + " / " + formatPoints(g.maxScore) + " |\n";
     }
     // Every score is a whole number of micro-points (course/autograder.h): the sum is exact.
     double score = 0;

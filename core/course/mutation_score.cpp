@@ -517,10 +517,10 @@ std::vector<ModuleMutation> runMutants(const ModuleRegistry& modules, const Data
             for (size_t i = 0; i < grades.size(); ++i) {
                 MutantOutcome& r = result.mutants[i];
                 const ModuleGrade& grade = grades[i];
-                r.status = grade.status == "passed"          ? "survived"
-                           : grade.status == "compile_error" ? "stillborn"
-                           : grade.status == "failed"        ? "killed"
-                                                             : grade.status;
+                r.status = grade.status == GradeStatus::Passed         ? "survived"
+                           : grade.status == GradeStatus::CompileError ? "stillborn"
+                           : grade.status == GradeStatus::Failed       ? "killed"
+                                                                       : nameOf(grade.status);
                 r.mistake = grade.mistake;
                 r.namedBy = grade.namedBy;
                 for (const auto& c : grade.checks)

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "grading/mutants_mechanical.h"
+#include "grading/verdict.h"
 #include "render/renderer.h"
 #include "steps/plugin_host.h"
 
@@ -34,7 +35,7 @@ struct MutantOutcome {
     std::string status;
     std::string killedBy;  // the first failed check
     std::string mistake;   // the feedback's named mistake (with feedback)
-    std::string namedBy;   // pattern | typical | mutant
+    NamedBy namedBy = NamedBy::Nothing;
     // Survivors: "equivalent" (same values within rounding on the whole domain, and on a
     // semantic mutant's witness), or "differs" (a hole: what and where).
     std::string equivalence, evidence;

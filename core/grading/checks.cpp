@@ -95,8 +95,8 @@ void StepGrader::checkSamplers(const Program& program) {
     const std::vector<std::string> forbidden = LabRenderer::forbiddenSamplers(d_, program);
     CheckReport c;
     c.name = "reads only the inputs this step may read";
-    c.kind = "contract";
-    c.category = "contract";
+    c.kind = CheckKind::Contract;
+    c.category = CheckCategory::Contract;
     c.passed = forbidden.empty();
     if (forbidden.empty()) {
         c.detail = "no map computed by this step's or a later step's reference solution";
@@ -162,8 +162,8 @@ void StepGrader::checkLoopsEnd(const Scene& scene, const Program& program) {
     }
     CheckReport c;
     c.name = "every loop of your files ends";
-    c.kind = "contract";
-    c.category = "contract";
+    c.kind = CheckKind::Contract;
+    c.category = CheckCategory::Contract;
     c.passed = false;
     c.detail = loopCutMessage(traced.loops[loop - 1], traced.loopBudget, cut, int(count));
     loopCut_ = c.detail;
@@ -197,8 +197,8 @@ void StepGrader::gradeInvariants(const Scene& scene) {
     for (const InvariantResult& inv : d_.invariants(evaluator)) {
         CheckReport c;
         c.name = inv.name;
-        c.kind = "invariant";
-        c.category = "invariants";
+        c.kind = CheckKind::Invariant;
+        c.category = CheckCategory::Invariants;
         c.measured = inv.measured;
         c.expected = inv.expected;
         c.passed = inv.holds;
@@ -281,8 +281,8 @@ void StepGrader::gradeCallerInputs(const Scene& scene) {
     };
     CheckReport r;
     r.name = "inputs its callers produce";
-    r.kind = "invariant";
-    r.category = "invariants";
+    r.kind = CheckKind::Invariant;
+    r.category = CheckCategory::Invariants;
     r.expected = "0 NaN or Inf";
     int points = 0, views = 0;
     std::string skipped;
@@ -347,8 +347,8 @@ void StepGrader::gradeRobustness(const Scene& scene) {
     const StabilityResult st = stabilitySweep(renderer_, m_, scene, source_);
     CheckReport c;
     c.name = "robustness on extreme inputs";
-    c.kind = "robustness";
-    c.category = "robustness";
+    c.kind = CheckKind::Robustness;
+    c.category = CheckCategory::Robustness;
     c.deducted = false;
     c.points = st.gpu.compared;
     c.nan = st.gpu.nanCount;

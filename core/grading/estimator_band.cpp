@@ -94,7 +94,7 @@ ValuesRun estimatorRun(const std::string& name, const ModuleDesc& d, const Compa
     const Tolerance& systematic = systematicHere ? *systematicHere : e.systematic;
     ValuesRun run;
     run.report = reportFor(name, d, c, surfaces, systematic.outlierFraction, probe, width);
-    run.report.category = "estimator";
+    run.report.category = CheckCategory::Estimator;
     run.report.detail += "; band: converged integral +- (" + number(systematic.relative) +
                          " of it + " + number(e.sigmas) + " sqrt(sigma^2 / n + its own error^2))";
     run.surfaces = surfaces;
@@ -114,7 +114,7 @@ ValuesRun estimatorRun(const std::string& name, const ModuleDesc& d, const Compa
 CheckReport finiteValues(const std::string& name, const ModuleDesc& d, const Image& value,
                          const std::vector<Surface>& surfaces, const std::string& points) {
     CheckReport finite;
-    finite.category = "estimator";
+    finite.category = CheckCategory::Estimator;
     finite.name = name;
     for (size_t i = 0; i < surfaces.size(); ++i) {
         if (!surfaces[i].covered) continue;
@@ -301,8 +301,8 @@ void StepGrader::gradeConvergence(const Scene& scene, const std::string& environ
     if (counts.size() > 1) {
         CheckReport fall;
         fall.name = "the error falls as the sample count grows" + onEnvironment;
-        fall.kind = "convergence";
-        fall.category = "estimator";
+        fall.kind = CheckKind::Convergence;
+        fall.category = CheckCategory::Estimator;
         const double ratio = meanError.front() / std::max(meanError.back(), 1e-12);
         fall.measured = ratio;
         fall.expected = ">= " + number(e.minimumFall);
@@ -533,11 +533,12 @@ void StepGrader::gradeEstimator(const Scene& scene) {
     // how the picture compares, not a grade (a sub-degree sun decides it).
     ValuesRun quality = runValues(
         "quality: scene " + scene.file.stem().string() + " against the same-sample reference",
-        "estimator", scene, defaults, nullptr, settings_.size, settings_.size, nullptr);
+        CheckCategory::Estimator, scene, defaults, nullptr, settings_.size, settings_.size,
+        nullptr);
     // Reported as a measurement: an estimator with other samples differs from this
     // picture as much as its noise, by design.
     CheckReport& q = quality.report;
-    q.kind = "quality";
+    q.kind = CheckKind::Quality;
     q.deducted = false;
     double sum = 0;
     int count = 0;
@@ -561,7 +562,7 @@ void StepGrader::gradeEstimator(const Scene& scene) {
     if (!q.passed) {
         CheckReport finite = q;
         finite.name = "finite, non-negative values on the scene " + scene.file.stem().string();
-        finite.kind = "values";
+        finite.kind = CheckKind::Values;
         finite.deducted = true;
         finite.detail = std::to_string(q.nan) + " NaN, " + std::to_string(q.inf) + " Inf, " +
                         std::to_string(q.negative) + " negative of " + std::to_string(q.points) +
@@ -638,8 +639,8 @@ void StepGrader::gradeHighCounts(const Scene& judged, const PointSet& probe,
         CheckReport changes;
         changes.name = "uses its sample count: " + std::to_string(fewer) + " and " +
                        std::to_string(n) + " samples give other values";
-        changes.kind = "convergence";
-        changes.category = "estimator";
+        changes.kind = CheckKind::Convergence;
+        changes.category = CheckCategory::Estimator;
         changes.measured = same;
         changes.expected = "< half of " + std::to_string(points) + " points the same";
         // Correct estimators: 0 points the same at every seed measured (docs/grading.md).
@@ -816,8 +817,8 @@ void StepGrader::rescale(const std::string& name, Image& value,
     }
     CheckReport c;
     c.name = name + ": overall scale";
-    c.kind = "convergence";
-    c.category = "estimator";
+    c.kind = CheckKind::Convergence;
+    c.category = CheckCategory::Estimator;
     c.measured = k;
     c.expected = "1 +- " + number(e.scaleTolerance);
     c.passed = std::abs(k - 1) <= e.scaleTolerance;
@@ -887,8 +888,8 @@ void StepGrader::biasTest(const std::vector<PointSet>& sets, int n,
         }
     CheckReport c;
     c.name = "no systematic error at " + std::to_string(n) + " samples" + onEnvironment;
-    c.kind = "convergence";
-    c.category = "estimator";
+    c.kind = CheckKind::Convergence;
+    c.category = CheckCategory::Estimator;
     std::string worst;
     double worstZ = 0;
     for (const auto& [name, r] : regions) {

@@ -88,20 +88,22 @@ struct StepGrader::MutantMatch {
 void StepGrader::explain() {
     if (!loopCut_.empty()) {  // the grade stopped there: the loop is all there is to say
         result_.message = result_.mistake = loopCut_;
-        result_.namedBy = "pattern";
+        result_.namedBy = NamedBy::Pattern;
         result_.mistakeGroup = withoutFigures(loopCut_);
         return;
     }
     // What leads the message: a broken contract (it reads what it may not) explains
     // everything after it; else the values check with its worst input.
     const CheckReport* first = nullptr;
-    for (const char* kind : {"contract", "values", ""})
+    for (const std::optional<CheckKind> kind :
+         {std::optional(CheckKind::Contract), std::optional(CheckKind::Values),
+          std::optional<CheckKind>()})
         for (const CheckReport& c : result_.checks)
-            if (!first && c.deducted && !c.passed && (!*kind || c.kind == kind)) first = &c;
+            if (!first && c.deducted && !c.passed && (!kind || c.kind == *kind)) first = &c;
     std::string message;
     if (first) {
         message = first->name + ": " + first->detail;
-        if (first->kind == "values" && !first->worstAt.empty())
+        if (first->kind == CheckKind::Values && !first->worstAt.empty())
             message += "; at " + first->worstAt + ": yours " +
                        vec(first->worstValue, d_.components) + ", expected " +
                        vec(first->worstExpected, d_.components) + " (accepted " +
@@ -115,7 +117,7 @@ void StepGrader::explain() {
         // derivatives): the patterns below compare points drawn alone on other inputs, where
         // such a function is right, and would name something else.
         result_.mistake = failed_->cause;
-        result_.namedBy = "pattern";
+        result_.namedBy = NamedBy::Pattern;
         result_.mistakeGroup = withoutFigures(failed_->cause);
     } else if (failed_ && settings_.feedback) {
         stage("feedback");
@@ -207,7 +209,7 @@ void StepGrader::explain() {
         }
         bool exact = false;
         result_.mistake = classifyError(in, &exact);
-        if (!result_.mistake.empty()) result_.namedBy = "pattern";
+        if (!result_.mistake.empty()) result_.namedBy = NamedBy::Pattern;
         result_.mistakeGroup = withoutFigures(result_.mistake);
         // A constant output says all there is to say: a typical mistake that is 0 where the
         // reference is not (-L under a clamp) would "match" it on the failed points only.
@@ -225,7 +227,7 @@ void StepGrader::explain() {
         if (!typical.empty()) {
             result_.mistake += (result_.mistake.empty() ? "" : " ") +
                                std::string("It matches a typical mistake: ") + typical;
-            if (!exact) result_.namedBy = "typical";
+            if (!exact) result_.namedBy = NamedBy::Typical;
             result_.mistakeGroup = typical;
         }
         // When no pattern accounts for every point, the mutants of the reference solution:
@@ -235,19 +237,19 @@ void StepGrader::explain() {
             const MutantMatch match = mutantMatch(f, points);
             if (!match.mistake.empty()) {
                 result_.mistake += (result_.mistake.empty() ? "" : " ") + match.mistake;
-                result_.namedBy = "mutant";
+                result_.namedBy = NamedBy::Mutant;
                 result_.mistakeGroup = match.mistake;
                 result_.instructorNote = "the reference with " + match.change;
             }
         }
     }
     for (const CheckReport& c : result_.checks)
-        if (c.deducted && !c.passed && c.kind != "values" && &c != first)
+        if (c.deducted && !c.passed && c.kind != CheckKind::Values && &c != first)
             message += "; " + c.name + ": " + c.detail;
     if (!result_.mistake.empty() && message.find(result_.mistake) != std::string::npos)
         result_.message = message;  // the failed check's own words name it already
     else
-        result_.message = result_.mistake.empty() || (first && first->kind == "contract")
+        result_.message = result_.mistake.empty() || (first && first->kind == CheckKind::Contract)
                               ? message + (result_.mistake.empty() ? "" : " " + result_.mistake)
                               : result_.mistake + " " + message;
 }

@@ -115,8 +115,7 @@ StepResult StepGrader::run() {
 
 // Every check goes in through here.
 void StepGrader::record(const CheckReport& c) {
-    if (c.category.empty())
-        throw Error("grading " + d_.id + ": check '" + c.name + "' has no category");
+    if (!c.category) throw Error("grading " + d_.id + ": check '" + c.name + "' has no category");
     result_.checks.push_back(c);
     if (settings_.stopAtFirstFailure && c.deducted && !c.passed) throw Stopped{};
 }
@@ -200,10 +199,14 @@ StepResult gradeStep(LabRenderer& renderer, const LoadedModule& module, const Da
 }
 
 nlohmann::json toJson(const CheckReport& c) {
-    nlohmann::json j = {{"name", c.name},     {"kind", c.kind},         {"category", c.category},
-                        {"passed", c.passed}, {"deducted", c.deducted}, {"shows_work", c.showsWork},
+    nlohmann::json j = {{"name", c.name},
+                        {"kind", nameOf(c.kind)},
+                        {"category", c.category ? nameOf(*c.category) : ""},
+                        {"passed", c.passed},
+                        {"deducted", c.deducted},
+                        {"shows_work", c.showsWork},
                         {"detail", c.detail}};
-    if (c.kind == "values" || c.kind == "quality") {
+    if (c.kind == CheckKind::Values || c.kind == CheckKind::Quality) {
         j["points"] = c.points;
         j["outside"] = c.outside;
         j["nan"] = c.nan;
@@ -218,7 +221,7 @@ nlohmann::json toJson(const CheckReport& c) {
         j["worst_value"] = arr(c.worstValue);
         j["worst_expected"] = arr(c.worstExpected);
         j["worst_accepted"] = {arr(c.worstLo), arr(c.worstHi)};
-    } else if (c.kind == "robustness") {
+    } else if (c.kind == CheckKind::Robustness) {
         j["points"] = c.points;
         j["nan"] = c.nan;
         j["inf"] = c.inf;

@@ -7,11 +7,13 @@
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "grading/error_patterns.h"
+#include "grading/verdict.h"
 #include "render/evaluate.h"
 
 namespace pbrlab {
@@ -39,21 +41,10 @@ struct GradeSettings {
     std::string sunEnvironment;
 };
 
-// What a check is about, for the weights of an assignment (assignment.h): set where each
-// check is made. contract | probe | scenes | random | sphere_grid | invariants | estimator |
-// robustness
-inline const std::vector<std::string>& checkCategories() {
-    static const std::vector<std::string> categories = {"contract",  "probe",       "scenes",
-                                                        "random",    "sphere_grid", "invariants",
-                                                        "estimator", "robustness"};
-    return categories;
-}
-
 struct CheckReport {
     std::string name;  // "probe", "random inputs", "samples = 7", "integral of D ..."
-    // values | invariant | convergence | robustness | quality
-    std::string kind = "values";
-    std::string category;  // one of checkCategories()
+    CheckKind kind = CheckKind::Values;
+    std::optional<CheckCategory> category;  // set where each check is made
     bool passed = true;
     bool deducted = true;  // robustness and quality are reported, not deducted
     // A values check passed that the step's stub (the kit's starter code) fails: the function
@@ -76,7 +67,7 @@ struct StepResult {
     std::vector<CheckReport> checks;
     std::string message;  // why it failed (the first failed check, the named mistake)
     std::string mistake;  // the mistake recognised from the shape of the error, or empty
-    std::string namedBy;  // pattern | typical | mutant: what named it (empty: nothing)
+    NamedBy namedBy = NamedBy::Nothing;
     // The mistake as a class report counts it: a typical mistake's or a mutant family's name,
     // else the pattern without this student's figures (withoutFigures).
     std::string mistakeGroup;

@@ -86,8 +86,8 @@ void StepGrader::gradeLinearity(const Scene& scene) {
         CheckReport c;
         c.name = name;
         // A broken contract (radiance in, radiance out): it leads the message.
-        c.kind = "contract";
-        c.category = "invariants";
+        c.kind = CheckKind::Contract;
+        c.category = CheckCategory::Invariants;
         c.measured = w.deviation;
         c.expected = "<= " + number(kTolerance) + " of the value";
         c.passed = w.deviation <= kTolerance;

@@ -38,7 +38,7 @@ ModuleGrade gradeModuleHere(LabRenderer& renderer, const LoadedModule& m, const 
     g.title = m.desc->title;
     try {
         const StepResult r = gradeStep(renderer, m, paths, source, settings);
-        g.status = r.passed ? "passed" : "failed";
+        g.status = r.passed ? GradeStatus::Passed : GradeStatus::Failed;
         g.message = r.message;
         g.mistake = r.mistake;
         g.namedBy = r.namedBy;
@@ -48,13 +48,13 @@ ModuleGrade gradeModuleHere(LabRenderer& renderer, const LoadedModule& m, const 
         for (const CheckReport& c : r.checks) g.checks.push_back(toJson(c));
         if (afterGrading) afterGrading();
     } catch (const ShaderError& e) {
-        g.status = "compile_error";
+        g.status = GradeStatus::CompileError;
         g.message = e.what() + compileHints(e.what());
     } catch (const std::exception& e) {
-        g.status = "failed";
+        g.status = GradeStatus::Failed;
         g.message = e.what();
     }
-    g.score = g.status == "passed" ? g.maxScore : 0;
+    g.score = g.status == GradeStatus::Passed ? g.maxScore : 0;
     g.message = validUtf8(g.message);
     return g;
 }
@@ -72,6 +72,23 @@ json gradeJson(const ModuleGrade& g) {
             {"checks", g.checks},
             {"instructor_note", g.instructorNote},
             {"seconds", g.seconds}};
+}
+
+ModuleGrade gradeFromJson(const json& j) {
+    ModuleGrade g;
+    g.id = j.value("id", "");
+    g.title = j.value("title", "");
+    g.status = j.at("status");
+    g.score = j.value("score", 0.0);
+    g.maxScore = j.at("max_score");
+    g.message = j.at("message");
+    g.mistake = j.value("mistake", "");
+    g.namedBy = j.value("named_by", NamedBy::Nothing);
+    g.mistakeGroup = j.value("mistake_group", "");
+    g.instructorNote = j.value("instructor_note", "");
+    g.checks = j.value("checks", json::array());
+    g.seconds = j.value("seconds", 0.0);
+    return g;
 }
 
 std::int64_t toMicroPoints(double points) {

@@ -14,14 +14,13 @@ namespace pbrlab {
 
 struct ModuleGrade {
     std::string id, title;
-    // passed | failed | compile_error | timeout | missing | crashed
-    std::string status = "missing";
+    GradeStatus status = GradeStatus::Missing;
     double score = 0, maxScore = 1;
     std::string message;
-    std::string mistake;         // the mistake named from the shape of the error, when recognised
-    std::string namedBy;         // pattern | typical | mutant (see StepResult)
-    std::string mistakeGroup;    // see StepResult: what a class report counts
-    std::string instructorNote;  // see StepResult: not for the student's eyes
+    std::string mistake;  // the mistake named from the shape of the error, when recognised
+    NamedBy namedBy = NamedBy::Nothing;
+    std::string mistakeGroup;                         // see StepResult: what a class report counts
+    std::string instructorNote;                       // see StepResult: not for the student's eyes
     nlohmann::json checks = nlohmann::json::array();  // every check with what it measured
     double seconds = 0;
 };
@@ -34,8 +33,10 @@ ModuleGrade gradeModuleHere(LabRenderer& renderer, const LoadedModule& module,
                             const GradeSettings& settings,
                             const std::function<void()>& afterGrading = {});
 
-// A grade as the reports write it ("modules" of `grade --json`, `check --json`).
+// A grade as the reports write it ("modules" of `grade --json`, `check --json`), and read
+// back (a grading child's answer, a kept report). Throws on a report that is not one.
 nlohmann::json gradeJson(const ModuleGrade& grade);
+ModuleGrade gradeFromJson(const nlohmann::json& report);
 
 // Points as every report gives them (docs/assignment.md, "Rounding"): whole micro-points.
 std::int64_t toMicroPoints(double points);  // the nearest whole number of micro-points

@@ -118,7 +118,7 @@ private:
 
     // grading/values.cpp
     // `ibl`: the settings of the precomputed maps the view reads (and the reference with it).
-    ValuesRun runValues(const std::string& name, const std::string& category, const Scene& scene,
+    ValuesRun runValues(const std::string& name, CheckCategory category, const Scene& scene,
                         const ParamValues& params, const std::vector<Surface>* surfaces, int width,
                         int height, const Probe* probe, const IblSettings& ibl = kGradingIbl);
     // Notes the host-provided values a render gave the step's program (StepResult::hostValues).
@@ -129,7 +129,7 @@ private:
     // check is found.
     void noteWork(ValuesRun& run);
     void gradeCase(const std::string& name, GradeCase::Inputs inputs, const Scene& scene,
-                   const ParamValues& params, const std::string& sceneCategory = "scenes");
+                   const ParamValues& params, CheckCategory sceneCategory = CheckCategory::Scenes);
     void gradeValues(const Scene& scene);
     // What the host provides graded over what the host can produce: NUM_LIGHTS from 1 to the
     // most lights a scene may hold, the maps' sizes and mip count (uPrefilterMaxLod) at the ends

@@ -150,9 +150,9 @@ void StepGrader::gradeSunValues(const Scene& scene) {
     const Grid g =
         grid(sunFacingSurfaces(d_, settings_.seed, kSunFacingPoints, sunDirection(judged), 0.5));
     const bool cleanBefore = noFailureSoFar();
-    ValuesRun run =
-        runValues("random inputs facing the sun (" + judged.environment + ")", "random", judged,
-                  ParamValues(d_.params), &g.surfaces, g.width, g.height, nullptr);
+    ValuesRun run = runValues("random inputs facing the sun (" + judged.environment + ")",
+                              CheckCategory::Random, judged, ParamValues(d_.params), &g.surfaces,
+                              g.width, g.height, nullptr);
     if (!run.report.passed)
         if (const std::string cause =
                 sunCause(run.value, run.surfaces, run.band, d_.components, cleanBefore);

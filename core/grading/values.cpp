@@ -228,10 +228,9 @@ void StepGrader::noteHostValues(const Scene& scene, const ParamValues& params,
     for (const ParamDecl& p : d_.params) v[p.uniformName()].insert(p.format(params.vector(p.name)));
 }
 
-ValuesRun StepGrader::runValues(const std::string& name, const std::string& category,
-                                const Scene& scene, const ParamValues& params,
-                                const std::vector<Surface>* surfaces, int width, int height,
-                                const Probe* probe, const IblSettings& ibl) {
+ValuesRun StepGrader::runValues(const std::string& name, CheckCategory category, const Scene& scene,
+                                const ParamValues& params, const std::vector<Surface>* surfaces,
+                                int width, int height, const Probe* probe, const IblSettings& ibl) {
     stage(name);
     noteHostValues(applyParamBindings(scene, d_, params), params, ibl);
     EvalRequest request;
@@ -267,7 +266,7 @@ ValuesRun StepGrader::runValues(const std::string& name, const std::string& cate
 void StepGrader::noteWork(ValuesRun& run) {
     CheckReport& report = run.report;
     if (workShown_ || settings_.stopAtFirstFailure || !report.passed || !report.deducted ||
-        report.kind != "values")
+        report.kind != CheckKind::Values)
         return;
     try {
         if (stubDir_.empty()) {
@@ -329,18 +328,19 @@ void StepGrader::keep(ValuesRun&& run) {
 // The category follows the inputs: the probe, random points of the domain, or a scene
 // (`sceneCategory`: the lesson's sphere grid is weighted on its own).
 void StepGrader::gradeCase(const std::string& name, GradeCase::Inputs inputs, const Scene& scene,
-                           const ParamValues& params, const std::string& sceneCategory) {
+                           const ParamValues& params, CheckCategory sceneCategory) {
     switch (inputs) {
         case GradeCase::Inputs::Probe: {
             const Probe& p = d_.probe;
             const std::vector<Surface> s = probeSurfaces(p);
-            keep(runValues(name, "probe", scene, params, &s, p.width, p.height, &p));
+            keep(runValues(name, CheckCategory::Probe, scene, params, &s, p.width, p.height, &p));
             return;
         }
         case GradeCase::Inputs::Domain: {
             if (!d_.domain) return;
             const Grid g = grid(domainSurfaces(d_, settings_.seed, settings_.domainPoints));
-            keep(runValues(name, "random", scene, params, &g.surfaces, g.width, g.height, nullptr));
+            keep(runValues(name, CheckCategory::Random, scene, params, &g.surfaces, g.width,
+                           g.height, nullptr));
             return;
         }
         case GradeCase::Inputs::Scene:
@@ -357,8 +357,9 @@ void StepGrader::gradeValues(const Scene& scene) {
     gradeCase("random inputs", GradeCase::Inputs::Domain, scene, defaults);
     for (const GradeCase& c : d_.cases) {
         const Scene s = c.scene.empty() ? scene : loadScene(paths_.scene(c.scene));
-        gradeCase(c.name, c.inputs, s, withSets(d_, c.set),
-                  c.scene == lessonGridCase().scene ? "sphere_grid" : "scenes");
+        gradeCase(
+            c.name, c.inputs, s, withSets(d_, c.set),
+            c.scene == lessonGridCase().scene ? CheckCategory::SphereGrid : CheckCategory::Scenes);
     }
     for (const ParamDecl& p : d_.params)
         for (const std::string& assignment : exercisedValues(p)) {
@@ -368,8 +369,8 @@ void StepGrader::gradeValues(const Scene& scene) {
                 const Grid few = grid(domainSurfaces(d_, settings_.seed, kFewPoints));
                 keep(runValues("random inputs with " + assignment + " (" +
                                    std::to_string(kFewPoints) + " points)",
-                               "random", scene, params, &few.surfaces, few.width, few.height,
-                               nullptr));
+                               CheckCategory::Random, scene, params, &few.surfaces, few.width,
+                               few.height, nullptr));
                 continue;
             }
             if (p.binding == ParamBinding::LightDirection) {
@@ -490,7 +491,7 @@ void StepGrader::gradeHostValues(const Scene& scene) {
     // value itself).
     auto before = [&](const std::string& name) {
         for (const CheckReport& c : result_.checks)
-            if (c.kind == "values" && c.deducted && !c.passed) return std::string();
+            if (c.kind == CheckKind::Values && c.deducted && !c.passed) return std::string();
         std::string values;
         for (const std::string& v : result_.hostValues[name])
             values += (values.empty() ? "" : ", ") + v;
@@ -521,8 +522,8 @@ void StepGrader::gradeHostValues(const Scene& scene) {
             ValuesRun run = runValues(
                 "random inputs with " + n + " lights (NUM_LIGHTS = " + n + ")" +
                     (&points == &few ? " (" + std::to_string(kFewPoints) + " points)" : ""),
-                "random", withLights(scene, count), defaults, &points.surfaces, points.width,
-                points.height, nullptr);
+                CheckCategory::Random, withLights(scene, count), defaults, &points.surfaces,
+                points.width, points.height, nullptr);
             const bool failed = !run.report.passed && run.report.deducted;
             const std::string what =
                 failed && !settings_.stopAtFirstFailure ? lightsDiagnosis(scene, count, few) : "";
@@ -549,7 +550,7 @@ void StepGrader::gradeHostValues(const Scene& scene) {
          {std::pair{"the smallest maps", smallest}, std::pair{"the largest maps", largest}}) {
         ValuesRun run = runValues(
             std::string("random inputs with ") + label + " the host makes (" + mapValues(s) + ")",
-            "random", scene, defaults, &g.surfaces, g.width, g.height, nullptr, s);
+            CheckCategory::Random, scene, defaults, &g.surfaces, g.width, g.height, nullptr, s);
         // Taken apart only where it can name the value: everything before passed.
         if (!run.report.passed && passedBefore && !settings_.stopAtFirstFailure) {
             std::string wrong;

@@ -93,9 +93,9 @@ private:
         // The points as every report has them (formatPoints: the micro-point, no rounding
         // of its own).
         for (const auto& g : report.modules)
-            std::printf("%-12s %-14s %8s / %-8s %s\n", g.id.c_str(), g.status.c_str(),
-                        formatPoints(g.score).c_str(), formatPoints(g.maxScore).c_str(),
-                        g.message.substr(0, 160).c_str());
+            std::printf("%-12s %-14s %8s / %-8s %s\n", g.id.c_str(),
+                        std::string(nameOf(g.status)).c_str(), formatPoints(g.score).c_str(),
+                        formatPoints(g.maxScore).c_str(), g.message.substr(0, 160).c_str());
         std::printf("total %s / %s in %.1f s\n", formatPoints(report.score).c_str(),
                     formatPoints(report.maxScore).c_str(), report.seconds);
         if (!jsonFile_.empty()) writeFileAtomically(jsonFile_, jsonText(toJson(report)));
@@ -104,7 +104,7 @@ private:
         if (!options_.html.empty()) writeHtml(report, options_.html);
         if (failUnlessPassed_)
             for (const auto& g : report.modules)
-                if (g.status != "passed") return 1;
+                if (g.status != GradeStatus::Passed) return 1;
         return 0;
     }
 
@@ -345,7 +345,7 @@ public:
             for (const MutantOutcome& m : r.mutants)
                 if (m.status == "killed")
                     ++x.failed, x.byAny += !m.mistake.empty(),
-                        x.byPattern += m.namedBy == "pattern";
+                        x.byPattern += m.namedBy == NamedBy::Pattern;
             bad += x.notEquivalent;
             if (x.made > 0) print(r.id, r.kind, x);  // (a family that fits nowhere in a step)
             Row& t = totals[r.kind];

@@ -118,9 +118,9 @@ public:
             const std::string at = c.value("worst_at", c.value("first_problem", ""));
             if (!passed && !at.empty()) std::printf("     worst at %s\n", at.c_str());
         }
-        if (g.status != "passed") std::printf("%s\n", g.message.c_str());
-        std::printf("%s: %s (%.1f s)\n", id_.c_str(), g.status == "passed" ? "PASS" : "FAIL",
-                    g.seconds);
+        if (g.status != GradeStatus::Passed) std::printf("%s\n", g.message.c_str());
+        std::printf("%s: %s (%.1f s)\n", id_.c_str(),
+                    g.status == GradeStatus::Passed ? "PASS" : "FAIL", g.seconds);
         if (!json_.empty()) {
             GradeReport one;
             one.submission = grade.submission;
@@ -128,7 +128,7 @@ public:
             writeFileAtomically(json_, jsonText(toJson(one)));
         }
         if (stats_) printStats(session);
-        return g.status == "passed" ? 0 : 1;
+        return g.status == GradeStatus::Passed ? 0 : 1;
     }
 
 private:

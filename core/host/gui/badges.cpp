@@ -18,6 +18,7 @@
 #endif
 
 #include "evaluation_worker.h"
+#include "grading/module_grade.h"
 #include "steps/plugin_host.h"
 
 namespace fs = std::filesystem;
@@ -47,12 +48,11 @@ namespace {
 void takeReport(Badge& badge, const std::string& text) {
     try {
         const nlohmann::json report = nlohmann::json::parse(text);
-        const nlohmann::json& g = report.at("modules").at(0);
-        const std::string result = g.at("status");
-        badge.status = result == "passed"          ? Status::Passes
-                       : result == "compile_error" ? Status::CompileError
-                                                   : Status::Fails;
-        badge.gradeMessage = g.value("message", "");
+        const ModuleGrade g = gradeFromJson(report.at("modules").at(0));
+        badge.status = g.status == GradeStatus::Passed         ? Status::Passes
+                       : g.status == GradeStatus::CompileError ? Status::CompileError
+                                                               : Status::Fails;
+        badge.gradeMessage = g.message;
     } catch (const std::exception&) {
         badge.status = Status::Fails;
         badge.gradeMessage = "the grade did not finish";
