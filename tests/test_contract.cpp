@@ -120,6 +120,9 @@ TEST(Contract, BrokenStepFoldersAreErrorsNamingTheFile) {
          "calls 'nope', which no step folder declares"},
         {R"j("id": "x", "lab": "direct", "order": 45, "function": "float f()", "calls": ["ndf"])j",
          "calls 'ndf', which comes after it"},
+        {R"j("id": "x", "lab": "direct", "order": 45, "function": "float f()",
+             "helpers": [{"function": "float g()"}])j",
+         "each \"helpers\" entry names its \"function\""},
     };
     for (const Case& c : cases) {
         test::TempDir extra;

@@ -120,6 +120,14 @@ ContractStep readStep(const fs::path& file) {
                             "\"model\", one of the two");
             s.gallery.push_back(v);
         }
+        for (const json& helper : j.value("helpers", json::array())) {
+            ContractStep::Helper h{helper.value("function", ""), helper.value("file", "")};
+            if (h.function.empty() || h.file.empty())
+                throw Error(file.string() +
+                            ": each \"helpers\" entry names its \"function\" (the GLSL "
+                            "signature) and its \"file\" (in shaders/)");
+            s.helpers.push_back(h);
+        }
     } catch (const json::exception& e) {
         throw Error(file.string() + ": a field has the wrong type (" + e.what() + ")");
     }
@@ -226,9 +234,11 @@ const std::vector<ContractStep>& contractSteps() {
     return *c.loads.back();
 }
 
-const std::vector<ContractHelper>& contractHelpers() {
-    static const std::vector<ContractHelper> helpers = {
-        {kFresnelSchlickRoughness, "fresnel_roughness.glsl", "split_sum"}};
+std::vector<ContractHelper> contractHelpers() {
+    std::vector<ContractHelper> helpers;
+    for (const ContractStep& s : contractSteps())
+        for (const ContractStep::Helper& h : s.helpers)
+            helpers.push_back({h.function, h.file, s.id});
     return helpers;
 }
 

@@ -43,6 +43,14 @@ struct ContractStep {
         std::string scene, model;
     };
     std::vector<GalleryView> gallery;
+    // Functions the host provides from this step on (step.json "helpers"), each defined in a
+    // file of shaders/: split_sum introduces fresnelSchlickRoughness, which its lesson needs
+    // and which is Schlick's Fresnel at roughness 0, so no earlier step may call it.
+    struct Helper {
+        std::string function;  // the GLSL signature
+        std::string file;      // in shaders/
+    };
+    std::vector<Helper> helpers;
     std::filesystem::path folder;  // step.json, solution.glsl, view.glsl, README.md, ...
     // The folder holds starter.glsl and no solution.glsl (solutionWithheld): read once, with
     // step.json, not on every program's recipe.
@@ -63,17 +71,13 @@ void addStepRoot(const std::filesystem::path& root);
 const std::vector<ContractStep>& contractSteps();
 
 // A contract helper: a function the host provides besides the steps' own (shaders/<file>),
-// callable from the step that introduces it on. Today one: fresnelSchlickRoughness, which only
-// split_sum's lesson needs (and which is Schlick's Fresnel itself at roughness 0, so an earlier
-// step that could call it would not compute its own Fresnel).
+// callable from the step that introduces it on (ContractStep::helpers), in step order.
 struct ContractHelper {
     std::string function;      // the GLSL signature
     std::string file;          // the file in shaders/ that defines it
     std::string introducedBy;  // the id of the step whose lesson introduces it
 };
-inline constexpr const char* kFresnelSchlickRoughness =
-    "vec3 fresnelSchlickRoughness(float cosTheta, vec3 F0, float roughness)";
-const std::vector<ContractHelper>& contractHelpers();
+std::vector<ContractHelper> contractHelpers();
 
 // The function a GLSL signature declares: "vec3 fresnelSchlick(float cosTheta, vec3 F0)" ->
 // "fresnelSchlick".
