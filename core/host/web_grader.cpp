@@ -64,7 +64,7 @@ EMSCRIPTEN_KEEPALIVE char* pbrlab_grade(const char* id) {
         grade = pbrlab::gradeModuleHere(renderer, grader.modules.find(id), grader.paths,
                                         {kSubmission, false}, settings);
     } catch (const std::exception& e) {
-        grade.status = GradeStatus::Failed;
+        grade.status = pbrlab::GradeStatus::Failed;
         grade.message = pbrlab::validUtf8(std::string("the grader could not start: ") + e.what());
     }
     const nlohmann::json report = {{"submission", kSubmission},
