@@ -50,10 +50,8 @@ struct Evaluation {
     const ReferenceContext& context;
     Points points;
     bool rescaled;  // the grader divided the values by their median ratio (irradiance)
-    int evaluations = 0;
 
     std::vector<dvec3> values(const Variant& v) {
-        ++evaluations;
         std::vector<dvec3> out;
         for (size_t i : points.index)
             out.push_back(v.term->value(in.surfaces[i], context, v.exponent));
