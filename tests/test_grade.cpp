@@ -422,3 +422,48 @@ TEST(Grade, TheBadgeAgreesWithTheGrade) {
         EXPECT_EQ(badge.message, Grader::find(r, id).message) << id;
     }
 }
+
+// A report reads back as the grade it was (gradeJson, then gradeFromJson), and the page's own
+// reports (id, status, message only: a file that never finished) read as grades too; a status
+// that is not one of grading/verdict.h's names is an error naming it.
+TEST(Grade, AReportReadsBackAsTheGradeItWas) {
+    ModuleGrade g;
+    g.id = "ndf";
+    g.title = "GGX";
+    g.status = GradeStatus::Failed;
+    g.score = 0;
+    g.maxScore = 2.5;
+    g.message = "probe: ...";
+    g.mistake = "Your value fits alpha = roughness^1";
+    g.namedBy = NamedBy::Pattern;
+    g.mistakeGroup = "alpha";
+    g.instructorNote = "note";
+    g.checks = nlohmann::json::array({{{"name", "probe"}}});
+    g.seconds = 1.5;
+    const ModuleGrade back = gradeFromJson(gradeJson(g));
+    EXPECT_EQ(back.id, g.id);
+    EXPECT_EQ(back.title, g.title);
+    EXPECT_EQ(back.status, g.status);
+    EXPECT_EQ(back.maxScore, g.maxScore);
+    EXPECT_EQ(back.message, g.message);
+    EXPECT_EQ(back.mistake, g.mistake);
+    EXPECT_EQ(back.namedBy, g.namedBy);
+    EXPECT_EQ(back.mistakeGroup, g.mistakeGroup);
+    EXPECT_EQ(back.instructorNote, g.instructorNote);
+    EXPECT_EQ(back.checks, g.checks);
+    EXPECT_EQ(back.seconds, g.seconds);
+
+    const ModuleGrade page = gradeFromJson(
+        {{"id", "ndf"}, {"status", "timeout"}, {"message", "ndf.glsl did not finish"}});
+    EXPECT_EQ(page.status, GradeStatus::Timeout);
+    EXPECT_EQ(page.message, "ndf.glsl did not finish");
+
+    EXPECT_THROW(gradeFromJson({{"id", "ndf"}, {"message", "no status"}}), std::exception);
+    try {
+        gradeFromJson({{"id", "ndf"}, {"status", "passd"}});
+        ADD_FAILURE() << "a status that is not one was read";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("'passd' is not a status"), std::string::npos)
+            << e.what();
+    }
+}

@@ -80,8 +80,8 @@ ModuleGrade gradeFromJson(const json& j) {
     g.title = j.value("title", "");
     g.status = j.at("status");
     g.score = j.value("score", 0.0);
-    g.maxScore = j.at("max_score");
-    g.message = j.at("message");
+    g.maxScore = j.value("max_score", 1.0);
+    g.message = j.value("message", "");
     g.mistake = j.value("mistake", "");
     g.namedBy = j.value("named_by", NamedBy::Nothing);
     g.mistakeGroup = j.value("mistake_group", "");

@@ -34,7 +34,9 @@ ModuleGrade gradeModuleHere(LabRenderer& renderer, const LoadedModule& module,
                             const std::function<void()>& afterGrading = {});
 
 // A grade as the reports write it ("modules" of `grade --json`, `check --json`), and read
-// back (a grading child's answer, a kept report). Throws on a report that is not one.
+// back (a grading child's answer, the page's reports). Only the status is required (the page
+// writes its own timeouts as id, status and message); it throws on a report without one, or
+// with a status or named_by that is not a name of grading/verdict.h.
 nlohmann::json gradeJson(const ModuleGrade& grade);
 ModuleGrade gradeFromJson(const nlohmann::json& report);
 
