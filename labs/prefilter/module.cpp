@@ -107,17 +107,20 @@ ModuleDesc describeModule() {
     // 1.65x, 4 of the 28 points outside; every correct variant at most 0.33x (docs/grading.md).
     e.systematicAtLargestCount = Tolerance{1e-3, 3e-3, 0, 0.04};
     d.estimator = e;
-    d.namedTerms = {
-        {.symbol = "N.L",
-         .name = "the N.L weight of each sample",
-         .value = [](const Surface& s, const ReferenceContext& c,
-                     double e) { return lobeAverage(s, c, e, 1); }},
-        {.symbol = "sum(N.L) / n",
-         .name = "the division by the mean weight sum(N.L) / n (the weighted sum divided by the "
-                 "sample count instead of the sum of weights)",
-         .value = [](const Surface& s, const ReferenceContext& c,
-                     double e) { return lobeAverage(s, c, 1, e); }},
+    NamedTerm weight, mean;
+    weight.symbol = "N.L";
+    weight.name = "the N.L weight of each sample";
+    weight.value = [](const Surface& s, const ReferenceContext& c, double e) {
+        return lobeAverage(s, c, e, 1);
     };
+    mean.symbol = "sum(N.L) / n";
+    mean.name =
+        "the division by the mean weight sum(N.L) / n (the weighted sum divided by the sample "
+        "count instead of the sum of weights)";
+    mean.value = [](const Surface& s, const ReferenceContext& c, double e) {
+        return lobeAverage(s, c, 1, e);
+    };
+    d.namedTerms = {weight, mean};
     // N anywhere, V in its hemisphere, roughness 0 to 1.
     d.domain = [](DomainRandom& r) {
         Surface s;
