@@ -98,9 +98,8 @@ ProgramRecipe LabRenderer::viewRecipe(const LoadedModule& module, const StudentS
         for (const ContractStep& step : contractSteps()) visible.push_back(&step);
     }
     for (const ContractStep* step : visible) {
-        for (const ContractHelper& helper : contractHelpers())
-            if (helper.introducedBy == step->id)
-                r.fragment.push_back(paths_.shaders() / helper.file);
+        for (const ContractStep::Helper& helper : step->helpers)
+            r.fragment.push_back(paths_.shaders() / helper.file);
         r.fragment.push_back(ShaderPart("<contract: " + step->id + ">", step->function + ";\n"));
         ShaderPart part(step->folder / "solution.glsl");
         part.solutionOf = functionName(step->function);

@@ -264,11 +264,10 @@ std::map<std::string, std::string> unreachableFrom(const ContractStep& step) {
                       " cannot call it: a step's file may call the contract functions of its "
                       "own and earlier steps only";
     };
-    for (const ContractStep& s : contractSteps())
-        if (s.step > step.step) add(s.function, s);
-    for (const ContractHelper& h : contractHelpers()) {
-        const ContractStep* introducer = findContractStep(h.introducedBy);
-        if (introducer && introducer->step > step.step) add(h.function, *introducer);
+    for (const ContractStep& s : contractSteps()) {
+        if (s.step <= step.step) continue;
+        add(s.function, s);
+        for (const ContractStep::Helper& h : s.helpers) add(h.function, s);
     }
     return names;
 }
