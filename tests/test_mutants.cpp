@@ -168,19 +168,20 @@ TEST(Mutants, NoMutantThatIsNotEquivalentSurvivesASubset) {
     const std::vector<ModuleMutation> result = runMutants(modules, paths, o);
     ASSERT_EQ(result.size(), o.modules.size());
     for (const ModuleMutation& m : result) {
-        EXPECT_GT(m.count("killed"), 0) << m.id;
+        EXPECT_GT(m.count(MutantStatus::Killed), 0) << m.id;
         std::printf(
             "[ measured ] %s: %zu mutants, %d killed, %d equivalent survivors, %d do not "
             "compile, %.0f s\n",
-            m.id.c_str(), m.mutants.size(), m.count("killed"),
-            m.count("survived") - m.nonEquivalentSurvivors(), m.count("stillborn"), m.seconds);
+            m.id.c_str(), m.mutants.size(), m.count(MutantStatus::Killed),
+            m.count(MutantStatus::Survived) - m.nonEquivalentSurvivors(),
+            m.count(MutantStatus::Stillborn), m.seconds);
         for (const MutantOutcome& x : m.mutants)
-            if (x.status == "survived")
+            if (x.status == MutantStatus::Survived)
                 EXPECT_EQ(x.equivalence, "equivalent")
                     << m.id << ": " << x.mutant.description << "\n"
                     << x.evidence;
             else
-                EXPECT_TRUE(x.status == "killed" || x.status == "stillborn")
+                EXPECT_TRUE(x.status == MutantStatus::Killed || x.status == MutantStatus::Stillborn)
                     << m.id << ": " << x.mutant.description << " " << x.status;
     }
 }

@@ -294,6 +294,81 @@ void setIblField(IblSettings& s, const std::string& field, int value) {
         throw Error("mutants: no IBL setting '" + field + "'");
 }
 
+// A witness's comparisons of the reference solution with the mutant at the step's default
+// parameters: the worst difference so far, and the conditions compared under.
+struct WitnessComparison {
+    LabRenderer& renderer;
+    const LoadedModule& m;
+    const fs::path& mutantDir;
+    const ParamValues& defaults;
+    const std::vector<Surface>& domain;
+    const std::vector<Surface>& probe;
+    Difference worst;
+    std::vector<std::string> where;
+
+    // Keeps `x` when it is the worst difference so far.
+    void take(const Difference& x) {
+        if (x.worst > worst.worst) worst = x;
+    }
+
+    // The probe, the random points and the scene at 64 x 64, in `s` under the maps `ibl`.
+    void everywhere(const Scene& s, const IblSettings& ibl, const std::string& at) {
+        const ModuleDesc& d = *m.desc;
+        where.push_back(at);
+        take(compareRenders(renderer, m, s, defaults, &probe, d.probe.width, d.probe.height,
+                            mutantDir, "probe (" + at + ")", ibl));
+        if (!domain.empty())
+            take(compareRenders(renderer, m, s, defaults, &domain, 64, int(domain.size() / 64),
+                                mutantDir, "random inputs (" + at + ")", ibl));
+        take(compareRenders(renderer, m, s, defaults, nullptr, 64, 64, mutantDir,
+                            "scene (" + at + ")", ibl));
+    }
+};
+
+// Counts: the step's integer parameters at each of `counts`, compared on 64 random points (or
+// the scene at 16 x 16) after the control at n and n / 2. Returns why no value can show the
+// cap (empty: every count was compared).
+std::string compareAtCounts(WitnessComparison& c, const Scene& scene,
+                            const std::vector<int>& counts) {
+    const ModuleDesc& d = *c.m.desc;
+    std::string unseen;
+    for (int n : counts) {
+        ParamValues at(d.params), half(d.params);
+        bool any = false;
+        for (const ParamDecl& p : d.params)
+            if (p.type == ParamType::Int) {
+                at.set(p.name, glm::dvec3(n, 0, 0));
+                half.set(p.name, glm::dvec3(n / 2, 0, 0));
+                any = true;
+            }
+        if (!any) {
+            unseen = "the step's view cannot show: it has no count parameter";
+            continue;
+        }
+        // 64 random points, or a 16 x 16 picture of the scene for a step without a domain.
+        const std::vector<Surface> few(c.domain.begin(),
+                                       c.domain.begin() + std::min<size_t>(64, c.domain.size()));
+        const bool onScene = few.empty();
+        const std::string label =
+            (onScene ? "scene" : "random inputs") + std::string(" at count ") + std::to_string(n);
+        c.where.push_back("count " + std::to_string(n) +
+                          (onScene ? " (the scene at 16 x 16)" : " (64 random points)"));
+        auto compareAt = [&](const fs::path& other, const ParamValues* otherParams) {
+            return compareRenders(c.renderer, c.m, scene, at, onScene ? nullptr : &few,
+                                  onScene ? 16 : 64, onScene ? 16 : 1, other, label, {},
+                                  otherParams);
+        };
+        if (compareAt({}, &half).worst <= 1) {
+            unseen = "no comparison of values can show: the solution's own values at counts " +
+                     std::to_string(n / 2) + " and " + std::to_string(n) +
+                     " agree within float rounding's band there";
+            continue;
+        }
+        c.take(compareAt(c.mutantDir, nullptr));
+    }
+    return unseen;
+}
+
 // A semantic mutant (same values as the reference solution on the graded inputs) compared
 // again where its change would show: its witness. Smaller sets than the graded comparison's
 // (the probe, 512 other random points, the scene at 64 x 64; 64 points at large counts): a
@@ -308,83 +383,35 @@ json witnessEquivalence(LabRenderer& renderer, const LoadedModule& m, const Data
     std::vector<Surface> domain = domainSurfaces(d, 4343, 512);
     domain.resize((domain.size() + 63) / 64 * 64);
     const std::vector<Surface> probe = probeSurfaces(d.probe);
-    Difference worst;
-    std::vector<std::string> where;
-    auto take = [&](const Difference& x) {
-        if (x.worst > worst.worst) worst = x;
-    };
-    auto everywhere = [&](const Scene& s, const IblSettings& ibl, const std::string& at) {
-        where.push_back(at);
-        take(compareRenders(renderer, m, s, defaults, &probe, d.probe.width, d.probe.height,
-                            mutantDir, "probe (" + at + ")", ibl));
-        if (!domain.empty())
-            take(compareRenders(renderer, m, s, defaults, &domain, 64, int(domain.size() / 64),
-                                mutantDir, "random inputs (" + at + ")", ibl));
-        take(compareRenders(renderer, m, s, defaults, nullptr, 64, 64, mutantDir,
-                            "scene (" + at + ")", ibl));
-    };
+    WitnessComparison c{renderer, m, mutantDir, defaults, domain, probe, {}, {}};
     for (double scale : w.environmentScales) {
         Scene s = scene;
         s.environment = scaledEnvironment(renderer, scene.environment, scale);
-        everywhere(s, {}, "the environment x" + number(scale));
+        c.everywhere(s, {}, "the environment x" + number(scale));
     }
     for (const auto& [field, value] : w.ibl) {
         IblSettings ibl;
         setIblField(ibl, field, value);
-        everywhere(scene, ibl, field + " " + std::to_string(value));
+        c.everywhere(scene, ibl, field + " " + std::to_string(value));
     }
-    if (w.otherLights) everywhere(withOtherLights(scene), {}, "another light count and lights");
+    if (w.otherLights) c.everywhere(withOtherLights(scene), {}, "another light count and lights");
     // Counts: the step's integer parameters at n (beyond what the view declares: the contract's
     // count is any uint). The control: the solution's own values at n and n / 2; the same
     // values there (a view that clamps the count, an estimator converged below the band of
     // rounding) mean no value can show the cap, which then differs by construction only.
-    std::string unseen;
-    for (int n : w.counts) {
-        ParamValues at(d.params), half(d.params);
-        bool any = false;
-        for (const ParamDecl& p : d.params)
-            if (p.type == ParamType::Int) {
-                at.set(p.name, glm::dvec3(n, 0, 0));
-                half.set(p.name, glm::dvec3(n / 2, 0, 0));
-                any = true;
-            }
-        if (!any) {
-            unseen = "the step's view cannot show: it has no count parameter";
-            continue;
-        }
-        // 64 random points, or a 16 x 16 picture of the scene for a step without a domain.
-        const std::vector<Surface> few(domain.begin(),
-                                       domain.begin() + std::min<size_t>(64, domain.size()));
-        const bool onScene = few.empty();
-        const std::string label =
-            (onScene ? "scene" : "random inputs") + std::string(" at count ") + std::to_string(n);
-        where.push_back("count " + std::to_string(n) +
-                        (onScene ? " (the scene at 16 x 16)" : " (64 random points)"));
-        auto compareAt = [&](const fs::path& other, const ParamValues* otherParams) {
-            return compareRenders(renderer, m, scene, at, onScene ? nullptr : &few,
-                                  onScene ? 16 : 64, onScene ? 16 : 1, other, label, {},
-                                  otherParams);
-        };
-        if (compareAt({}, &half).worst <= 1) {
-            unseen = "no comparison of values can show: the solution's own values at counts " +
-                     std::to_string(n / 2) + " and " + std::to_string(n) +
-                     " agree within float rounding's band there";
-            continue;
-        }
-        take(compareAt(mutantDir, nullptr));
-    }
+    const std::string unseen = compareAtCounts(c, scene, w.counts);
     std::string conditions;
-    for (const std::string& x : where) conditions += (conditions.empty() ? "" : ", ") + x;
-    return {{"equivalent", worst.worst <= 1 && unseen.empty()},
-            {"worst", worst.worst},
-            {"where", worst.where},
+    for (const std::string& x : c.where) conditions += (conditions.empty() ? "" : ", ") + x;
+    return {{"equivalent", c.worst.worst <= 1 && unseen.empty()},
+            {"worst", c.worst.worst},
+            {"where", c.worst.where},
             {"conditions", conditions},
             {"unseen", unseen}};
 }
 
 }  // namespace
 
-int ModuleMutation::count(const std::string& status) const {
+int ModuleMutation::count(MutantStatus status) const {
     int n = 0;
     for (const MutantOutcome& m : mutants) n += m.status == status;
     return n;
@@ -393,7 +420,7 @@ int ModuleMutation::count(const std::string& status) const {
 int ModuleMutation::nonEquivalentSurvivors() const {
     int n = 0;
     for (const MutantOutcome& m : mutants)
-        n += m.status == "survived" && m.equivalence != "equivalent";
+        n += m.status == MutantStatus::Survived && m.equivalence != "equivalent";
     return n;
 }
 
@@ -468,6 +495,148 @@ void judgeSurvivor(MutantOutcome& r, const ModuleDesc& d, const json& j) {
     }
 }
 
+// Writes the mutants to be graded (every o.every-th of `all`) to folders under `root`, each
+// with an outcome in `result`; returns their grading jobs, in the same order.
+std::vector<GradeJob> writeMutantJobs(const LoadedModule& m, const std::string& kind,
+                                      const std::vector<Mutant>& all, const MutationOptions& o,
+                                      const fs::path& root, ModuleMutation& result) {
+    const ModuleDesc& d = *m.desc;
+    std::vector<GradeJob> jobs;
+    for (size_t i = 0; i < all.size(); ++i) {
+        if (o.every > 1 && i % size_t(o.every) != 0) continue;
+        const fs::path dir = root / d.id / kind / std::to_string(i);
+        fs::create_directories(dir);
+        std::ofstream(dir / (d.id + ".glsl"), std::ios::binary) << all[i].text;
+        jobs.push_back({&m, fs::canonical(dir)});
+        MutantOutcome outcome;
+        outcome.mutant = all[i];
+        result.mutants.push_back(outcome);
+    }
+    return jobs;
+}
+
+// How the mutants are graded: quickly, and on what decides a verdict only.
+GradeOptions mutantGradeOptions(const MutationOptions& o) {
+    GradeOptions g;
+    g.jobs = o.jobs;
+    g.timeoutSeconds = 120;
+    g.settings.robustness = false;  // reported, never deducted: it decides no verdict
+    g.settings.feedback = o.feedback;
+    g.settings.stopAtFirstFailure = !o.feedback;
+    return g;
+}
+
+// The mutant's status from its grade, and the check (or message) that killed it.
+void recordGrade(MutantOutcome& r, const ModuleGrade& grade) {
+    switch (grade.status) {
+        case GradeStatus::Passed:
+            r.status = MutantStatus::Survived;
+            break;
+        case GradeStatus::CompileError:
+            r.status = MutantStatus::Stillborn;
+            break;
+        case GradeStatus::Failed:
+            r.status = MutantStatus::Killed;
+            break;
+        case GradeStatus::Timeout:
+            r.status = MutantStatus::Timeout;
+            break;
+        case GradeStatus::Missing:  // its file is written before the grade: never missing
+        case GradeStatus::Crashed:
+            r.status = MutantStatus::Crashed;
+            break;
+    }
+    r.mistake = grade.mistake;
+    r.namedBy = grade.namedBy;
+    for (const auto& c : grade.checks)
+        if (!c.value("passed", true) && c.value("deducted", true)) {
+            r.killedBy = c.value("name", "");
+            break;
+        }
+    if (r.status == MutantStatus::Killed && r.killedBy.empty())
+        r.killedBy = grade.message.substr(0, 200);
+}
+
+// A survivor (its folder `dir`): not equivalent when its family or its witness says so, else
+// compared with the reference solution in a child process, where GL lives and dies.
+void judgeSurvivorIn(MutantOutcome& r, const fs::path& dir, const LoadedModule& m,
+                     const DataPaths& paths, bool semantic) {
+    const ModuleDesc& d = *m.desc;
+    const Witness& witness = r.mutant.witness;
+    const SemanticFamily* family = semantic ? semanticFamily(r.mutant.family) : nullptr;
+    if (family && family->neverEquivalent) {
+        r.equivalence = "differs";
+        r.evidence = family->neverEquivalent;
+        return;
+    }
+    if (!witness.byConstruction.empty()) {  // no view shows where it differs
+        r.equivalence = "differs";
+        r.evidence =
+            "by construction: " + witness.byConstruction + " (no step's view reaches such inputs)";
+        return;
+    }
+    const std::string text = inChild([&] {
+        auto context = createHeadlessContext();
+        LabRenderer renderer(paths);
+        json j = equivalence(renderer, m, paths, dir);
+        if (j["equivalent"] && !witness.empty())
+            j["witness"] = witnessEquivalence(renderer, m, paths, dir, witness);
+        // A change of meaning is never another correct estimator: no convergence
+        // proof for semantic mutants.
+        if (!j["equivalent"] && d.estimator && !semantic)
+            j["convergence"] = convergence(renderer, m, paths, dir);
+        return j.dump();
+    });
+    try {
+        judgeSurvivor(r, d, json::parse(text));
+    } catch (const std::exception& e) {
+        r.equivalence = "unknown";
+        r.evidence = std::string("no answer from the comparison: ") + e.what();
+    }
+}
+
+// The progress line that sums up one step's mutants of one kind.
+std::string mutationSummary(const ModuleMutation& result) {
+    return result.id + " (" + result.kind +
+           "): " + std::to_string(result.count(MutantStatus::Killed)) + " killed, " +
+           std::to_string(result.count(MutantStatus::Survived)) + " survived (" +
+           std::to_string(result.nonEquivalentSurvivors()) + " not equivalent), " +
+           std::to_string(result.count(MutantStatus::Stillborn)) + " do not compile, " +
+           std::to_string(int(result.seconds)) + " s";
+}
+
+// One step's mutants of one kind: made, written under `root`, graded, survivors judged, and
+// their folders removed.
+ModuleMutation mutateStep(const LoadedModule& m, const std::string& kind,
+                          const std::string& solution, const DataPaths& paths,
+                          const MutationOptions& o, const fs::path& root) {
+    const ModuleDesc& d = *m.desc;
+    const bool semantic = kind == "semantic";
+    const auto start = std::chrono::steady_clock::now();
+    ModuleMutation result;
+    result.id = d.id;
+    result.kind = kind;
+    const std::vector<Mutant> all =
+        semantic ? semanticMutantsOf(m, paths, solution) : generateMutants(solution);
+    const std::vector<GradeJob> jobs = writeMutantJobs(m, kind, all, o, root, result);
+    if (o.progress)
+        o.progress(d.id + ": " + std::to_string(jobs.size()) + " of " + std::to_string(all.size()) +
+                   " " + kind + " mutants");
+    const std::vector<ModuleGrade> grades =
+        jobs.empty() ? std::vector<ModuleGrade>{} : gradeJobs(jobs, paths, mutantGradeOptions(o));
+    for (size_t i = 0; i < grades.size(); ++i) recordGrade(result.mutants[i], grades[i]);
+    // Survivors: the measured proof of equivalence, or the evidence of a hole.
+    for (size_t i = 0; i < result.mutants.size(); ++i)
+        if (result.mutants[i].status == MutantStatus::Survived)
+            judgeSurvivorIn(result.mutants[i], jobs[i].submission, m, paths, semantic);
+    std::error_code ec;
+    fs::remove_all(root / d.id / kind, ec);
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (o.progress) o.progress(mutationSummary(result));
+    return result;
+}
+
 }  // namespace
 
 std::vector<ModuleMutation> runMutants(const ModuleRegistry& modules, const DataPaths& paths,
@@ -484,102 +653,8 @@ std::vector<ModuleMutation> runMutants(const ModuleRegistry& modules, const Data
             std::find(o.modules.begin(), o.modules.end(), d.id) == o.modules.end())
             continue;
         const std::string solution = readFile(m.sourceDir / "solution.glsl");
-        for (const std::string& kind : kinds) {
-            const bool semantic = kind == "semantic";
-            const auto start = std::chrono::steady_clock::now();
-            ModuleMutation result;
-            result.id = d.id;
-            result.kind = kind;
-            const std::vector<Mutant> all =
-                semantic ? semanticMutantsOf(m, paths, solution) : generateMutants(solution);
-            std::vector<GradeJob> jobs;
-            for (size_t i = 0; i < all.size(); ++i) {
-                if (o.every > 1 && i % size_t(o.every) != 0) continue;
-                const fs::path dir = root / d.id / kind / std::to_string(i);
-                fs::create_directories(dir);
-                std::ofstream(dir / (d.id + ".glsl"), std::ios::binary) << all[i].text;
-                jobs.push_back({&m, fs::canonical(dir)});
-                MutantOutcome outcome;
-                outcome.mutant = all[i];
-                result.mutants.push_back(outcome);
-            }
-            if (o.progress)
-                o.progress(d.id + ": " + std::to_string(jobs.size()) + " of " +
-                           std::to_string(all.size()) + " " + kind + " mutants");
-            GradeOptions g;
-            g.jobs = o.jobs;
-            g.timeoutSeconds = 120;
-            g.settings.robustness = false;  // reported, never deducted: it decides no verdict
-            g.settings.feedback = o.feedback;
-            g.settings.stopAtFirstFailure = !o.feedback;
-            const std::vector<ModuleGrade> grades =
-                jobs.empty() ? std::vector<ModuleGrade>{} : gradeJobs(jobs, paths, g);
-            for (size_t i = 0; i < grades.size(); ++i) {
-                MutantOutcome& r = result.mutants[i];
-                const ModuleGrade& grade = grades[i];
-                r.status = grade.status == GradeStatus::Passed         ? "survived"
-                           : grade.status == GradeStatus::CompileError ? "stillborn"
-                           : grade.status == GradeStatus::Failed       ? "killed"
-                                                                       : nameOf(grade.status);
-                r.mistake = grade.mistake;
-                r.namedBy = grade.namedBy;
-                for (const auto& c : grade.checks)
-                    if (!c.value("passed", true) && c.value("deducted", true)) {
-                        r.killedBy = c.value("name", "");
-                        break;
-                    }
-                if (r.status == "killed" && r.killedBy.empty())
-                    r.killedBy = grade.message.substr(0, 200);
-            }
-            // Survivors: the measured proof of equivalence, or the evidence of a hole.
-            for (size_t i = 0; i < result.mutants.size(); ++i) {
-                MutantOutcome& r = result.mutants[i];
-                if (r.status != "survived") continue;
-                const Witness& witness = r.mutant.witness;
-                const SemanticFamily* family = semantic ? semanticFamily(r.mutant.family) : nullptr;
-                if (family && family->neverEquivalent) {
-                    r.equivalence = "differs";
-                    r.evidence = family->neverEquivalent;
-                    continue;
-                }
-                if (!witness.byConstruction.empty()) {  // no view shows where it differs
-                    r.equivalence = "differs";
-                    r.evidence = "by construction: " + witness.byConstruction +
-                                 " (no step's view reaches such inputs)";
-                    continue;
-                }
-                const fs::path dir = jobs[i].submission;
-                const std::string text = inChild([&] {
-                    auto context = createHeadlessContext();
-                    LabRenderer renderer(paths);
-                    json j = equivalence(renderer, m, paths, dir);
-                    if (j["equivalent"] && !witness.empty())
-                        j["witness"] = witnessEquivalence(renderer, m, paths, dir, witness);
-                    // A change of meaning is never another correct estimator: no convergence
-                    // proof for semantic mutants.
-                    if (!j["equivalent"] && d.estimator && !semantic)
-                        j["convergence"] = convergence(renderer, m, paths, dir);
-                    return j.dump();
-                });
-                try {
-                    judgeSurvivor(r, d, json::parse(text));
-                } catch (const std::exception& e) {
-                    r.equivalence = "unknown";
-                    r.evidence = std::string("no answer from the comparison: ") + e.what();
-                }
-            }
-            std::error_code ec;
-            fs::remove_all(root / d.id / kind, ec);
-            result.seconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            if (o.progress)
-                o.progress(d.id + " (" + kind + "): " + std::to_string(result.count("killed")) +
-                           " killed, " + std::to_string(result.count("survived")) + " survived (" +
-                           std::to_string(result.nonEquivalentSurvivors()) + " not equivalent), " +
-                           std::to_string(result.count("stillborn")) + " do not compile, " +
-                           std::to_string(int(result.seconds)) + " s");
-            out.push_back(std::move(result));
-        }
+        for (const std::string& kind : kinds)
+            out.push_back(mutateStep(m, kind, solution, paths, o, root));
     }
     std::error_code ec;
     fs::remove_all(root, ec);
@@ -604,10 +679,10 @@ json toJson(const std::vector<ModuleMutation>& result) {
         modules.push_back({{"id", m.id},
                            {"kind", m.kind},
                            {"made", m.mutants.size()},
-                           {"killed", m.count("killed")},
-                           {"survived", m.count("survived")},
+                           {"killed", m.count(MutantStatus::Killed)},
+                           {"survived", m.count(MutantStatus::Survived)},
                            {"not_equivalent", m.nonEquivalentSurvivors()},
-                           {"stillborn", m.count("stillborn")},
+                           {"stillborn", m.count(MutantStatus::Stillborn)},
                            {"seconds", m.seconds},
                            {"mutants", list}});
     }

@@ -29,10 +29,19 @@ struct MutationOptions {
     std::function<void(const std::string&)> progress;
 };
 
+// What the grader made of a mutant: failed it, passed it, or could not compile it, stopped it or
+// saw it crash (both count as killed).
+enum class MutantStatus { Killed, Survived, Stillborn, Timeout, Crashed };
+template <>
+struct VerdictNames<MutantStatus> {
+    static constexpr std::string_view what = "mutant status";
+    static constexpr std::array<std::string_view, 5> list = {"killed", "survived", "stillborn",
+                                                             "timeout", "crashed"};
+};
+
 struct MutantOutcome {
     Mutant mutant;
-    // killed | survived | stillborn (does not compile) | timeout | crashed
-    std::string status;
+    MutantStatus status = MutantStatus::Killed;
     std::string killedBy;  // the first failed check
     std::string mistake;   // the feedback's named mistake (with feedback)
     NamedBy namedBy = NamedBy::Nothing;
@@ -47,7 +56,7 @@ struct ModuleMutation {
     std::string kind;  // "mechanical" | "semantic"
     std::vector<MutantOutcome> mutants;
     double seconds = 0;
-    int count(const std::string& status) const;
+    int count(MutantStatus status) const;
     int nonEquivalentSurvivors() const;
 };
 

@@ -337,13 +337,14 @@ public:
         for (const ModuleMutation& r : result) {
             Row x;
             x.made = r.mutants.size();
-            x.stillborn = r.count("stillborn");
-            x.killed = r.count("killed") + r.count("timeout") + r.count("crashed");
+            x.stillborn = r.count(MutantStatus::Stillborn);
+            x.killed = r.count(MutantStatus::Killed) + r.count(MutantStatus::Timeout) +
+                       r.count(MutantStatus::Crashed);
             x.notEquivalent = r.nonEquivalentSurvivors();
-            x.equivalent = r.count("survived") - x.notEquivalent;
+            x.equivalent = r.count(MutantStatus::Survived) - x.notEquivalent;
             x.seconds = r.seconds;
             for (const MutantOutcome& m : r.mutants)
-                if (m.status == "killed")
+                if (m.status == MutantStatus::Killed)
                     ++x.failed, x.byAny += !m.mistake.empty(),
                         x.byPattern += m.namedBy == NamedBy::Pattern;
             bad += x.notEquivalent;
@@ -357,7 +358,7 @@ public:
         for (const auto& [kind, t] : totals) print("**all**", kind, t);
         for (const ModuleMutation& r : result)
             for (const MutantOutcome& x : r.mutants)
-                if (x.status == "survived")
+                if (x.status == MutantStatus::Survived)
                     std::printf("%s %s [%s] %s\n    %s\n", r.id.c_str(),
                                 x.equivalence == "equivalent" ? "equivalent" : "SURVIVOR",
                                 x.mutant.family.c_str(), x.mutant.description.c_str(),
