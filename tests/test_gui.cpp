@@ -167,6 +167,28 @@ TEST(Gui, OrbitRedrawsOnlyWhatChanged) {
     EXPECT_LT(median, 40) << log;
 }
 
+// --no-frame-economies: what a GPU would draw, by the same path. Every frame is drawn whole,
+// the live picture at full size (with the economies, the test above: 15 or more of 20 frames
+// drawn in part).
+TEST(Gui, WithoutFrameEconomiesEveryFrameIsDrawnWholeAtFullSize) {
+    if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+    test::TempDir dir;
+    auto shot = dir.path / "orbit.png";
+    ASSERT_EQ(runGui(dir, "ndf --orbit --no-frame-economies --check-redraw", shot, 8), 0)
+        << readText(dir.path / "log.txt");
+    expectWindowShot(shot);
+    const std::string log = readText(dir.path / "log.txt");
+    EXPECT_NE(log.find("of which the picture (median side): 5 frames at 512x512"),
+              std::string::npos)
+        << log;
+    EXPECT_NE(log.find("window redrawn: 8 frames drawn, 0 of them only where they changed"),
+              std::string::npos)
+        << log;
+    EXPECT_NE(log.find("redraw check: 8 frames also drawn whole, 0 pixels differ"),
+              std::string::npos)
+        << log;
+}
+
 TEST(Gui, AnErrorBudgetChoosesTheEnvironmentsSettingsAsPrecomputeDoes) {
     if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
     test::TempDir dir;

@@ -14,6 +14,7 @@
 
 #include "gl/context.h"
 #include "gui/evaluation_worker.h"
+#include "gui/frame_economies.h"
 #include "gui/lab.h"
 #include "gui/live_size.h"
 #include "ibl/map_error.h"
@@ -57,6 +58,17 @@ TEST(LiveView, TheLiveSideFollowsTheTimeBudget) {
     EXPECT_EQ(live.side(), 24);
     live.reset();  // another step
     EXPECT_EQ(live.side(), 512);
+}
+
+// Without the frame economies (--no-frame-economies) the live picture stays at full size
+// whatever its frames or the settled frame took.
+TEST(LiveView, WithoutEconomiesTheLiveSideStaysFull) {
+    for (const bool timed : {true, false}) {
+        LiveSize live(512, timed, false);
+        live.fullSizeTook(5000);
+        for (int i = 0; i < 8; ++i) live.frameTook(100 * LiveSize::kBudgetMs);
+        EXPECT_EQ(live.side(), 512) << "frames timed: " << timed;
+    }
 }
 
 // In a browser a live frame's time is not its picture's (kLiveFramesTimed): the settled
@@ -432,7 +444,7 @@ TEST(LiveView, AnEditReusesTheSolutionsStageAndOtherInputsDoNot) {
         worker.post(job);
         return worker.wait();
     };
-    EvaluationWorker worker(paths, headlessWorkerContext());
+    EvaluationWorker worker(paths, headlessWorkerContext(), FrameEconomies{}.evaluationDrawMs());
     work.write("ndf.glsl", correct);
     const EvaluationResult first = evaluate(worker);
     ASSERT_TRUE(first.renderError.empty()) << first.renderError;
@@ -448,7 +460,7 @@ TEST(LiveView, AnEditReusesTheSolutionsStageAndOtherInputsDoNot) {
     EXPECT_EQ(edited.probeSolution.pixels, first.probeSolution.pixels);
     EXPECT_EQ(edited.surfaces, first.surfaces);  // shared, not copied
     // The wrong file's statistics, as a worker that kept nothing computes them.
-    EvaluationWorker fresh(paths, headlessWorkerContext());
+    EvaluationWorker fresh(paths, headlessWorkerContext(), FrameEconomies{}.evaluationDrawMs());
     const EvaluationResult alone = evaluate(fresh);
     EXPECT_FALSE(alone.solutionKept);
     ASSERT_TRUE(edited.studentRendered);

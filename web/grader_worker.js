@@ -1,5 +1,5 @@
 // The page's grader in a Web Worker (docs/web.md, "The badge in the page"): grader.js is the
-// site's second program (core/host/web_grader.cpp), which grades a step as `pbrlab check`
+// site's second program (core/host/web/grader.cpp), which grades a step as `pbrlab check`
 // does in its own WebGL 2 context on an OffscreenCanvas. Each message {step, files} carries
 // every file of the page's workspace (name -> text), and where the worker keeps what it
 // computed once (store: the page's IndexedDB name; version: the site's); the files replace

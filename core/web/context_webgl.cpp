@@ -63,7 +63,7 @@ private:
 };
 
 // The headless context of the browser: WebGL 2 on an OffscreenCanvas, which a Web Worker
-// may create (the page's grader, core/host/web_grader.cpp), drawn into framebuffers only.
+// may create (the page's grader, core/host/web/grader.cpp), drawn into framebuffers only.
 class OffscreenWebGlContext final : public GlContext {
 public:
     OffscreenWebGlContext() {

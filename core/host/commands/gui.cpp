@@ -49,6 +49,10 @@ public:
         cmd.add_flag("--check-redraw", options_.checkRedraw,
                      "Draw each frame also whole and count the pixels where the frame drawn "
                      "only where it changed differs (printed at the end)");
+        cmd.add_flag("--no-frame-economies{false}", options_.economies.on,
+                     "Draw every frame whole, the live picture at full size with exact "
+                     "spheres, as a GPU would (what a CPU rasteriser leaves out: "
+                     "core/host/gui/frame_economies.h)");
         cmd.add_flag("--frame-times", options_.frameTimes,
                      "With --frames: print the frame times, and the longest frame while an "
                      "evaluation against the CPU reference runs");

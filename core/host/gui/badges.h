@@ -1,17 +1,18 @@
-// The steps' badges: each step's grade, `pbrlab check ID --json` run in a process of its own
-// (a step takes up to seconds to grade), one at a time, again whenever the student's file or
-// a file it includes changes. The window polls it each frame and stays responsive. In a page
-// the same grade runs in a Web Worker, the page's grader (core/host/web_grader.cpp).
+// The steps' badges: each step's grade, as `pbrlab check ID --json` gives it, out of the
+// window's way (a step takes up to seconds to grade; platform.h's StepGrades: a process of its
+// own on the desktop, one at a time, the page's grader in a Web Worker), again whenever the
+// student's file or a file it includes changes. The window polls it each frame and stays
+// responsive.
 #pragma once
-
-#include <sys/types.h>
 
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "platform.h"
 #include "source_watch.h"
 
 namespace pbrlab {
@@ -33,8 +34,7 @@ struct Badge {
 class Badges {
 public:
     // modulesDirs: the step folders the grading process loads, as this one does.
-    Badges(std::vector<std::filesystem::path> modulesDirs, std::filesystem::path submission)
-        : modulesDirs_(std::move(modulesDirs)), submission_(std::move(submission)) {}
+    Badges(std::vector<std::filesystem::path> modulesDirs, std::filesystem::path submission);
     Badges(const Badges&) = delete;
     Badges& operator=(const Badges&) = delete;
     ~Badges();  // a grade still running is not needed any more: it is stopped
@@ -59,16 +59,13 @@ public:
 private:
     void start(const std::string& id);
     void markStale(const ModuleRegistry& registry);
-    std::vector<std::filesystem::path> modulesDirs_;
+    // No grade may start until the one running has finished (StepGrades::oneAtATime).
+    bool waitsForAGrade() const;
     std::filesystem::path submission_;
     std::map<std::string, Badge> badges_;
     size_t cursor_ = 0;  // the step checked last, so every step gets its turn
-    struct Job {
-        pid_t pid = -1;  // in a page: 1 while its grader (a Web Worker) grades
-        std::string id;
-        std::filesystem::path json;
-    } job_;                          // the badge being graded (a `pbrlab check` process)
-    std::set<std::string> pending_;  // in a page: the steps asked of the page's grader
+    std::unique_ptr<platform::StepGrades> grades_;
+    std::set<std::string> pending_;  // the steps being graded, whose report has not arrived
 };
 
 const char* badgeText(Status s);

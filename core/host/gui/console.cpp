@@ -1,13 +1,5 @@
 #include "console.h"
 
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
 #include <iostream>
 #include <sstream>
 
@@ -294,8 +286,7 @@ Console::Console(std::vector<std::string> globalArguments, bool echo)
     : globalArguments_(std::move(globalArguments)), echo_(echo) {}
 
 Console::~Console() {
-    if (child_ > 0) kill(-child_, SIGTERM);  // its process group: grade's children too
-    if (reader_.joinable()) reader_.join();
+    child_.reset();  // before the text its output goes to
 }
 
 void Console::submit(const std::string& line) {
@@ -303,7 +294,7 @@ void Console::submit(const std::string& line) {
 }
 
 bool Console::idle() const {
-    return queue_.empty() && child_ <= 0 && !wait_.active;
+    return queue_.empty() && !child_ && !wait_.active;
 }
 
 std::string Console::text() const {
@@ -324,15 +315,10 @@ void Console::append(const std::string& text) {
 }
 
 void Console::poll(const ConsoleTarget& target) {
-    bool done = false;
-    {
-        std::lock_guard lock(mutex_);
-        done = childDone_;
-    }
-    if (done) finishChild();
+    if (child_ && child_->finished()) child_.reset();
     // One line a frame: a local command's requests (a step chosen) are carried out by the
     // frame before the next line reads the state.
-    if (child_ <= 0 && !waiting(target) && !queue_.empty()) {
+    if (!child_ && !waiting(target) && !queue_.empty()) {
         const std::string line = queue_.front();
         queue_.pop_front();
         runLine(line, target);
@@ -394,62 +380,12 @@ void Console::runLine(const std::string& text, const ConsoleTarget& target) {
     append(output);
 }
 
-// The command runs as `pbrlab ARGS` would on the shell, in its own process group, its stdout
-// and stderr into one pipe that a thread reads (stdout is block-buffered in a pipe, so the two
-// may interleave differently than on a terminal).
+// The command runs as `pbrlab ARGS` would on the shell (platform::startPbrlab), with the GUI's
+// own global arguments.
 void Console::startChild(const std::vector<std::string>& words) {
-    int fds[2];
-    if (pipe2(fds, O_CLOEXEC) != 0) return append("error: cannot make a pipe\n");
-    std::vector<std::string> args = {"pbrlab"};
-    args.insert(args.end(), globalArguments_.begin(), globalArguments_.end());
+    std::vector<std::string> args = globalArguments_;
     args.insert(args.end(), words.begin(), words.end());
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_adddup2(&actions, fds[1], 1);
-    posix_spawn_file_actions_adddup2(&actions, fds[1], 2);
-    posix_spawnattr_t attributes;
-    posix_spawnattr_init(&attributes);
-    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
-    posix_spawnattr_setpgroup(&attributes, 0);
-    pid_t pid = -1;
-    const int failed =
-        posix_spawn(&pid, "/proc/self/exe", &actions, &attributes, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    posix_spawnattr_destroy(&attributes);
-    close(fds[1]);
-    if (failed) {
-        close(fds[0]);
-        return append(std::string("error: cannot start pbrlab: ") + strerror(failed) + "\n");
-    }
-    child_ = pid;
-    pipe_ = fds[0];
-    childDone_ = false;
-    reader_ = std::thread([this, pid, fd = fds[0]] {
-        char buffer[4096];
-        for (ssize_t n; (n = read(fd, buffer, sizeof buffer)) != 0;) {
-            if (n < 0 && errno == EINTR) continue;
-            if (n < 0) break;
-            append(std::string(buffer, size_t(n)));
-        }
-        int status = 0;
-        waitpid(pid, &status, 0);
-        append(WIFEXITED(status)
-                   ? "(exit status " + std::to_string(WEXITSTATUS(status)) + ")\n"
-                   : "(stopped by signal " + std::to_string(WTERMSIG(status)) + ")\n");
-        std::lock_guard lock(mutex_);
-        childDone_ = true;
-    });
-}
-
-void Console::finishChild() {
-    if (reader_.joinable()) reader_.join();
-    close(pipe_);
-    pipe_ = -1;
-    child_ = -1;
-    childDone_ = false;
+    child_ = platform::startPbrlab(args, [this](const std::string& text) { append(text); });
 }
 
 }  // namespace pbrlab

@@ -5,8 +5,6 @@
 // it. Lines run one after another; the window keeps drawing meanwhile.
 #pragma once
 
-#include <sys/types.h>
-
 #include <array>
 #include <chrono>
 #include <deque>
@@ -14,10 +12,10 @@
 #include <memory>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "commands/command.h"
+#include "platform.h"
 
 namespace pbrlab {
 
@@ -70,14 +68,14 @@ public:
     // No line queued or running.
     bool idle() const;
     // No line queued or running, `wait` aside (it only watches the lab).
-    bool quiet() const { return queue_.empty() && child_ <= 0; }
+    bool quiet() const { return queue_.empty() && !child_; }
     // The console's `wait` holds the lines after it until this is met.
     struct Wait {
         bool active = false;
         std::filesystem::path file;  // and this exists (empty: no file)
         std::chrono::steady_clock::time_point since, until;
     };
-    bool running() const { return child_ > 0; }
+    bool running() const { return child_ != nullptr; }
     // Everything shown so far (the typed lines with "> ", then their output).
     std::string text() const;
     void clear();
@@ -91,19 +89,15 @@ private:
     void append(const std::string& text);
     void runLine(const std::string& line, const ConsoleTarget& target);
     void startChild(const std::vector<std::string>& words);
-    void finishChild();
     bool waiting(const ConsoleTarget& target);
 
     std::vector<std::string> globalArguments_;
     bool echo_ = false;
     std::deque<std::string> queue_;
     Wait wait_;
-    mutable std::mutex mutex_;  // text_ and childDone_, written by the reader thread
+    mutable std::mutex mutex_;  // text_, written by the command's output thread
     std::string text_;
-    bool childDone_ = false;
-    pid_t child_ = -1;
-    int pipe_ = -1;
-    std::thread reader_;
+    std::unique_ptr<platform::PbrlabProcess> child_;  // the command running, if any
 };
 
 }  // namespace pbrlab

@@ -1,13 +1,11 @@
 #include "evaluation_worker.h"
 
-#include <sys/resource.h>
-#include <unistd.h>
-
 #include <cstdio>
 
 #include "gl/context.h"
 #include "gl/objects.h"
 #include "ibl/map_error.h"
+#include "platform.h"
 #include "render/converge.h"
 #include "render/evaluate.h"
 #include "render/input_digest.h"
@@ -49,8 +47,9 @@ std::unique_ptr<WorkerContext> windowsOwnContext() {
     return std::make_unique<WindowsOwnContext>();
 }
 
-EvaluationWorker::EvaluationWorker(DataPaths paths, std::unique_ptr<WorkerContext> context)
-    : paths_(std::move(paths)), context_(std::move(context)) {
+EvaluationWorker::EvaluationWorker(DataPaths paths, std::unique_ptr<WorkerContext> context,
+                                   double drawMs)
+    : paths_(std::move(paths)), context_(std::move(context)), drawMs_(drawMs) {
     if (kEvaluationThread) thread_ = std::thread([this] { loop(); });
 }
 
@@ -132,13 +131,13 @@ void EvaluationWorker::enter(int stage, int stages, const char* what) {
 }
 
 void EvaluationWorker::loop() {
-    setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kBackgroundNice);
+    platform::backgroundPriorityForThisThread();
     // The renderer lives and dies on this thread, with the context current.
     std::unique_ptr<LabRenderer> renderer;
     std::string startError;
     try {
         context_->makeCurrent();
-        gl::setDrawBudgetOnThisThread(kDrawBudgetMs);
+        gl::setDrawBudgetOnThisThread(drawMs_);
         renderer = std::make_unique<LabRenderer>(paths_);
     } catch (const std::exception& e) {
         startError = std::string("the evaluation thread has no OpenGL: ") + e.what();
@@ -308,6 +307,84 @@ void EvaluationWorker::runSolution(LabRenderer& renderer, const EvaluationJob& j
     }
 }
 
+// The solution's picture, band and probe: the last evaluation's when their inputs are the same
+// (after a student's edit), else drawn and kept. `studentBand` is then the band the student's
+// picture is compared with. False: stopped midway, nothing to keep.
+bool EvaluationWorker::evaluateSolution(LabRenderer& renderer, const EvaluationJob& job,
+                                        const IblSettings& ibl, unsigned generation, int& stage,
+                                        int stages, EvaluationResult& r, Band& band,
+                                        const Band*& studentBand) {
+    // The solution's stage depends on these inputs only (none: it may link a student's file).
+    const std::optional<std::uint64_t> inputs =
+        job.errorBudget > 0 ? std::nullopt : renderInputs(renderer, solutionRequest(job, ibl));
+    if (inputs && keptSolution_ && keptSolution_->inputs == *inputs) {
+        // The same picture, band and probe as the last evaluation's: taken, not drawn.
+        const KeptSolution& kept = *keptSolution_;
+        stage += 2;
+        r.solutionKept = true;
+        r.solutionMs = kept.solutionMs;
+        r.solutionValue = kept.solutionValue;
+        r.referenceValue = kept.referenceValue;
+        r.probeSolution = kept.probeSolution;
+        r.surfaces = kept.surfaces;
+        r.solutionStats = kept.solutionStats;
+        studentBand = &kept.band;
+        return true;
+    }
+    keptSolution_.reset();  // its memory, before the next band's
+    runSolution(renderer, job, ibl, generation, stage, stages, r, band);
+    if (yielded_ || superseded(generation)) return false;
+    if (inputs) {
+        keptSolution_ = KeptSolution{*inputs,         r.solutionValue, r.referenceValue,
+                                     r.probeSolution, r.surfaces,      std::move(band),
+                                     r.solutionStats, r.solutionMs,    modelsOf(job.scene)};
+        studentBand = &keptSolution_->band;
+    }
+    return true;
+}
+
+// The student's picture, compared with `band`, and its probe (when the job shows the student's
+// file). A new file that does not compile fails twice (the view's program, then the probe's),
+// and renders the third time with the last good programs (this renderer's cache kept them).
+// False: stopped.
+bool EvaluationWorker::renderStudent(LabRenderer& renderer, const EvaluationJob& job,
+                                     const IblSettings& ibl, unsigned generation, int stage,
+                                     int stages, const Band& band, EvaluationResult& r) {
+    const LoadedModule& m = *job.module;
+    const ModuleDesc& d = *m.desc;
+    const StudentSource studentSource{job.submission, false};
+    for (int attempt = 0; job.student && attempt < 3 && !r.studentRendered; ++attempt) {
+        try {
+            enter(stage + 1, stages, "your picture");
+            RenderRequest request{&m,      &job.params, &job.scene, studentSource,
+                                  nullptr, job.side,    job.side};
+            request.reuseGBuffer = true;  // the solution's (drawn anew when not held: a live frame)
+            request.seamlessCubes = false;
+            request.ibl = ibl;
+            r.studentValue = renderer.render(request).value;
+            // Without the solution's band (its render failed) there is nothing to compare with.
+            if (r.renderError.empty())
+                r.studentStats = compareWithBand(r.studentValue, *r.surfaces, band, d.components,
+                                                 d.nonNegative, d.tolerance.outlierFraction);
+            if (stopRequested(generation)) return false;
+            enter(stage + 2, stages, "your probe");
+            const std::vector<Surface> probe = probeSurfaces(d.probe);
+            RenderRequest probeRequest{&m,     &job.params,   &job.scene,    studentSource,
+                                       &probe, d.probe.width, d.probe.height};
+            probeRequest.seamlessCubes = false;
+            probeRequest.ibl = ibl;
+            r.probeStudent = renderer.render(probeRequest).value;
+            r.studentRendered = true;
+        } catch (const Error& e) {
+            // The new file does not compile (ShaderError), or a file it includes may not be
+            // read: the UI thread shows why; once more with the last good program.
+            r.studentErrors.push_back(e.what());
+        }
+        if (stopRequested(generation)) return false;
+    }
+    return true;
+}
+
 // The stages Lab::render ran in the frame before: the solution's picture, evaluated against
 // the CPU reference; its probe (both the last evaluation's when their inputs are the same: after
 // a student's edit); then the student's picture, compared with the same band, and its probe.
@@ -317,8 +394,6 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
                                                       const EvaluationJob& job,
                                                       unsigned generation) {
     const auto start = std::chrono::steady_clock::now();
-    const LoadedModule& m = *job.module;
-    const ModuleDesc& d = *m.desc;
     const int stages = (job.student ? 4 : 2) + (job.errorBudget > 0 ? 1 : 0);
     int stage = 0;
     EvaluationResult r;
@@ -333,73 +408,16 @@ std::optional<EvaluationResult> EvaluationWorker::run(LabRenderer& renderer,
     Band band;  // the reference's band on the picture, for the student's statistics
     const Band* studentBand = &band;
     try {
-        // The solution's stage depends on these inputs only (none: it may link a student's
-        // file).
-        const std::optional<std::uint64_t> inputs =
-            job.errorBudget > 0 ? std::nullopt : renderInputs(renderer, solutionRequest(job, ibl));
-        if (inputs && keptSolution_ && keptSolution_->inputs == *inputs) {
-            // The same picture, band and probe as the last evaluation's: taken, not drawn.
-            const KeptSolution& kept = *keptSolution_;
-            stage += 2;
-            r.solutionKept = true;
-            r.solutionMs = kept.solutionMs;
-            r.solutionValue = kept.solutionValue;
-            r.referenceValue = kept.referenceValue;
-            r.probeSolution = kept.probeSolution;
-            r.surfaces = kept.surfaces;
-            r.solutionStats = kept.solutionStats;
-            studentBand = &kept.band;
-        } else {
-            keptSolution_.reset();  // its memory, before the next band's
-            runSolution(renderer, job, ibl, generation, stage, stages, r, band);
-            // Stopped midway: nothing to keep.
-            if (yielded_ || superseded(generation)) return std::nullopt;
-            if (inputs) {
-                keptSolution_ = KeptSolution{*inputs,         r.solutionValue, r.referenceValue,
-                                             r.probeSolution, r.surfaces,      std::move(band),
-                                             r.solutionStats, r.solutionMs,    modelsOf(job.scene)};
-                studentBand = &keptSolution_->band;
-            }
-        }
+        if (!evaluateSolution(renderer, job, ibl, generation, stage, stages, r, band, studentBand))
+            return std::nullopt;
     } catch (const Cancelled&) {
         return std::nullopt;
     } catch (const Error& e) {
         r.renderError = e.what();
     }
     if (stopRequested(generation)) return std::nullopt;
-    const StudentSource studentSource{job.submission, false};
-    // A new file that does not compile fails twice (the view's program, then the probe's),
-    // and renders the third time with the last good programs (this renderer's cache kept them).
-    for (int attempt = 0; job.student && attempt < 3 && !r.studentRendered; ++attempt) {
-        try {
-            enter(stage + 1, stages, "your picture");
-            RenderRequest request{&m,      &job.params, &job.scene, studentSource,
-                                  nullptr, job.side,    job.side};
-            request.reuseGBuffer = true;  // the solution's (drawn anew when not held: a live frame)
-            request.seamlessCubes = false;
-            request.ibl = ibl;
-            r.studentValue = renderer.render(request).value;
-            // Without the solution's band (its render failed) there is nothing to compare with.
-            if (r.renderError.empty())
-                r.studentStats =
-                    compareWithBand(r.studentValue, *r.surfaces, *studentBand, d.components,
-                                    d.nonNegative, d.tolerance.outlierFraction);
-            if (stopRequested(generation)) return std::nullopt;
-            enter(stage + 2, stages, "your probe");
-            const std::vector<Surface> probe = probeSurfaces(d.probe);
-            RenderRequest probeRequest{&m,     &job.params,   &job.scene,    studentSource,
-                                       &probe, d.probe.width, d.probe.height};
-            probeRequest.seamlessCubes = false;
-            probeRequest.ibl = ibl;
-            r.probeStudent = renderer.render(probeRequest).value;
-            r.studentRendered = true;
-        } catch (const Error& e) {
-            // The new file does not compile (ShaderError), or a file it includes may not be
-            // read: the UI thread shows why; once more with the last good program.
-            r.studentErrors.push_back(e.what());
-        }
-        if (stopRequested(generation)) return std::nullopt;
-    }
+    if (!renderStudent(renderer, job, ibl, generation, stage, stages, *studentBand, r))
+        return std::nullopt;
     if (!r.studentRendered) r.studentValue = Image();
     if (job.compose && r.renderError.empty()) r.composed = job.compose(r);
     if (job.environmentMapsHeld >= 0 && !windowsRenderer_ &&

@@ -29,18 +29,9 @@
 #include "shader/program.h"
 #include "steps/paths.h"
 #include "steps/plugin_host.h"
+#include "util/parallel.h"
 
 namespace pbrlab {
-
-// The evaluation thread and every thread it starts (llvmpipe's, parallelFor's: a new thread
-// inherits its creator's nice value on Linux), and the badges' grading processes, yield the
-// cores to the window's thread: nice 10 weighs 110 against nice 0's 1024 in the scheduler, so
-// with both cores busy the frames still get most of one.
-constexpr int kBackgroundNice = 10;
-// The longest the evaluation thread keeps llvmpipe's rasterizer, which the window's context
-// shares (gl::setDrawBudgetOnThisThread): the window's frame waits about this much at most,
-// beside its own 4-5 ms, inside the 33 ms of a frame at 30 a second.
-constexpr double kDrawBudgetMs = 8;
 
 // A GL context for the evaluation thread: made where its backend allows (a GLFW window only on
 // the main thread), current on the worker only.
@@ -136,18 +127,15 @@ struct EvaluationProgress {
 // Whether the evaluation runs on a thread of its own. A page without shared memory has one
 // thread: there the worker runs each job in the window's context, inside the frame after the
 // one that posted it (which draws the progress line), and the window waits for it.
-#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
-constexpr bool kEvaluationThread = false;
-#else
-constexpr bool kEvaluationThread = true;
-#endif
+constexpr bool kEvaluationThread = kThreads;
 
 // The evaluation's context in a page: the window's own, already current.
 std::unique_ptr<WorkerContext> windowsOwnContext();
 
 class EvaluationWorker {
 public:
-    EvaluationWorker(DataPaths paths, std::unique_ptr<WorkerContext> context);
+    // `drawMs`: the longest one of its draws may take (FrameEconomies::evaluationDrawMs).
+    EvaluationWorker(DataPaths paths, std::unique_ptr<WorkerContext> context, double drawMs);
     EvaluationWorker(const EvaluationWorker&) = delete;
     EvaluationWorker& operator=(const EvaluationWorker&) = delete;
     ~EvaluationWorker();  // the job running stops at its next stage; the thread ends
@@ -198,6 +186,12 @@ private:
                                         unsigned generation);
     void runSolution(LabRenderer& renderer, const EvaluationJob& job, const IblSettings& ibl,
                      unsigned generation, int& stage, int stages, EvaluationResult& r, Band& band);
+    bool evaluateSolution(LabRenderer& renderer, const EvaluationJob& job, const IblSettings& ibl,
+                          unsigned generation, int& stage, int stages, EvaluationResult& r,
+                          Band& band, const Band*& studentBand);
+    bool renderStudent(LabRenderer& renderer, const EvaluationJob& job, const IblSettings& ibl,
+                       unsigned generation, int stage, int stages, const Band& band,
+                       EvaluationResult& r);
     bool superseded(unsigned generation) const { return generation != latest_.load(); }
     // What the CPU reference asks between points, and each stage before it starts:
     // superseded, or (without a thread) yielding to the student's input.
@@ -208,6 +202,7 @@ private:
 
     DataPaths paths_;
     std::unique_ptr<WorkerContext> context_;
+    double drawMs_;  // the longest one draw of the evaluation may take (0: no limit)
     std::atomic<unsigned> latest_{0};  // the newest post or cancel
     mutable std::mutex mutex_;         // everything below
     std::condition_variable changed_;

@@ -77,7 +77,19 @@ ComposedView composeView(const ModuleDesc& d, const ViewChoice& choice, const Im
 
 }  // namespace
 
+// A frame's work before the window is drawn: the panels' requests carried out, a saved file
+// noticed, a live picture drawn or the evaluation started, and what the evaluation and the
+// grades sent back shown.
 void Lab::update(GuiState& state, Requests& requests) {
+    const bool holding = carryOut(state, requests);
+    watchStudentFile(state);
+    drawOrEvaluate(state, holding);
+    takeResults(state, holding);
+}
+
+// The requests of the last frame's panels and console, carried out; all but the screenshot,
+// which the window takes after drawing, are cleared. Returns whether a control is held down.
+bool Lab::carryOut(GuiState& state, Requests& requests) {
     if (requests.selectStep >= 0) {
         select(state, requests.selectStep);
         showChosenView(state);
@@ -110,9 +122,12 @@ void Lab::update(GuiState& state, Requests& requests) {
     carriedOut.screenshot = requests.screenshot;
     carriedOut.screenshotFile = std::move(requests.screenshotFile);
     requests = std::move(carriedOut);
+    return holding;
+}
 
-    // Hot reload: a saved student file, or a file it includes, marks the view dirty; the
-    // renderer recompiles it.
+// Hot reload: a saved student file, or a file it includes, marks the view dirty; the renderer
+// recompiles it.
+void Lab::watchStudentFile(GuiState& state) {
     if (!studentFile(state).empty() && studentWatch_.changed(studentFile(state), submission_)) {
         dirty_ = true;
         // The student's file has appeared: their picture, unless they chose a view here.
@@ -122,6 +137,10 @@ void Lab::update(GuiState& state, Requests& requests) {
             compose(state);
         }
     }
+}
+
+// While the input moves, a live picture; once it is still, the evaluation.
+void Lab::drawOrEvaluate(GuiState& state, bool holding) {
     const ModuleDesc& m = module(state);
     const Scene scene = currentScene(state);
     // While the input moves, only the picture is drawn (on the GPU, mapped for display there,
@@ -151,6 +170,11 @@ void Lab::update(GuiState& state, Requests& requests) {
         // first, for tenths of a second to seconds, which the evaluation thread does anyway.
         startEvaluation(state);
     }
+}
+
+// What came back since the last frame: the evaluation's result, an evaluation that yielded to
+// input, a grade.
+void Lab::takeResults(GuiState& state, bool holding) {
     // Without an evaluation thread the posted job runs in take(): not while the button is held.
     if (std::optional<EvaluationResult> result = worker_->take(kEvaluationThread || !holding))
         showEvaluation(std::move(*result), state);
@@ -276,7 +300,7 @@ GLuint Lab::renderLive(const GuiState& state, bool student) {
         live_.side()};
     request.seamlessCubes = false;  // as the settled picture: no jump when it lands
     request.readValue = false;
-    request.coarseSpheres = true;  // the outline within half a pixel; the settled one exact
+    request.coarseSpheres = options_.economies.coarseLiveSpheres();
     request.ibl = iblFor(scene);
     const RenderResult r = renderer_->render(request);
     const GLuint texture =

@@ -6,17 +6,13 @@
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
-#include <dirent.h>
 #include <imgui.h>
-#include <sys/resource.h>
-#ifdef __EMSCRIPTEN__
-#include <emscripten.h>
-#endif
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <thread>
@@ -24,6 +20,7 @@
 #include "gl/context.h"
 #include "lab.h"
 #include "panels.h"
+#include "platform.h"
 #include "redraw.h"
 #include "render/display.h"
 #include "util/error.h"
@@ -82,19 +79,17 @@ void loadFont(std::string& messages) {
 class GlfwWorkerContext final : public WorkerContext {
 public:
     GlfwWorkerContext() {
-        const std::set<std::string> before = threadIds();
-        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
-        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
-        glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-        glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-        glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-        window_ = glfwCreateWindow(16, 16, "pbrlab evaluation", nullptr, nullptr);
-        glfwDefaultWindowHints();
-        // The context's own threads (llvmpipe's rasterizers) started here, on the main thread,
-        // at its nice value: they yield to the window's as the evaluation thread does.
-        for (const std::string& tid : threadIds())
-            if (!before.count(tid))
-                setpriority(PRIO_PROCESS, static_cast<id_t>(std::stoi(tid)), kBackgroundNice);
+        // The context's own threads (llvmpipe's rasterizers) start here, on the main thread:
+        // they yield to the window's as the evaluation thread does.
+        platform::backgroundPriorityForThreadsStartedBy([this] {
+            glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+            glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+            glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+            glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+            glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+            window_ = glfwCreateWindow(16, 16, "pbrlab evaluation", nullptr, nullptr);
+            glfwDefaultWindowHints();
+        });
     }
     ~GlfwWorkerContext() override {
         if (window_) glfwDestroyWindow(window_);
@@ -106,15 +101,6 @@ public:
     void release() override { glfwMakeContextCurrent(nullptr); }
 
 private:
-    static std::set<std::string> threadIds() {  // this process's, from /proc/self/task
-        std::set<std::string> ids;
-        if (DIR* dir = opendir("/proc/self/task")) {
-            while (const dirent* e = readdir(dir))
-                if (e->d_name[0] != '.') ids.insert(e->d_name);
-            closedir(dir);
-        }
-        return ids;
-    }
     GLFWwindow* window_ = nullptr;
 };
 
@@ -125,20 +111,6 @@ std::unique_ptr<WorkerContext> evaluationContext() {
 
 // The windows' background.
 const ImVec4 kBackground(0.11f, 0.115f, 0.13f, 1);
-
-// Whether the window's framebuffer keeps its pixels from one frame to the next, so that a
-// frame can be drawn over the last one in place (WindowRedraw): a page's canvas whose WebGL
-// context shell.html asked for with preserveDrawingBuffer.
-bool windowKeepsItsPixels() {
-#ifdef __EMSCRIPTEN__
-    return EM_ASM_INT({
-               const gl = Module.ctx;
-               return gl && gl.getContextAttributes().preserveDrawingBuffer ? 1 : 0;
-           }) != 0;
-#else
-    return false;
-#endif
-}
 
 void styleUi() {
     ImGui::StyleColorsDark();
@@ -270,32 +242,20 @@ public:
         ImGui::DestroyContext();
     }
 
-    int run() {
-#ifdef __EMSCRIPTEN__
-        // The browser calls each frame (requestAnimationFrame); run() returns at once and
-        // the page keeps the app.
-        // An error escaping a frame would stop the page's loop: it is reported and the next
-        // frame is drawn (on the desktop it ends the program with the message).
-        emscripten_set_main_loop_arg(
-            [](void* app) {
-                try {
-                    static_cast<GuiApp*>(app)->frame();
-                } catch (const std::exception& e) {
-                    std::fprintf(stderr, "pbrlab: %s\n", e.what());
-                    static_cast<GuiApp*>(app)->lab_.shown().messages +=
-                        std::string(e.what()) + "\n";
-                }
-            },
-            this, 0, false);
-        return 0;
-#else
-        while (!glfwWindowShouldClose(context_->window()) && frame()) {
-        }
+    // The frames until the window closes or a scripted run is done, then the reports asked
+    // for. False: the platform calls the frames after this returns (a page), and the app must
+    // stay for as long as they come.
+    bool run() {
+        const bool ended = platform::runFrames(
+            [this] { return !glfwWindowShouldClose(context_->window()) && frame(); },
+            [this](const std::exception& e) {
+                lab_.shown().messages += std::string(e.what()) + "\n";
+            });
+        if (!ended) return false;
         if (options_.orbit) printOrbitReport(frameTimes_, renderTimes_, width_, height_);
         if (options_.orbit || options_.checkRedraw) printRedrawReport();
         if (options_.frameTimes) printEvaluationFrames(frameTimes_, whileEvaluating_);
-        return 0;
-#endif
+        return true;
     }
 
 private:
@@ -348,9 +308,7 @@ private:
         if (last && !options_.screenshot.empty())
             saveScreenshot(options_.screenshot, w, h, lab_.shown().messages);
         glfwSwapBuffers(window);
-#ifdef __EMSCRIPTEN__
-        EM_ASM({ pbrlabPage.frameDrawn(); });
-#endif
+        platform::frameDrawn();
         lab_.shown().frameMs = millisecondsSince(start);
         frameTimes_.push_back(lab_.shown().frameMs);
         renderTimes_.push_back(lab_.shown().renderMs);
@@ -371,13 +329,13 @@ private:
     // on screen moves (no input in the page, no console line, nothing evaluated, no grade
     // arrived), the window is drawn 4 times a second, which still shows a tooltip as it
     // comes. After a change the next frames are drawn (ImGui lays a new window out over two).
-    // The desktop draws every frame: its GPU draws, with vsync.
+    // The desktop draws every frame (platform::skipsQuietFrames): its GPU draws, with vsync.
     bool quietFrame() {
-#ifdef __EMSCRIPTEN__
+        if (!platform::skipsQuietFrames() || !options_.economies.quietFrames()) return false;
         constexpr int kFramesAfterChange = 4;
         constexpr auto kQuietFramePeriod = std::chrono::milliseconds(250);
         const auto now = std::chrono::steady_clock::now();
-        const bool input = EM_ASM_INT({ return pbrlabPage.takeInput() ? 1 : 0; }) != 0;
+        const bool input = platform::inputArrived();
         if (input || !console_.quiet() || lab_.changing() || requests_.screenshot ||
             lab_.gradesArrived() != gradesShown_)
             framesToDraw_ = kFramesAfterChange;
@@ -385,7 +343,6 @@ private:
         if (framesToDraw_ == 0 && now - lastDrawn_ < kQuietFramePeriod) return true;
         framesToDraw_ = std::max(framesToDraw_ - 1, 0);
         lastDrawn_ = now;
-#endif
         return false;
     }
 
@@ -505,7 +462,8 @@ private:
 
     GuiOptions options_;
     std::unique_ptr<GlContext> context_;
-    WindowRedraw redraw_{windowKeepsItsPixels()};  // after context_ (a page asks the canvas's)
+    // After context_ (a page asks the canvas's) and options_.
+    WindowRedraw redraw_{platform::windowKeepsItsPixels(), options_.economies.partialRedraw()};
     GuiState state_;
     Lab lab_;  // after context_ (it needs GL) and state_ (it fills it)
     Requests requests_;
@@ -548,13 +506,10 @@ void guiSaveSolutionPicture(const fs::path& file) {
 }
 
 int runGui(const GuiOptions& options) {
-#ifdef __EMSCRIPTEN__
-    static GuiApp* app = new GuiApp(options);  // the page's, for as long as it is open
-    return app->run();
-#else
-    GuiApp app(options);
-    return app.run();
-#endif
+    static std::unique_ptr<GuiApp> kept;  // a page's app, for as long as its frames come
+    auto app = std::make_unique<GuiApp>(options);
+    if (!app->run()) kept = std::move(app);
+    return 0;
 }
 
 }  // namespace pbrlab

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "frame_economies.h"
+
 namespace pbrlab {
 
 struct GuiOptions {
@@ -32,6 +34,9 @@ struct GuiOptions {
     // Draw every frame also whole and count the pixels where the frame drawn over the last
     // one (only where it changed: redraw.h) differs; printed at the end.
     bool checkRedraw = false;
+    // What the frames leave out on a CPU rasteriser (frame_economies.h): all, or none with
+    // --no-frame-economies.
+    FrameEconomies economies;
     // > 0: each environment's maps are computed with the cheapest settings whose measured mean
     // errors stay within this (chooseIblSettings, as `pbrlab precompute --error-budget`).
     double errorBudget = 0;
@@ -54,7 +59,7 @@ inline constexpr const char* kStudentFileNotYet = "not yet";
 
 int runGui(const GuiOptions& options);
 
-// For the page around the GUI (core/host/web_main.cpp): the id of the step the running GUI
+// For the page around the GUI (core/host/web/main.cpp): the id of the step the running GUI
 // shows (empty before it starts), and a line for its console, run from the next frame.
 std::string guiStepOnScreen();
 void guiSubmitConsoleLine(const std::string& line);

@@ -1,14 +1,11 @@
 #include "lab.h"
 
-#ifdef __EMSCRIPTEN__
-#include <emscripten.h>
-#endif
-
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
+#include "platform.h"
 #include "term_views.h"
 #include "util/error.h"
 #include "util/log.h"
@@ -84,17 +81,10 @@ Lab::Lab(const GuiOptions& options, GuiState& state, std::unique_ptr<WorkerConte
     if (options.view.empty()) showChosenView(state);
     shown_.imageTexture = gl::makeTexture();
     displayPass_ = std::make_unique<DisplayPass>(renderer_->programs(), paths_.shaders());
-    worker_ = std::make_unique<EvaluationWorker>(paths_, std::move(workerContext));
+    worker_ = std::make_unique<EvaluationWorker>(paths_, std::move(workerContext),
+                                                 options_.economies.evaluationDrawMs());
     if (!kEvaluationThread) worker_->runWith(*renderer_);
-#ifdef __EMSCRIPTEN__
-    // isInputPending is Chromium's; in other browsers the evaluation never yields.
-    worker_->yieldWhen([] {
-        return EM_ASM_INT({
-                   const s = navigator.scheduling;
-                   return s && s.isInputPending && s.isInputPending() ? 1 : 0;
-               }) != 0;
-    });
-#endif
+    if (std::function<bool()> pending = platform::inputPending()) worker_->yieldWhen(pending);
 }
 
 fs::path Lab::studentFile(const GuiState& state) const {

@@ -152,6 +152,11 @@ public:
     IblSettings iblFor(const Scene& scene) const;
 
 private:
+    // update()'s parts, in its order (frame.cpp).
+    bool carryOut(GuiState& state, Requests& requests);
+    void watchStudentFile(GuiState& state);
+    void drawOrEvaluate(GuiState& state, bool holding);
+    void takeResults(GuiState& state, bool holding);
     void select(GuiState& state, int index);
     void showChosenView(GuiState& state) const;
     void loadScene(GuiState& state);
@@ -202,8 +207,9 @@ private:
     // The evaluation is out of date (dirty_) and the input last moved at lastMove_.
     bool dirty_ = true;
     std::chrono::steady_clock::time_point lastMove_{};
-    LiveSize live_{kRenderSize, kLiveFramesTimed};  // the live picture's side
-    std::vector<int> liveSizes_;                    // of every live frame, for --orbit's report
+    // The live picture's side (after options_, whose economies it follows).
+    LiveSize live_{kRenderSize, kLiveFramesTimed, options_.economies.liveSize()};
+    std::vector<int> liveSizes_;  // of every live frame, for --orbit's report
     int evaluationsDone_ = 0, evaluationsYielded_ = 0;
     int gradesArrived_ = 0;
     std::vector<CompiledProgram> evaluationPrograms_;

@@ -8,18 +8,17 @@
 #include <cmath>
 #include <vector>
 
+#include "gl/objects.h"
+
 namespace pbrlab {
 
-// Whether a live frame's time is what its picture costs. Not in a browser: there the frame's
-// first GL query waits for the GPU process to finish everything queued before it, the previous
-// frame's panels and the page's compositing included, and glFinish returns at once (in headless
-// Chromium a live frame measured 16-32 ms at any side from 16 to 176 pixels, so every frame
-// looked over the budget and the picture shrank to 16 pixels in every drag).
-#ifdef __EMSCRIPTEN__
-constexpr bool kLiveFramesTimed = false;
-#else
-constexpr bool kLiveFramesTimed = true;
-#endif
+// Whether a live frame's time is what its picture costs, for the live size to follow. Not in a
+// browser's WebGL 2: there the frame's first GL query waits for the GPU process to finish
+// everything queued before it, the previous frame's panels and the page's compositing included,
+// and glFinish returns at once (in headless Chromium a live frame measured 16-32 ms at any side
+// from 16 to 176 pixels, so every frame looked over the budget and the picture shrank to 16
+// pixels in every drag).
+constexpr bool kLiveFramesTimed = !gl::kWebGl2;
 
 class LiveSize {
 public:
@@ -35,8 +34,10 @@ public:
     // `framesTimed`: whether a live frame's time is the picture's. In a browser it is not (see
     // kLiveFramesTimed): there the side stays between half and all of the side that the
     // settled picture's cost allows, and the frames move it only within that range.
-    explicit LiveSize(int fullSide, bool framesTimed = true)
-        : full_(fullSide), side_(fullSide), framesTimed_(framesTimed) {}
+    // `shrinks`: false keeps the full side whatever the frames take
+    // (FrameEconomies::liveSize).
+    explicit LiveSize(int fullSide, bool framesTimed = true, bool shrinks = true)
+        : full_(fullSide), side_(fullSide), framesTimed_(framesTimed), shrinks_(shrinks) {}
 
     int side() const { return side_; }
     // Full size again: another step, another cost.
@@ -51,6 +52,7 @@ public:
     // Without timed frames this measure is the only one to trust: the picture then costs the
     // budget at most and a quarter of it at least (half the side), whatever the frames say.
     void fullSizeTook(double ms) {
+        if (!shrinks_) return;
         const int fits = sideWithin(full_, ms);
         if (framesTimed_) {
             side_ = std::min(side_, fits);
@@ -67,6 +69,7 @@ public:
     // shrink and grow; at once after two frames far over the budget, to the side that would
     // have fitted.
     void frameTook(double ms) {
+        if (!shrinks_) return;
         window_.push_back(ms);
         const size_t n = window_.size();
         if (n >= 2 && std::min(window_[n - 2], window_[n - 1]) > 2 * kBudgetMs) {
@@ -94,7 +97,7 @@ private:
     }
 
     int full_, side_;
-    bool framesTimed_;
+    bool framesTimed_, shrinks_;
     int floor_ = kMinSide, ceiling_ = full_;  // the sides the frames may choose from
     std::vector<double> window_;              // the live frames' times since the last resize
 };

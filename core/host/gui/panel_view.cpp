@@ -200,16 +200,10 @@ void drawCompileError(const ViewStatus& status) {
     ImGui::PopStyleColor(2);
 }
 
-}  // namespace
-
-void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
-    const ModuleDesc& d = lab.module(state);
+// The view's line: the view chosen, its slider (difference, split), the screenshot button and
+// the frame's times where they fit.
+void viewToolbar(const Lab& lab, GuiState& state, Requests& requests) {
     const Shown& shown = lab.shown();
-    if (state.layout.compact) ImGui::SameLine();  // after the steps' line (drawStepsLine)
-    ImGui::PushTextWrapPos(0);
-    ImGui::Text("%d. %s", d.step, d.title.c_str());
-    ImGui::TextDisabled("%s", d.function.c_str());
-    ImGui::PopTextWrapPos();
     viewChooser(lab, state, requests);
     if (state.view == View::Difference) {
         ImGui::SameLine();
@@ -235,8 +229,11 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
         ImGui::SameLine();
         ImGui::TextDisabled("%s", times);
     }
+}
 
-    const ViewStatus status = viewStatus(lab, state);
+// Why the picture is not what the step's file should give: a compile error, a notice, a
+// render error, NaN and Inf pixels.
+void viewNotes(const Shown& shown, const ViewStatus& status) {
     if (!status.error.empty()) drawCompileError(status);
     if (!status.notice.empty())
         ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "%s", status.notice.c_str());
@@ -246,7 +243,12 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
         ImGui::TextColored(ImVec4(1, 0.3f, 1, 1),
                            "%d NaN pixels (magenta), %d Inf pixels (cyan) in the student image",
                            shown.nanCount, shown.infCount);
+}
 
+// The picture at the largest side that fits, the camera's drag on it, and its legend.
+void viewPicture(const Lab& lab, GuiState& state, Requests& requests) {
+    const ModuleDesc& d = lab.module(state);
+    const Shown& shown = lab.shown();
     const bool difference = state.view == View::Difference;
     const LegendLabels labels(difference ? 0.0 : d.display.lo,
                               difference ? state.differenceRange : d.display.hi,
@@ -269,9 +271,12 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
         ImGui::SameLine();
         drawLegend(labels, side);
     }
-    // The live picture is the student's (or the solution's), drawn at a reduced size while the
-    // input moves: say so, and what follows when it stops (or, stopped, when the evaluation
-    // under it arrives: its progress is the line below).
+}
+
+// The line under a live picture: whose it is, its size, and what follows when the input stops
+// (or, stopped, when the evaluation under it arrives: its progress is the line below).
+void liveLine(const Lab& lab, const GuiState& state) {
+    const Shown& shown = lab.shown();
     if (shown.liveWaitsForMaps)
         ImGui::TextDisabled("moving: the picture follows when the environment's maps arrive");
     else if (shown.liveTexture && lab.evaluating())
@@ -290,6 +295,22 @@ void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
     else if (shown.liveTexture)
         ImGui::TextDisabled("moving: %s picture at %dx%d, full size", shown.liveWho, shown.liveSide,
                             shown.liveSide);
+}
+
+}  // namespace
+
+void drawViewPanel(const Lab& lab, GuiState& state, Requests& requests) {
+    const ModuleDesc& d = lab.module(state);
+    if (state.layout.compact) ImGui::SameLine();  // after the steps' line (drawStepsLine)
+    ImGui::PushTextWrapPos(0);
+    ImGui::Text("%d. %s", d.step, d.title.c_str());
+    ImGui::TextDisabled("%s", d.function.c_str());
+    ImGui::PopTextWrapPos();
+    viewToolbar(lab, state, requests);
+    const ViewStatus status = viewStatus(lab, state);
+    viewNotes(lab.shown(), status);
+    viewPicture(lab, state, requests);
+    liveLine(lab, state);
     drawStats(status);
 }
 

@@ -72,19 +72,29 @@ PixelRect backendScissor(const ImDrawCmd& cmd, const ImDrawData& data) {
     return {x, height - y - h, x + w, height - y};
 }
 
-std::vector<PixelRect> FrameDamage::update(const ImDrawData& data, ImTextureID fixedTexture) {
-    const PixelRect framebuffer = framebufferRect(data);
-    if (framebuffer.empty()) return {};
-    const int columns = (framebuffer.x1 + kTile - 1) / kTile;
-    const int rows = (framebuffer.y1 + kTile - 1) / kTile;
-    std::vector<std::uint64_t> tiles(size_t(columns) * size_t(rows), 0);
-    std::vector<char> texelsMayChange(tiles.size(), 0);
-    bool whole = !(framebuffer == framebuffer_) || tiles_.size() != tiles.size();
+namespace {
+
+// Each tile's hash of the triangles that touch it, in the order they are drawn, and whether a
+// texture other than the fixed one touches it (its texels may change under the same triangles).
+struct TileHashes {
+    int columns = 0, rows = 0;
+    std::vector<std::uint64_t> hashes;
+    std::vector<char> texelsMayChange;
+    bool callback = false;  // a command is a callback: its pixels are not known
+};
+
+TileHashes hashTiles(const ImDrawData& data, const PixelRect& framebuffer, ImTextureID fixedTexture,
+                     int tile) {
+    TileHashes h;
+    h.columns = (framebuffer.x1 + tile - 1) / tile;
+    h.rows = (framebuffer.y1 + tile - 1) / tile;
+    h.hashes.assign(size_t(h.columns) * size_t(h.rows), 0);
+    h.texelsMayChange.assign(h.hashes.size(), 0);
     for (int l = 0; l < data.CmdListsCount; ++l) {
         const ImDrawList& list = *data.CmdLists[l];
         for (const ImDrawCmd& cmd : list.CmdBuffer) {
             if (cmd.UserCallback) {
-                whole = true;
+                h.callback = true;
                 continue;
             }
             const PixelRect scissor = backendScissor(cmd, data).intersect(framebuffer);
@@ -102,56 +112,74 @@ std::vector<PixelRect> FrameDamage::update(const ImDrawData& data, ImTextureID f
                     std::memcpy(words, &vertexOf(list, cmd, k + j), sizeof(words));
                     for (std::uint32_t word : words) triangle = mix(triangle, word);
                 }
-                for (int ty = bounds.y0 / kTile; ty <= (bounds.y1 - 1) / kTile; ++ty)
-                    for (int tx = bounds.x0 / kTile; tx <= (bounds.x1 - 1) / kTile; ++tx) {
-                        const size_t t = size_t(ty) * size_t(columns) + size_t(tx);
-                        tiles[t] = mix(tiles[t], triangle);
-                        if (!fixed) texelsMayChange[t] = 1;
+                for (int ty = bounds.y0 / tile; ty <= (bounds.y1 - 1) / tile; ++ty)
+                    for (int tx = bounds.x0 / tile; tx <= (bounds.x1 - 1) / tile; ++tx) {
+                        const size_t t = size_t(ty) * size_t(h.columns) + size_t(tx);
+                        h.hashes[t] = mix(h.hashes[t], triangle);
+                        if (!fixed) h.texelsMayChange[t] = 1;
                     }
             }
         }
     }
+    return h;
+}
+
+// The tiles changed since `last` as rectangles: runs of changed tiles, row by row; a run with
+// the same columns as one in the row above extends its rectangle.
+std::vector<PixelRect> changedRects(const TileHashes& h, const std::vector<std::uint64_t>& last,
+                                    const PixelRect& framebuffer, int tile) {
+    std::vector<PixelRect> rects;
+    std::vector<size_t> open, nowOpen;
+    for (int ty = 0; ty < h.rows; ++ty) {
+        nowOpen.clear();
+        for (int tx = 0; tx < h.columns;) {
+            auto changed = [&](int x) {
+                const size_t t = size_t(ty) * size_t(h.columns) + size_t(x);
+                return h.texelsMayChange[t] || h.hashes[t] != last[t];
+            };
+            if (!changed(tx)) {
+                ++tx;
+                continue;
+            }
+            const int start = tx;
+            while (tx < h.columns && changed(tx)) ++tx;
+            const PixelRect run =
+                PixelRect{start * tile, ty * tile, tx * tile, (ty + 1) * tile}.intersect(
+                    framebuffer);
+            auto above = std::find_if(open.begin(), open.end(), [&](size_t i) {
+                return rects[i].x0 == run.x0 && rects[i].x1 == run.x1;
+            });
+            if (above != open.end()) {
+                rects[*above].y1 = run.y1;
+                nowOpen.push_back(*above);
+            } else {
+                rects.push_back(run);
+                nowOpen.push_back(rects.size() - 1);
+            }
+        }
+        std::swap(open, nowOpen);
+    }
+    return rects;
+}
+
+}  // namespace
+
+std::vector<PixelRect> FrameDamage::update(const ImDrawData& data, ImTextureID fixedTexture) {
+    const PixelRect framebuffer = framebufferRect(data);
+    if (framebuffer.empty()) return {};
+    TileHashes tiles = hashTiles(data, framebuffer, fixedTexture, kTile);
+    bool whole =
+        !(framebuffer == framebuffer_) || tiles_.size() != tiles.hashes.size() || tiles.callback;
     std::vector<PixelRect> rects;
     if (!whole) {
-        // Runs of changed tiles, row by row; a run with the same columns as one in the row
-        // above extends its rectangle.
-        std::vector<size_t> open, nowOpen;
-        for (int ty = 0; ty < rows; ++ty) {
-            nowOpen.clear();
-            for (int tx = 0; tx < columns;) {
-                auto changed = [&](int x) {
-                    const size_t t = size_t(ty) * size_t(columns) + size_t(x);
-                    return texelsMayChange[t] || tiles[t] != tiles_[t];
-                };
-                if (!changed(tx)) {
-                    ++tx;
-                    continue;
-                }
-                const int start = tx;
-                while (tx < columns && changed(tx)) ++tx;
-                const PixelRect run =
-                    PixelRect{start * kTile, ty * kTile, tx * kTile, (ty + 1) * kTile}.intersect(
-                        framebuffer);
-                auto above = std::find_if(open.begin(), open.end(), [&](size_t i) {
-                    return rects[i].x0 == run.x0 && rects[i].x1 == run.x1;
-                });
-                if (above != open.end()) {
-                    rects[*above].y1 = run.y1;
-                    nowOpen.push_back(*above);
-                } else {
-                    rects.push_back(run);
-                    nowOpen.push_back(rects.size() - 1);
-                }
-            }
-            std::swap(open, nowOpen);
-        }
+        rects = changedRects(tiles, tiles_, framebuffer, kTile);
         long long area = 0;
         for (const PixelRect& r : rects) area += r.area();
         whole = rects.size() > size_t(kMostRects) ||
                 double(area) > kWholeFraction * double(framebuffer.area());
     }
     framebuffer_ = framebuffer;
-    tiles_ = std::move(tiles);
+    tiles_ = std::move(tiles.hashes);
     if (whole) return {framebuffer};
     return rects;
 }
@@ -225,7 +253,8 @@ void WindowRedraw::draw(ImDrawData& data, ImTextureID fontTexture, const ImVec4&
         kept_.resize(framebuffer.x1, framebuffer.y1);
         damage_.invalidate();
     }
-    const std::vector<PixelRect> rects = damage_.update(data, fontTexture);
+    const std::vector<PixelRect> rects =
+        partial_ ? damage_.update(data, fontTexture) : std::vector<PixelRect>{framebuffer};
     const bool whole = rects.size() == 1 && rects[0] == framebuffer;
     long long drawn = 0;
     for (const PixelRect& r : rects) drawn += r.area();

@@ -81,7 +81,9 @@ struct RedrawStats {
 // framebuffer of this class's, copied to the window after each frame.
 class WindowRedraw {
 public:
-    explicit WindowRedraw(bool windowKeepsItsPixels) : windowKeeps_(windowKeepsItsPixels) {}
+    // `partial`: false draws every frame whole (FrameEconomies::partialRedraw).
+    WindowRedraw(bool windowKeepsItsPixels, bool partial)
+        : windowKeeps_(windowKeepsItsPixels), partial_(partial) {}
     // Draws ImGui's draw data of this frame (after ImGui::Render) where it changed: the
     // rectangles cleared to `background`, then the commands restricted to them.
     void draw(ImDrawData& data, ImTextureID fontTexture, const ImVec4& background);
@@ -99,7 +101,7 @@ private:
         void resize(int w, int h);  // RGBA8, made again when the size changes
     };
     FrameDamage damage_;
-    bool windowKeeps_;
+    bool windowKeeps_, partial_;
     Target kept_, whole_;  // kept_: unless windowKeeps_; whole_: when checking
     bool checking_ = false;
     RedrawStats stats_;
