@@ -6,7 +6,9 @@
 # pass on the copy before any sabotage (a test that fails anyway proves nothing). Prints the
 # table sabotage -> tests that caught it; exit 1 when a sabotage went unnoticed.
 #
-# Usage: scripts/sabotage.sh [--list] [NAME ...]     (no NAME: every sabotage)
+# Usage: scripts/sabotage.sh [--list | --check] [NAME ...]     (no NAME: every sabotage)
+#   --check: only that each sabotage still applies to this tree (its text found exactly once),
+#            nothing built; the default test run does this (Sabotage.EveryBreakStillApplies)
 #   SABOTAGE_DIR        where the scratch copy (tree/) and its build (tree/build) go (default
 #                       build/sabotage): kept between runs, at a fixed path, so that a second
 #                       run rebuilds only what changed
@@ -48,8 +50,8 @@ sabotage band-enormous \
 sabotage estimator-band-always-passes \
     "an estimator's values checks against the converged integral always pass" \
     core/grading/estimator_band.cpp \
-    '    run.report.category = "estimator";' \
-    '    run.report.category = "estimator";
+    '    run.report.category = CheckCategory::Estimator;' \
+    '    run.report.category = CheckCategory::Estimator;
     run.report.passed = true;' \
     'EstimatorBand.*'
 sabotage naming-off \
@@ -94,7 +96,7 @@ sabotage gradescope-total-wrong \
 sabotage visibility-ignored \
     "every Gradescope row visible, whatever the assignment says" \
     core/course/gradescope.cpp \
-    '{"visibility", a.visibilityOf(g.id, c.category)},' \
+    '{"visibility", a.visibilityOf(g.id, category)},' \
     '{"visibility", "visible"},' \
     'Assignment.PartialCreditIsTheWeightsShareOfTheChecksPassedOnceOneShowsWork'
 sabotage partial-credit-inverted \
@@ -112,8 +114,8 @@ sabotage work-gate-off \
 sabotage contract-failure-scores \
     "a failed contract check no longer zeroes the step's partial credit" \
     core/course/assignment.cpp \
-    '            if (c == "contract" && !check.value("passed", false)) return {};' \
-    '            if (c == "contract" && !check.value("passed", false)) continue;' \
+    '            if (c == CheckCategory::Contract && !check.value("passed", false)) return {};' \
+    '            if (c == CheckCategory::Contract && !check.value("passed", false)) continue;' \
     'Assignment.AFailedContractCheckScoresTheStepZero'
 sabotage release-ignored \
     "the kit hands out every step whatever the release dates" \
@@ -133,6 +135,8 @@ list() {
     for k in "${!names[@]}"; do printf '%-30s %s\n' "${names[$k]}" "${whats[$k]}"; done
 }
 if [ "${1:-}" = --list ]; then list; exit 0; fi
+check=false
+if [ "${1:-}" = --check ]; then check=true; shift; fi
 chosen=("$@")
 if [ ${#chosen[@]} -eq 0 ]; then chosen=("${names[@]}"); fi
 index() {
@@ -161,17 +165,32 @@ sync_tree() {
         ln -s "$here/../shared" "$work/shared"
     fi
 }
-apply() {  # FILE TEXT REPLACEMENT
-    python3 - "$tree/$1" "$2" "$3" <<'PY' || exit 2
+# replace PATH TEXT [REPLACEMENT]: TEXT, found exactly once in PATH (else an error saying how
+# often), becomes REPLACEMENT; without one, PATH is left as it is.
+replace() {
+    python3 - "$@" <<'PY'
 import sys
-path, text, replacement = sys.argv[1:]
+path, text = sys.argv[1:3]
 source = open(path).read()
 count = source.count(text)
 if count != 1:
     sys.exit(f"sabotage does not apply: found {count} times (not once) in {path}:\n  {text}")
-open(path, "w").write(source.replace(text, replacement))
+if len(sys.argv) > 3:
+    open(path, "w").write(source.replace(text, sys.argv[3]))
 PY
 }
+apply() {  # FILE TEXT REPLACEMENT
+    replace "$tree/$1" "$2" "$3" || exit 2
+}
+if $check; then
+    stale=0
+    for n in "${chosen[@]}"; do
+        k=$(index "$n")
+        replace "$here/${files[$k]}" "${texts[$k]}" || { echo "  (sabotage $n)" >&2; stale=1; }
+    done
+    [ $stale -eq 0 ] && echo "${#chosen[@]} sabotages apply to this tree"
+    exit $stale
+fi
 build() {
     local launcher=()
     if command -v ccache > /dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi

@@ -197,8 +197,8 @@ TEST(Inputs, EveryHostValueAStepReadsIsGradedAtTwoValuesOrMore) {
             std::set<std::string> values =
                 it == r.hostValues.end() ? std::set<std::string>() : it->second;
             std::string shown;
-            // An estimator's count is graded by convergence (grading/estimator_band.cpp), whose
-            // renders are not recorded: its counts are the spec's.
+            // An estimator's count is graded by convergence (grading/estimator_convergence.cpp),
+            // whose renders are not recorded: its counts are the spec's.
             if (d.estimator && name == "u_" + d.estimator->samplesParam) {
                 std::set<int> counts(d.estimator->sampleCounts.begin(),
                                      d.estimator->sampleCounts.end());

@@ -88,30 +88,27 @@ TexelSums::TexelSums(const Image& equirect, double opening)
         colSin_.push_back(std::sin(phi));
         colCos_.push_back(std::cos(phi));
     }
-    // A block covers a rectangle of rows and columns: in angles, a patch between two
-    // latitudes and two longitudes. Seen from a direction on its middle meridian (its axis),
-    // the patch's farthest points are corners: along a meridian (a great circle) the distance
-    // to a point is largest at an end, along a latitude it grows with the longitude difference.
-    std::vector<Bound>* bounds = nullptr;  // of the level being built
-    auto finish = [&](Block& b, int x0, int y0, int x1, int y1) {
-        for (Moments& m : b.power) m.normalise();
-        b.solidAngle.normalise();
-        Bound bound;
-        bound.axis = glm::normalize(b.solidAngle.mean);
-        for (double v : {double(y0), double(y1)})
-            for (double u : {double(x0), double(x1)})
-                bound.radius = std::max(
-                    bound.radius, angleBetween(bound.axis, equirectDirection({u / W, v / H})));
-        bound.sinRadius = std::sin(std::min(bound.radius, kPi / 2.0));
-        bound.cosFar = opening_ > 0.0 && bound.radius / opening_ < kPi
-                           ? std::cos(bound.radius / opening_)
-                           : -2.0;
-        bounds->push_back(bound);
-    };
     int bw = (W + blockSize_ - 1) / blockSize_, bh = (H + blockSize_ - 1) / blockSize_;
+    std::vector<Block> level = finestLevel(bw, bh);
+    // Coarser levels, 2 x 2 blocks of the one below, up to a level of at most 4 x 2 blocks.
+    for (int size = blockSize_;; size *= 2) {
+        levels_.push_back(std::move(level));
+        widths_.push_back(bw);
+        heights_.push_back(bh);
+        if (bw <= 4 && bh <= 2) break;
+        const int fw = bw, fh = bh;
+        bw = (fw + 1) / 2;
+        bh = (fh + 1) / 2;
+        level = coarserLevel(levels_.back(), fw, fh, bw, bh, size);
+    }
+}
+
+// The finest level, bw x bh blocks of blockSize_ texels a side summed from the texels (their
+// bounds a new level of bounds_).
+std::vector<TexelSums::Block> TexelSums::finestLevel(int bw, int bh) {
+    const int W = image_.width, H = image_.height;
     std::vector<Block> level(size_t(bw) * size_t(bh));
     bounds_.emplace_back();
-    bounds = &bounds_.back();
     for (int by = 0; by < bh; ++by)
         for (int bx = 0; bx < bw; ++bx) {
             Block& b = level[size_t(by) * size_t(bw) + size_t(bx)];
@@ -126,34 +123,54 @@ TexelSums::TexelSums(const Image& equirect, double opening)
                     for (int c = 0; c < 3; ++c) b.power[c].add(d, L[c] * omega);
                     b.solidAngle.add(d, omega);
                 }
-            finish(b, x0, y0, x1, y1);
+            bounds_.back().push_back(finish(b, x0, y0, x1, y1));
         }
-    // Coarser levels, 2 x 2 blocks of the one below, up to a level of at most 4 x 2 blocks.
-    for (int size = blockSize_;; size *= 2) {
-        levels_.push_back(std::move(level));
-        widths_.push_back(bw);
-        heights_.push_back(bh);
-        if (bw <= 4 && bh <= 2) break;
-        const std::vector<Block>& fine = levels_.back();
-        const int fw = bw, fh = bh;
-        bw = (fw + 1) / 2;
-        bh = (fh + 1) / 2;
-        level.assign(size_t(bw) * size_t(bh), Block());
-        bounds_.emplace_back();
-        bounds = &bounds_.back();
-        for (int by = 0; by < bh; ++by)
-            for (int bx = 0; bx < bw; ++bx) {
-                Block& b = level[size_t(by) * size_t(bw) + size_t(bx)];
-                for (int cy = 2 * by; cy < std::min(fh, 2 * by + 2); ++cy)
-                    for (int cx = 2 * bx; cx < std::min(fw, 2 * bx + 2); ++cx) {
-                        const Block& child = fine[size_t(cy) * size_t(fw) + size_t(cx)];
-                        for (int c = 0; c < 3; ++c) b.power[c].add(child.power[c]);
-                        b.solidAngle.add(child.solidAngle);
-                    }
-                finish(b, bx * 2 * size, by * 2 * size, std::min(W, (bx + 1) * 2 * size),
-                       std::min(H, (by + 1) * 2 * size));
-            }
-    }
+    return level;
+}
+
+// The level above `fine` (fw x fh blocks of `size` texels a side): bw x bh blocks, each the
+// sum of its 2 x 2 children (their bounds a new level of bounds_).
+std::vector<TexelSums::Block> TexelSums::coarserLevel(const std::vector<Block>& fine, int fw,
+                                                      int fh, int bw, int bh, int size) {
+    const int W = image_.width, H = image_.height;
+    std::vector<Block> level(size_t(bw) * size_t(bh), Block());
+    bounds_.emplace_back();
+    for (int by = 0; by < bh; ++by)
+        for (int bx = 0; bx < bw; ++bx) {
+            Block& b = level[size_t(by) * size_t(bw) + size_t(bx)];
+            for (int cy = 2 * by; cy < std::min(fh, 2 * by + 2); ++cy)
+                for (int cx = 2 * bx; cx < std::min(fw, 2 * bx + 2); ++cx) {
+                    const Block& child = fine[size_t(cy) * size_t(fw) + size_t(cx)];
+                    for (int c = 0; c < 3; ++c) b.power[c].add(child.power[c]);
+                    b.solidAngle.add(child.solidAngle);
+                }
+            bounds_.back().push_back(finish(b, bx * 2 * size, by * 2 * size,
+                                            std::min(W, (bx + 1) * 2 * size),
+                                            std::min(H, (by + 1) * 2 * size)));
+        }
+    return level;
+}
+
+// A block whose sums are complete, its moments normalised; returns its bound, for the texels
+// of columns x0..x1 and rows y0..y1. A block covers a rectangle of rows and columns: in angles,
+// a patch between two latitudes and two longitudes. Seen from a direction on its middle
+// meridian (its axis), the patch's farthest points are corners: along a meridian (a great
+// circle) the distance to a point is largest at an end, along a latitude it grows with the
+// longitude difference.
+TexelSums::Bound TexelSums::finish(Block& b, int x0, int y0, int x1, int y1) const {
+    const int W = image_.width, H = image_.height;
+    for (Moments& m : b.power) m.normalise();
+    b.solidAngle.normalise();
+    Bound bound;
+    bound.axis = glm::normalize(b.solidAngle.mean);
+    for (double v : {double(y0), double(y1)})
+        for (double u : {double(x0), double(x1)})
+            bound.radius =
+                std::max(bound.radius, angleBetween(bound.axis, equirectDirection({u / W, v / H})));
+    bound.sinRadius = std::sin(std::min(bound.radius, kPi / 2.0));
+    bound.cosFar =
+        opening_ > 0.0 && bound.radius / opening_ < kPi ? std::cos(bound.radius / opening_) : -2.0;
+    return bound;
 }
 
 template <class Kernel>

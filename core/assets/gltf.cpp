@@ -358,6 +358,246 @@ void checkNodeForest(const tinygltf::Model& m, const fs::path& file) {
     }
 }
 
+// The document as tinygltf reads it, with its images left encoded in `collector`. Buffers and
+// images outside the model's folder are refused before anything is read.
+tinygltf::Model readDocument(const fs::path& file, ImageCollector& collector) {
+    ModelFiles files = externalFiles(file);  // throws for a file outside the model's folder
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(collectImage, &collector);
+    loader.SetFsCallbacks({&fileExists, &tinygltf::ExpandFilePath, &readWholeFileExceptImages,
+                           &tinygltf::WriteWholeFile, &files});
+    tinygltf::Model model;
+    std::string err, warn;
+    bool binary = file.extension() == ".glb";
+    bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, file.string())
+                     : loader.LoadASCIIFromFile(&model, &err, &warn, file.string());
+    if (!ok)
+        fail(file, "not a valid glTF " + std::string(binary ? "binary" : "file") +
+                       (err.empty() ? "" : ": " + err));
+    return model;
+}
+
+// The model's images in file order, as collected; an image missing from the collection is an
+// error naming it.
+std::vector<TextureSource> collectedImages(const tinygltf::Model& model, ImageCollector& collector,
+                                           const fs::path& file) {
+    std::vector<TextureSource> images;
+    for (size_t i = 0; i < model.images.size(); ++i) {
+        auto it = collector.images.find(int(i));
+        // tinygltf skips the callback for an external file it could not find.
+        if (it == collector.images.end())
+            fail(file, "image " + std::to_string(i) + " ('" + model.images[i].uri +
+                           "'): file not found or not readable");
+        images.push_back(std::move(it->second));
+    }
+    return images;
+}
+
+// Reads the materials: their maps index `data.images` (already read), and what a map uses
+// that is not drawn goes to `data.warnings`.
+struct MaterialReader {
+    const tinygltf::Model& model;
+    const fs::path& file;
+    ModelData& data;
+
+    // The texture `info` names, checked to exist and to have an image, with its sampler's wrap.
+    ModelMaterial::Map map(const tinygltf::TextureInfo& info, const std::string& what) const {
+        ModelMaterial::Map map;
+        if (info.index < 0) return map;
+        if (info.texCoord != 0)
+            data.warnings.push_back(what + " uses TEXCOORD_" + std::to_string(info.texCoord) +
+                                    "; pbrlab reads TEXCOORD_0");
+        if (info.index >= int(model.textures.size()))
+            fail(file, what + ": texture " + std::to_string(info.index) + " does not exist");
+        const tinygltf::Texture& texture = model.textures[size_t(info.index)];
+        if (texture.source < 0 || texture.source >= int(data.images.size()))
+            fail(file, what + ": texture " + std::to_string(info.index) + " has no image");
+        map.image = texture.source;
+        if (texture.sampler >= 0 && texture.sampler < int(model.samplers.size())) {
+            map.wrapU = wrapMode(model.samplers[size_t(texture.sampler)].wrapS);
+            map.wrapV = wrapMode(model.samplers[size_t(texture.sampler)].wrapT);
+        }
+        return map;
+    }
+
+    // One glTF material's factors and maps.
+    ModelMaterial material(const tinygltf::Material& mat) const {
+        ModelMaterial mm;
+        mm.name = mat.name;
+        const auto& pbr = mat.pbrMetallicRoughness;
+        if (pbr.baseColorFactor.size() == 4)
+            mm.baseColorFactor = glm::make_vec4(pbr.baseColorFactor.data());
+        mm.metallicFactor = pbr.metallicFactor;
+        mm.roughnessFactor = pbr.roughnessFactor;
+        if (mat.emissiveFactor.size() == 3)
+            mm.emissiveFactor = glm::make_vec3(mat.emissiveFactor.data());
+        mm.normalScale = mat.normalTexture.scale;
+        mm.occlusionStrength = mat.occlusionTexture.strength;
+        const std::string what = "material '" + mat.name + "'";
+        mm.baseColorTexture = map(pbr.baseColorTexture, what + " baseColorTexture");
+        mm.metallicRoughnessTexture =
+            map(pbr.metallicRoughnessTexture, what + " metallicRoughnessTexture");
+        tinygltf::TextureInfo normal, occlusion;
+        normal.index = mat.normalTexture.index;
+        normal.texCoord = mat.normalTexture.texCoord;
+        occlusion.index = mat.occlusionTexture.index;
+        occlusion.texCoord = mat.occlusionTexture.texCoord;
+        mm.normalTexture = map(normal, what + " normalTexture");
+        mm.occlusionTexture = map(occlusion, what + " occlusionTexture");
+        mm.emissiveTexture = map(mat.emissiveTexture, what + " emissiveTexture");
+        // Emission brighter than 1: the factor times this strength
+        // (KHR_materials_emissive_strength).
+        if (auto it = mat.extensions.find("KHR_materials_emissive_strength");
+            it != mat.extensions.end() && it->second.IsObject() &&
+            it->second.Has("emissiveStrength") && it->second.Get("emissiveStrength").IsNumber()) {
+            const double strength = it->second.Get("emissiveStrength").GetNumberAsDouble();
+            if (!(strength >= 0) || !std::isfinite(strength))
+                fail(file, what + ": emissiveStrength must be finite and >= 0");
+            mm.emissiveFactor *= strength;
+        }
+        if (mat.alphaMode != "OPAQUE" && !mat.alphaMode.empty())
+            data.warnings.push_back(what + ": alphaMode " + mat.alphaMode + " is drawn opaque");
+        return mm;
+    }
+};
+
+// The default scene's root nodes (none when the file has no such scene).
+std::vector<int> defaultSceneRoots(const tinygltf::Model& model) {
+    std::vector<int> roots;
+    const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
+    if (sceneIndex < int(model.scenes.size())) roots = model.scenes[size_t(sceneIndex)].nodes;
+    return roots;
+}
+
+// Every primitive is a draw: more than a scene may draw is refused before any is read.
+void checkDrawCount(const tinygltf::Model& model, const std::vector<int>& roots,
+                    const fs::path& file) {
+    size_t primitives = 0;
+    for (std::vector<int> open = roots; !open.empty();) {
+        const auto& node = model.nodes[size_t(open.back())];
+        open.pop_back();
+        open.insert(open.end(), node.children.begin(), node.children.end());
+        if (node.mesh < 0) continue;
+        if (node.mesh >= int(model.meshes.size())) fail(file, "node mesh index out of range");
+        primitives += model.meshes[size_t(node.mesh)].primitives.size();
+    }
+    if (primitives > kMaxDrawnMeshes)
+        fail(file, "its scene draws " + std::to_string(primitives) +
+                       " primitives (a mesh's primitives, once per node that places it), more "
+                       "than pbrlab draws (at most " +
+                       std::to_string(kMaxDrawnMeshes) + ")");
+}
+
+// The accessor index of the primitive's attribute `name`, -1 when it has none.
+int attributeAccessor(const tinygltf::Primitive& prim, const char* name) {
+    auto it = prim.attributes.find(name);
+    return it == prim.attributes.end() ? -1 : it->second;
+}
+
+// A primitive's vertex attributes as floats; those it lacks are zeros (tangents: none).
+struct VertexAttributes {
+    std::vector<float> positions, normals, uvs, tangents;
+    size_t count = 0;
+    bool hasNormals = false, hasTangents = false;
+};
+
+// The primitive's attributes read, and checked to have as many elements as POSITION.
+VertexAttributes readAttributes(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                                const fs::path& file) {
+    VertexAttributes a;
+    a.positions = readFloats(model, attributeAccessor(prim, "POSITION"), 3, file, "POSITION");
+    a.count = a.positions.size() / 3;
+    a.hasNormals = attributeAccessor(prim, "NORMAL") >= 0;
+    a.normals = a.hasNormals
+                    ? readFloats(model, attributeAccessor(prim, "NORMAL"), 3, file, "NORMAL")
+                    : std::vector<float>(a.count * 3, 0.0f);
+    a.uvs =
+        attributeAccessor(prim, "TEXCOORD_0") >= 0
+            ? readFloats(model, attributeAccessor(prim, "TEXCOORD_0"), 2, file, "TEXCOORD_0", true)
+            : std::vector<float>(a.count * 2, 0.0f);
+    // Tangents only mean something next to the normals they were made for.
+    a.hasTangents = a.hasNormals && attributeAccessor(prim, "TANGENT") >= 0;
+    a.tangents = a.hasTangents
+                     ? readFloats(model, attributeAccessor(prim, "TANGENT"), 4, file, "TANGENT")
+                     : std::vector<float>();
+    if (a.normals.size() != a.count * 3 || a.uvs.size() != a.count * 2 ||
+        (a.hasTangents && a.tangents.size() != a.count * 4))
+        fail(file, "attribute counts differ from POSITION's");
+    return a;
+}
+
+// The attributes as vertices (tangent (1, 0, 0, 1) where the file has none).
+std::vector<Vertex> vertices(const VertexAttributes& a) {
+    std::vector<Vertex> out;
+    for (size_t i = 0; i < a.count; ++i) {
+        Vertex v;
+        v.position = glm::make_vec3(&a.positions[i * 3]);
+        v.normal = glm::make_vec3(&a.normals[i * 3]);
+        v.uv = glm::make_vec2(&a.uvs[i * 2]);
+        v.tangent = a.hasTangents ? glm::make_vec4(&a.tangents[i * 4]) : glm::vec4(1, 0, 0, 1);
+        out.push_back(v);
+    }
+    return out;
+}
+
+// What the scene has that is not drawn, for the warnings.
+struct UndrawnFeatures {
+    int skippedPrimitives = 0;
+    bool usesVertexColours = false;
+};
+
+// One primitive placed by `world` as a triangle mesh in `data.primitives`, with normals and
+// tangents generated where the file has none; points and lines are counted in `undrawn`.
+void readPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                   const glm::dmat4& world, const fs::path& file, ModelData& data,
+                   UndrawnFeatures& undrawn) {
+    const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+        undrawn.skippedPrimitives++;
+        return;
+    }
+    if (attributeAccessor(prim, "POSITION") < 0) fail(file, "a primitive has no POSITION");
+    if (attributeAccessor(prim, "COLOR_0") >= 0) undrawn.usesVertexColours = true;
+    const VertexAttributes attributes = readAttributes(model, prim, file);
+    ModelPrimitive p;
+    p.transform = world;
+    if (prim.material >= int(data.materials.size()))
+        fail(file, "a primitive names material " + std::to_string(prim.material) +
+                       ", which does not exist");
+    p.material = prim.material;
+    p.mesh.vertices = vertices(attributes);
+    p.mesh.indices = triangleList(readIndices(model, prim.indices, attributes.count, file), mode);
+    if (p.mesh.indices.empty()) return;  // fewer than three vertices: nothing to draw
+    if (!attributes.hasNormals) {
+        flatNormals(p.mesh);
+        p.generatedNormals = true;
+    }
+    if (!attributes.hasTangents) {
+        generateTangents(p.mesh);
+        p.generatedTangents = true;
+    }
+    data.primitives.push_back(std::move(p));
+}
+
+// Walks the nodes from `roots`, applying their transforms, and reads the primitives of each
+// mesh a node places.
+void readPlacedMeshes(const tinygltf::Model& model, const std::vector<int>& roots,
+                      const fs::path& file, ModelData& data, UndrawnFeatures& undrawn) {
+    std::vector<std::pair<int, glm::dmat4>> stack;
+    for (int n : roots) stack.push_back({n, glm::dmat4(1)});
+    while (!stack.empty()) {
+        auto [index, parent] = stack.back();
+        stack.pop_back();
+        const auto& node = model.nodes[size_t(index)];
+        glm::dmat4 world = parent * nodeMatrix(node);
+        for (int c : node.children) stack.push_back({c, world});
+        if (node.mesh < 0) continue;
+        for (const auto& prim : model.meshes[size_t(node.mesh)].primitives)
+            readPrimitive(model, prim, world, file, data, undrawn);
+    }
+}
+
 }  // namespace
 
 void generateTangents(MeshData& mesh) {
@@ -397,182 +637,27 @@ ModelData loadGltf(const fs::path& file) {
     ModelData data;
     data.file = file;
     ImageCollector collector{file, {}};
-    ModelFiles files = externalFiles(file);  // throws for a file outside the model's folder
-    tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(collectImage, &collector);
-    loader.SetFsCallbacks({&fileExists, &tinygltf::ExpandFilePath, &readWholeFileExceptImages,
-                           &tinygltf::WriteWholeFile, &files});
-    tinygltf::Model model;
-    std::string err, warn;
-    bool binary = file.extension() == ".glb";
-    bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, file.string())
-                     : loader.LoadASCIIFromFile(&model, &err, &warn, file.string());
-    if (!ok)
-        fail(file, "not a valid glTF " + std::string(binary ? "binary" : "file") +
-                       (err.empty() ? "" : ": " + err));
-    for (size_t i = 0; i < model.images.size(); ++i) {
-        auto it = collector.images.find(int(i));
-        // tinygltf skips the callback for an external file it could not find.
-        if (it == collector.images.end())
-            fail(file, "image " + std::to_string(i) + " ('" + model.images[i].uri +
-                           "'): file not found or not readable");
-        data.images.push_back(std::move(it->second));
-    }
+    const tinygltf::Model model = readDocument(file, collector);
+    data.images = collectedImages(model, collector, file);
     // Extensions change what a file means; say which ones are drawn without their effect.
     for (const std::string& extension : model.extensionsUsed)
         if (extension != "KHR_materials_emissive_strength")
             data.warnings.push_back("extension " + extension +
                                     " is not supported: drawn without it");
     data.meshCount = int(model.meshes.size());
-    auto image = [&](const tinygltf::TextureInfo& info, const std::string& what) {
-        ModelMaterial::Map map;
-        if (info.index < 0) return map;
-        if (info.texCoord != 0)
-            data.warnings.push_back(what + " uses TEXCOORD_" + std::to_string(info.texCoord) +
-                                    "; pbrlab reads TEXCOORD_0");
-        if (info.index >= int(model.textures.size()))
-            fail(file, what + ": texture " + std::to_string(info.index) + " does not exist");
-        const tinygltf::Texture& texture = model.textures[size_t(info.index)];
-        if (texture.source < 0 || texture.source >= int(data.images.size()))
-            fail(file, what + ": texture " + std::to_string(info.index) + " has no image");
-        map.image = texture.source;
-        if (texture.sampler >= 0 && texture.sampler < int(model.samplers.size())) {
-            map.wrapU = wrapMode(model.samplers[size_t(texture.sampler)].wrapS);
-            map.wrapV = wrapMode(model.samplers[size_t(texture.sampler)].wrapT);
-        }
-        return map;
-    };
-    for (const auto& mat : model.materials) {
-        ModelMaterial mm;
-        mm.name = mat.name;
-        const auto& pbr = mat.pbrMetallicRoughness;
-        if (pbr.baseColorFactor.size() == 4)
-            mm.baseColorFactor = glm::make_vec4(pbr.baseColorFactor.data());
-        mm.metallicFactor = pbr.metallicFactor;
-        mm.roughnessFactor = pbr.roughnessFactor;
-        if (mat.emissiveFactor.size() == 3)
-            mm.emissiveFactor = glm::make_vec3(mat.emissiveFactor.data());
-        mm.normalScale = mat.normalTexture.scale;
-        mm.occlusionStrength = mat.occlusionTexture.strength;
-        const std::string what = "material '" + mat.name + "'";
-        mm.baseColorTexture = image(pbr.baseColorTexture, what + " baseColorTexture");
-        mm.metallicRoughnessTexture =
-            image(pbr.metallicRoughnessTexture, what + " metallicRoughnessTexture");
-        tinygltf::TextureInfo normal, occlusion;
-        normal.index = mat.normalTexture.index;
-        normal.texCoord = mat.normalTexture.texCoord;
-        occlusion.index = mat.occlusionTexture.index;
-        occlusion.texCoord = mat.occlusionTexture.texCoord;
-        mm.normalTexture = image(normal, what + " normalTexture");
-        mm.occlusionTexture = image(occlusion, what + " occlusionTexture");
-        mm.emissiveTexture = image(mat.emissiveTexture, what + " emissiveTexture");
-        // Emission brighter than 1: the factor times this strength
-        // (KHR_materials_emissive_strength).
-        if (auto it = mat.extensions.find("KHR_materials_emissive_strength");
-            it != mat.extensions.end() && it->second.IsObject() &&
-            it->second.Has("emissiveStrength") && it->second.Get("emissiveStrength").IsNumber()) {
-            const double strength = it->second.Get("emissiveStrength").GetNumberAsDouble();
-            if (!(strength >= 0) || !std::isfinite(strength))
-                fail(file, what + ": emissiveStrength must be finite and >= 0");
-            mm.emissiveFactor *= strength;
-        }
-        if (mat.alphaMode != "OPAQUE" && !mat.alphaMode.empty())
-            data.warnings.push_back(what + ": alphaMode " + mat.alphaMode + " is drawn opaque");
-        data.materials.push_back(mm);
-    }
+    const MaterialReader materials{model, file, data};
+    for (const auto& mat : model.materials) data.materials.push_back(materials.material(mat));
     // Walk the default scene applying node transforms: a forest (checked), so each node once.
     checkNodeForest(model, file);
-    std::vector<int> roots;
-    const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
-    if (sceneIndex < int(model.scenes.size())) roots = model.scenes[size_t(sceneIndex)].nodes;
-    // Every primitive is a draw: more than a scene may draw is refused before any is read.
-    size_t primitives = 0;
-    for (std::vector<int> open = roots; !open.empty();) {
-        const auto& node = model.nodes[size_t(open.back())];
-        open.pop_back();
-        open.insert(open.end(), node.children.begin(), node.children.end());
-        if (node.mesh < 0) continue;
-        if (node.mesh >= int(model.meshes.size())) fail(file, "node mesh index out of range");
-        primitives += model.meshes[size_t(node.mesh)].primitives.size();
-    }
-    if (primitives > kMaxDrawnMeshes)
-        fail(file, "its scene draws " + std::to_string(primitives) +
-                       " primitives (a mesh's primitives, once per node that places it), more "
-                       "than pbrlab draws (at most " +
-                       std::to_string(kMaxDrawnMeshes) + ")");
-    std::vector<std::pair<int, glm::dmat4>> stack;
-    for (int n : roots) stack.push_back({n, glm::dmat4(1)});
-    int skippedPrimitives = 0;
-    bool usesVertexColours = false;
-    while (!stack.empty()) {
-        auto [index, parent] = stack.back();
-        stack.pop_back();
-        const auto& node = model.nodes[size_t(index)];
-        glm::dmat4 world = parent * nodeMatrix(node);
-        for (int c : node.children) stack.push_back({c, world});
-        if (node.mesh < 0) continue;
-        for (const auto& prim : model.meshes[size_t(node.mesh)].primitives) {
-            const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-            if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-                mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-                skippedPrimitives++;
-                continue;
-            }
-            auto attribute = [&](const char* name) {
-                auto it = prim.attributes.find(name);
-                return it == prim.attributes.end() ? -1 : it->second;
-            };
-            if (attribute("POSITION") < 0) fail(file, "a primitive has no POSITION");
-            if (attribute("COLOR_0") >= 0) usesVertexColours = true;
-            auto positions = readFloats(model, attribute("POSITION"), 3, file, "POSITION");
-            const size_t count = positions.size() / 3;
-            const bool hasNormals = attribute("NORMAL") >= 0;
-            std::vector<float> normals =
-                hasNormals ? readFloats(model, attribute("NORMAL"), 3, file, "NORMAL")
-                           : std::vector<float>(count * 3, 0.0f);
-            std::vector<float> uvs =
-                attribute("TEXCOORD_0") >= 0
-                    ? readFloats(model, attribute("TEXCOORD_0"), 2, file, "TEXCOORD_0", true)
-                    : std::vector<float>(count * 2, 0.0f);
-            // Tangents only mean something next to the normals they were made for.
-            const bool hasTangents = hasNormals && attribute("TANGENT") >= 0;
-            std::vector<float> tangents =
-                hasTangents ? readFloats(model, attribute("TANGENT"), 4, file, "TANGENT")
-                            : std::vector<float>();
-            if (normals.size() != count * 3 || uvs.size() != count * 2 ||
-                (hasTangents && tangents.size() != count * 4))
-                fail(file, "attribute counts differ from POSITION's");
-            ModelPrimitive p;
-            p.transform = world;
-            if (prim.material >= int(data.materials.size()))
-                fail(file, "a primitive names material " + std::to_string(prim.material) +
-                               ", which does not exist");
-            p.material = prim.material;
-            for (size_t i = 0; i < count; ++i) {
-                Vertex v;
-                v.position = glm::make_vec3(&positions[i * 3]);
-                v.normal = glm::make_vec3(&normals[i * 3]);
-                v.uv = glm::make_vec2(&uvs[i * 2]);
-                v.tangent = hasTangents ? glm::make_vec4(&tangents[i * 4]) : glm::vec4(1, 0, 0, 1);
-                p.mesh.vertices.push_back(v);
-            }
-            p.mesh.indices = triangleList(readIndices(model, prim.indices, count, file), mode);
-            if (p.mesh.indices.empty()) continue;  // fewer than three vertices: nothing to draw
-            if (!hasNormals) {
-                flatNormals(p.mesh);
-                p.generatedNormals = true;
-            }
-            if (!hasTangents) {
-                generateTangents(p.mesh);
-                p.generatedTangents = true;
-            }
-            data.primitives.push_back(std::move(p));
-        }
-    }
-    if (skippedPrimitives)
-        data.warnings.push_back(std::to_string(skippedPrimitives) +
+    const std::vector<int> roots = defaultSceneRoots(model);
+    checkDrawCount(model, roots, file);
+    UndrawnFeatures undrawn;
+    readPlacedMeshes(model, roots, file, data, undrawn);
+    if (undrawn.skippedPrimitives)
+        data.warnings.push_back(std::to_string(undrawn.skippedPrimitives) +
                                 " point or line primitives are not drawn");
-    if (usesVertexColours) data.warnings.push_back("vertex colours (COLOR_0) are not drawn");
+    if (undrawn.usesVertexColours)
+        data.warnings.push_back("vertex colours (COLOR_0) are not drawn");
     if (data.primitives.empty()) fail(file, "no triangles to draw");
     return data;
 }

@@ -136,10 +136,8 @@ size_t drawCount(const Scene& scene) {
     return draws;
 }
 
-}  // namespace
-
-Scene loadScene(const fs::path& file) {
-    Reader r{file};
+// The scene file's JSON; a file that cannot be opened or parsed is an error naming it.
+json readSceneJson(const fs::path& file) {
     std::ifstream in(file);
     if (!in) throw Error(file.string() + ": cannot open scene file");
     json doc;
@@ -148,37 +146,37 @@ Scene loadScene(const fs::path& file) {
     } catch (const json::parse_error& e) {
         throw Error(file.string() + ": not valid JSON (" + e.what() + ")");
     }
-    if (!doc.is_object()) r.fail("(top level)", "expected an object");
-    r.onlyKnown(doc, "",
-                {"description", "camera", "lights", "materials", "objects", "environment"});
-    Scene scene;
-    scene.file = file;
+    return doc;
+}
 
-    if (doc.contains("environment")) {
-        if (!doc["environment"].is_string())
-            r.fail("environment", "expected \"sky\", \"sky-soft\", \"smooth\" or a file path");
-        std::string env = doc["environment"].get<std::string>();
-        if (env != "sky" && env != "sky-soft" && env != "smooth") {
-            fs::path p = file.parent_path() / env;
-            if (!fs::exists(p)) r.fail("environment", p.string() + " does not exist");
-            env = p.string();
-        }
-        scene.environment = env;
+// "environment": a built-in sky's name, or a file beside the scene (its path then).
+std::string readEnvironment(const Reader& r, const json& j) {
+    if (!j.is_string())
+        r.fail("environment", "expected \"sky\", \"sky-soft\", \"smooth\" or a file path");
+    std::string env = j.get<std::string>();
+    if (env != "sky" && env != "sky-soft" && env != "smooth") {
+        fs::path p = r.file.parent_path() / env;
+        if (!fs::exists(p)) r.fail("environment", p.string() + " does not exist");
+        env = p.string();
     }
+    return env;
+}
 
-    if (doc.contains("camera")) {
-        const json& c = doc["camera"];
-        r.onlyKnown(c, "camera", {"position", "target", "fov"});
-        if (c.contains("position"))
-            scene.camera.position = r.vec3(c["position"], "camera.position");
-        if (c.contains("target")) scene.camera.target = r.vec3(c["target"], "camera.target");
-        if (c.contains("fov")) scene.camera.fovY = r.number(c["fov"], "camera.fov");
-        if (scene.camera.fovY <= 1 || scene.camera.fovY >= 179)
-            r.fail("camera.fov", "expected degrees in (1, 179)");
-        if (glm::length(scene.camera.position - scene.camera.target) < 1e-9)
-            r.fail("camera.target", "equals the camera position");
-    }
+// "camera": what it gives of position, target and field of view over `camera`'s defaults,
+// checked together.
+void readCamera(const Reader& r, const json& c, Camera& camera) {
+    r.onlyKnown(c, "camera", {"position", "target", "fov"});
+    if (c.contains("position")) camera.position = r.vec3(c["position"], "camera.position");
+    if (c.contains("target")) camera.target = r.vec3(c["target"], "camera.target");
+    if (c.contains("fov")) camera.fovY = r.number(c["fov"], "camera.fov");
+    if (camera.fovY <= 1 || camera.fovY >= 179)
+        r.fail("camera.fov", "expected degrees in (1, 179)");
+    if (glm::length(camera.position - camera.target) < 1e-9)
+        r.fail("camera.target", "equals the camera position");
+}
 
+// "lights": at least one point light, at most as many as the shaders hold.
+void readLights(const Reader& r, const json& doc, Scene& scene) {
     if (!doc.contains("lights") || !doc["lights"].is_array() || doc["lights"].empty())
         r.fail("lights", "expected a non-empty array of point lights");
     if (doc["lights"].size() > kMaxSceneLights)
@@ -198,7 +196,10 @@ Scene loadScene(const fs::path& file) {
             if (light.color[c] < 0) r.fail(f + ".color", "components must be >= 0");
         scene.lights.push_back(light);
     }
+}
 
+// "materials": the named materials, added to the scene; returns their names in that order.
+std::vector<std::string> readNamedMaterials(const Reader& r, const json& doc, Scene& scene) {
     std::vector<std::string> names;
     if (doc.contains("materials")) {
         if (!doc["materials"].is_object())
@@ -208,7 +209,57 @@ Scene loadScene(const fs::path& file) {
             names.push_back(name);
         }
     }
+    return names;
+}
 
+// objects[i] (`f`): a sphere or a glTF model (added to the scene), placed, with a named
+// material, its own (added to the scene) or, for a model, the model's.
+ObjectDesc readObject(const Reader& r, const json& o, const std::string& f,
+                      const std::vector<std::string>& names, Scene& scene) {
+    if (!o.is_object()) r.fail(f, "expected an object");
+    r.onlyKnown(o, f, {"primitive", "model", "translate", "scale", "material"});
+    ObjectDesc obj;
+    if (o.contains("primitive")) {
+        if (!o["primitive"].is_string() || o["primitive"] != "sphere")
+            r.fail(f + ".primitive", "expected \"sphere\" (or give \"model\": a .glb/.gltf)");
+    }
+    if (o.contains("model")) {
+        if (o.contains("primitive")) r.fail(f, "give either \"primitive\" or \"model\"");
+        if (!o["model"].is_string()) r.fail(f + ".model", "expected a .glb or .gltf path");
+        fs::path modelFile = r.file.parent_path() / o["model"].get<std::string>();
+        std::shared_ptr<const ModelData> model;
+        try {
+            model = std::make_shared<const ModelData>(loadGltf(modelFile));
+        } catch (const Error& e) {
+            r.fail(f + ".model", e.what());
+        }
+        obj.model = addModel(scene, model);
+    }
+    if (o.contains("translate")) obj.translate = r.vec3(o["translate"], f + ".translate");
+    if (o.contains("scale")) obj.scale = r.number(o["scale"], f + ".scale");
+    if (obj.scale <= 0) r.fail(f + ".scale", "must be > 0");
+    if (!o.contains("material")) {
+        if (obj.model >= 0) {  // the model's own materials
+            obj.material = -1;
+            return obj;
+        }
+        r.fail(f + ".material", "missing");
+    }
+    const json& m = o["material"];
+    if (m.is_string()) {
+        auto it = std::find(names.begin(), names.end(), m.get<std::string>());
+        if (it == names.end()) r.fail(f + ".material", "no material named " + m.dump());
+        obj.material = int(it - names.begin());
+    } else {
+        scene.materials.push_back(r.material(m, f + ".material", f));
+        obj.material = int(scene.materials.size() - 1);
+    }
+    return obj;
+}
+
+// "objects": at least one, at most as many as pbrlab draws, each added to the scene.
+void readObjects(const Reader& r, const json& doc, const std::vector<std::string>& names,
+                 Scene& scene) {
     if (!doc.contains("objects") || !doc["objects"].is_array() || doc["objects"].empty())
         r.fail("objects", "expected a non-empty array");
     if (doc["objects"].size() > kMaxDrawnMeshes)
@@ -216,49 +267,26 @@ Scene loadScene(const fs::path& file) {
                               " objects, more than pbrlab draws (at most " +
                               std::to_string(kMaxDrawnMeshes) + ")");
     for (size_t i = 0; i < doc["objects"].size(); ++i) {
-        std::string f = "objects[" + std::to_string(i) + "]";
-        const json& o = doc["objects"][i];
-        if (!o.is_object()) r.fail(f, "expected an object");
-        r.onlyKnown(o, f, {"primitive", "model", "translate", "scale", "material"});
-        ObjectDesc obj;
-        if (o.contains("primitive")) {
-            if (!o["primitive"].is_string() || o["primitive"] != "sphere")
-                r.fail(f + ".primitive", "expected \"sphere\" (or give \"model\": a .glb/.gltf)");
-        }
-        if (o.contains("model")) {
-            if (o.contains("primitive")) r.fail(f, "give either \"primitive\" or \"model\"");
-            if (!o["model"].is_string()) r.fail(f + ".model", "expected a .glb or .gltf path");
-            fs::path modelFile = file.parent_path() / o["model"].get<std::string>();
-            std::shared_ptr<const ModelData> model;
-            try {
-                model = std::make_shared<const ModelData>(loadGltf(modelFile));
-            } catch (const Error& e) {
-                r.fail(f + ".model", e.what());
-            }
-            obj.model = addModel(scene, model);
-        }
-        if (o.contains("translate")) obj.translate = r.vec3(o["translate"], f + ".translate");
-        if (o.contains("scale")) obj.scale = r.number(o["scale"], f + ".scale");
-        if (obj.scale <= 0) r.fail(f + ".scale", "must be > 0");
-        if (!o.contains("material")) {
-            if (obj.model >= 0) {  // the model's own materials
-                obj.material = -1;
-                scene.objects.push_back(obj);
-                continue;
-            }
-            r.fail(f + ".material", "missing");
-        }
-        const json& m = o["material"];
-        if (m.is_string()) {
-            auto it = std::find(names.begin(), names.end(), m.get<std::string>());
-            if (it == names.end()) r.fail(f + ".material", "no material named " + m.dump());
-            obj.material = int(it - names.begin());
-        } else {
-            scene.materials.push_back(r.material(m, f + ".material", f));
-            obj.material = int(scene.materials.size() - 1);
-        }
-        scene.objects.push_back(obj);
+        const std::string f = "objects[" + std::to_string(i) + "]";
+        scene.objects.push_back(readObject(r, doc["objects"][i], f, names, scene));
     }
+}
+
+}  // namespace
+
+Scene loadScene(const fs::path& file) {
+    Reader r{file};
+    json doc = readSceneJson(file);
+    if (!doc.is_object()) r.fail("(top level)", "expected an object");
+    r.onlyKnown(doc, "",
+                {"description", "camera", "lights", "materials", "objects", "environment"});
+    Scene scene;
+    scene.file = file;
+    if (doc.contains("environment")) scene.environment = readEnvironment(r, doc["environment"]);
+    if (doc.contains("camera")) readCamera(r, doc["camera"], scene.camera);
+    readLights(r, doc, scene);
+    const std::vector<std::string> names = readNamedMaterials(r, doc, scene);
+    readObjects(r, doc, names, scene);
     // A model's primitives are draws too: each object places all of them.
     if (const size_t draws = drawCount(scene); draws > kMaxDrawnMeshes)
         r.fail("objects", "they draw " + std::to_string(draws) +

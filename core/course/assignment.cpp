@@ -113,6 +113,120 @@ bool isCategory(const std::string& c) {
     return verdictNamed<CheckCategory>(c).has_value();
 }
 
+// The top level: an object of the known fields only.
+void checkTopLevel(const Reader& r, const json& j) {
+    if (!j.is_object()) r.fail("(top level)", "must be an object {...}");
+    const std::set<std::string> fields = {
+        "name",       "steps",   "points",    "checks", "partial_credit",
+        "visibility", "release", "solutions", "due",    "time_limit_seconds",
+        "cumulative"};
+    for (const auto& [key, value] : j.items())
+        if (!fields.count(key))
+            r.fail(key,
+                   "unknown field (known: name, steps, points, checks, partial_credit, "
+                   "visibility, release, solutions, due, time_limit_seconds, cumulative)");
+}
+
+// steps: "all" or a list of ids, kept in the order of the steps.
+std::vector<std::string> readSteps(const Reader& r, const json& j) {
+    if (!j.contains("steps")) r.fail("steps", "missing (a list of step ids, or \"all\")");
+    const json& steps = j["steps"];
+    if (steps.is_string() && steps.get<std::string>() == "all") return r.known;
+    if (!steps.is_array() || steps.empty())
+        r.fail("steps", "must be \"all\" or a non-empty list of step ids");
+    std::vector<size_t> indices;
+    for (size_t i = 0; i < steps.size(); ++i) {
+        const std::string at = "steps[" + std::to_string(i) + "]";
+        const size_t k = r.stepIndex(at, steps[i]);
+        if (std::find(indices.begin(), indices.end(), k) != indices.end())
+            r.fail(at, "'" + r.known[k] + "' is listed twice");
+        indices.push_back(k);
+    }
+    std::sort(indices.begin(), indices.end());
+    std::vector<std::string> out;
+    for (size_t k : indices) out.push_back(r.known[k]);
+    return out;
+}
+
+// points: per step, "default" for the others (1 unless told); every step of `steps` gets some.
+std::map<std::string, double> readPoints(const Reader& r, const json& j,
+                                         const std::vector<std::string>& steps) {
+    double defaultPoints = 1;
+    std::map<std::string, double> points;
+    if (j.contains("points")) {
+        for (const auto& [key, value] : r.object("points", j["points"]).items()) {
+            const double p = r.number("points." + key, value, 0, 1e6);
+            if (key == "default")
+                defaultPoints = p;
+            else if (!r.isStep(key))
+                r.fail("points." + key, "'" + key + "' is not a step id (see `pbrlab list`)");
+            else if (std::find(steps.begin(), steps.end(), key) == steps.end())
+                r.fail("points." + key, "'" + key + "' is not one of the assignment's steps");
+            else
+                points[key] = p;
+        }
+    }
+    std::map<std::string, double> out;
+    for (const std::string& s : steps) out[s] = points.count(s) ? points[s] : defaultPoints;
+    return out;
+}
+
+// checks: a weight per category; robustness is reported, not deducted, unless weighted.
+std::map<CheckCategory, double> readWeights(const Reader& r, const json& j) {
+    std::map<CheckCategory, double> weights;
+    for (const CheckCategory c : allOf<CheckCategory>())
+        weights[c] = c == CheckCategory::Robustness ? 0 : 1;
+    if (j.contains("checks")) {
+        for (const auto& [key, value] : r.object("checks", j["checks"]).items()) {
+            const std::optional<CheckCategory> category = verdictNamed<CheckCategory>(key);
+            if (!category) {
+                std::string known;
+                for (const CheckCategory c : allOf<CheckCategory>())
+                    known += (known.empty() ? "" : ", ") + std::string(nameOf(c));
+                r.fail("checks." + key, "not a check category (" + known + ")");
+            }
+            weights[*category] = r.number("checks." + key, value, 0, 1e6);
+        }
+    }
+    return weights;
+}
+
+// visibility: Gradescope's, by "default", step id, category or step.category.
+std::map<std::string, std::string> readVisibility(const Reader& r, const json& v) {
+    std::map<std::string, std::string> visibility;
+    for (const auto& [key, value] : r.object("visibility", v).items()) {
+        const size_t dot = key.find('.');
+        const std::string step = key.substr(0, dot),
+                          category = dot == std::string::npos ? "" : key.substr(dot + 1);
+        const bool ok = key == "default" ||
+                        (dot == std::string::npos && (r.isStep(key) || isCategory(key))) ||
+                        (dot != std::string::npos && r.isStep(step) && isCategory(category));
+        if (!ok)
+            r.fail("visibility." + key,
+                   "not \"default\", a step id, a check category or step.category");
+        const std::string s = r.string("visibility." + key, value);
+        if (std::find(kVisibilities.begin(), kVisibilities.end(), s) == kVisibilities.end())
+            r.fail("visibility." + key,
+                   "'" + s + "' is not visible, hidden, after_due_date or after_published");
+        visibility[key] = s;
+    }
+    return visibility;
+}
+
+// due: a date, or a date and a time in UTC (Gradescope's own due date is what after_due_date
+// waits for; this one is shown in the kit).
+std::string readDue(const Reader& r, const json& v) {
+    const std::string due = r.string("due", v);
+    r.date("due", due.substr(0, 10));
+    const std::string rest = due.substr(std::min<size_t>(10, due.size()));
+    std::tm tm{};
+    std::istringstream in(rest.size() > 1 ? rest.substr(1) : "");
+    in >> std::get_time(&tm, "%H:%M:%S");
+    if (!rest.empty() && (rest.size() != 10 || rest[0] != 'T' || rest.back() != 'Z' || in.fail()))
+        r.fail("due", "'" + due + "' is not YYYY-MM-DD or YYYY-MM-DDTHH:MM:SSZ");
+    return due;
+}
+
 }  // namespace
 
 std::string Assignment::visibilityOf(const std::string& step, const std::string& category) const {
@@ -129,103 +243,17 @@ Assignment parseAssignment(const json& j, const std::string& fileName,
     const Reader r{fileName, knownSteps};
     Assignment a;
     a.file = fileName;
-    if (!j.is_object()) r.fail("(top level)", "must be an object {...}");
-    const std::set<std::string> fields = {
-        "name",       "steps",   "points",    "checks", "partial_credit",
-        "visibility", "release", "solutions", "due",    "time_limit_seconds",
-        "cumulative"};
-    for (const auto& [key, value] : j.items())
-        if (!fields.count(key))
-            r.fail(key,
-                   "unknown field (known: name, steps, points, checks, partial_credit, "
-                   "visibility, release, solutions, due, time_limit_seconds, cumulative)");
+    checkTopLevel(r, j);
     if (j.contains("name")) a.name = r.string("name", j["name"]);
-    // steps: "all" or a list of ids, kept in the order of the steps.
-    if (!j.contains("steps")) r.fail("steps", "missing (a list of step ids, or \"all\")");
-    const json& steps = j["steps"];
-    if (steps.is_string() && steps.get<std::string>() == "all") {
-        a.steps = knownSteps;
-    } else if (steps.is_array() && !steps.empty()) {
-        std::vector<size_t> indices;
-        for (size_t i = 0; i < steps.size(); ++i) {
-            const std::string at = "steps[" + std::to_string(i) + "]";
-            const size_t k = r.stepIndex(at, steps[i]);
-            if (std::find(indices.begin(), indices.end(), k) != indices.end())
-                r.fail(at, "'" + knownSteps[k] + "' is listed twice");
-            indices.push_back(k);
-        }
-        std::sort(indices.begin(), indices.end());
-        for (size_t k : indices) a.steps.push_back(knownSteps[k]);
-    } else {
-        r.fail("steps", "must be \"all\" or a non-empty list of step ids");
-    }
-    // points: per step, "default" for the others (1 unless told).
-    double defaultPoints = 1;
-    std::map<std::string, double> points;
-    if (j.contains("points")) {
-        for (const auto& [key, value] : r.object("points", j["points"]).items()) {
-            const double p = r.number("points." + key, value, 0, 1e6);
-            if (key == "default")
-                defaultPoints = p;
-            else if (!r.isStep(key))
-                r.fail("points." + key, "'" + key + "' is not a step id (see `pbrlab list`)");
-            else if (std::find(a.steps.begin(), a.steps.end(), key) == a.steps.end())
-                r.fail("points." + key, "'" + key + "' is not one of the assignment's steps");
-            else
-                points[key] = p;
-        }
-    }
-    for (const std::string& s : a.steps) a.points[s] = points.count(s) ? points[s] : defaultPoints;
-    // checks: a weight per category; robustness is reported, not deducted, unless weighted.
-    for (const CheckCategory c : allOf<CheckCategory>())
-        a.weights[c] = c == CheckCategory::Robustness ? 0 : 1;
-    if (j.contains("checks")) {
-        for (const auto& [key, value] : r.object("checks", j["checks"]).items()) {
-            const std::optional<CheckCategory> category = verdictNamed<CheckCategory>(key);
-            if (!category) {
-                std::string known;
-                for (const CheckCategory c : allOf<CheckCategory>())
-                    known += (known.empty() ? "" : ", ") + std::string(nameOf(c));
-                r.fail("checks." + key, "not a check category (" + known + ")");
-            }
-            a.weights[*category] = r.number("checks." + key, value, 0, 1e6);
-        }
-    }
+    a.steps = readSteps(r, j);
+    a.points = readPoints(r, j, a.steps);
+    a.weights = readWeights(r, j);
     if (j.contains("partial_credit"))
         a.partialCredit = r.boolean("partial_credit", j["partial_credit"]);
-    if (j.contains("visibility")) {
-        for (const auto& [key, value] : r.object("visibility", j["visibility"]).items()) {
-            const size_t dot = key.find('.');
-            const std::string step = key.substr(0, dot),
-                              category = dot == std::string::npos ? "" : key.substr(dot + 1);
-            const bool ok = key == "default" ||
-                            (dot == std::string::npos && (r.isStep(key) || isCategory(key))) ||
-                            (dot != std::string::npos && r.isStep(step) && isCategory(category));
-            if (!ok)
-                r.fail("visibility." + key,
-                       "not \"default\", a step id, a check category or step.category");
-            const std::string v = r.string("visibility." + key, value);
-            if (std::find(kVisibilities.begin(), kVisibilities.end(), v) == kVisibilities.end())
-                r.fail("visibility." + key,
-                       "'" + v + "' is not visible, hidden, after_due_date or after_published");
-            a.visibility[key] = v;
-        }
-    }
+    if (j.contains("visibility")) a.visibility = readVisibility(r, j["visibility"]);
     if (j.contains("release")) a.release = r.schedule("release", j["release"], a.steps);
     if (j.contains("solutions")) a.solutions = r.schedule("solutions", j["solutions"], a.steps);
-    if (j.contains("due")) {
-        a.due = r.string("due", j["due"]);
-        // A date, or a date and a time in UTC (Gradescope's own due date is what
-        // after_due_date waits for; this one is shown in the kit).
-        r.date("due", a.due.substr(0, 10));
-        const std::string rest = a.due.substr(std::min<size_t>(10, a.due.size()));
-        std::tm tm{};
-        std::istringstream in(rest.size() > 1 ? rest.substr(1) : "");
-        in >> std::get_time(&tm, "%H:%M:%S");
-        if (!rest.empty() &&
-            (rest.size() != 10 || rest[0] != 'T' || rest.back() != 'Z' || in.fail()))
-            r.fail("due", "'" + a.due + "' is not YYYY-MM-DD or YYYY-MM-DDTHH:MM:SSZ");
-    }
+    if (j.contains("due")) a.due = readDue(r, j["due"]);
     if (j.contains("time_limit_seconds"))
         a.timeLimitSeconds = r.number("time_limit_seconds", j["time_limit_seconds"], 1, 3600);
     if (j.contains("cumulative")) a.cumulative = r.boolean("cumulative", j["cumulative"]);

@@ -157,28 +157,22 @@ std::string trimmed(std::string text) {
     return text;
 }
 
-}  // namespace
-
-std::pair<int, int> parseShard(const std::string& text) {
-    int i = -1, n = 0;
-    char slash = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &i, &slash, &n, &extra) != 3 || slash != '/' ||
-        n < 1 || i < 0 || i >= n)
-        throw Error("--shard \"" + text + "\": expected I/N with 0 <= I < N (e.g. 0/4)");
-    return {i, n};
+// Seconds since `start`, for the progress line and the summary.
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-int shardOf(const std::string& student, int shards) {
-    Digest d;
-    d.add(student);
-    return int(d.h % std::uint64_t(std::max(shards, 1)));
-}
+// The shard's submissions in name order, with each one's total (its error, once graded), the
+// digest its reports will carry (empty: none) and which of them are to be graded.
+struct Submissions {
+    std::vector<fs::path> folders;
+    std::vector<StudentTotal> totals;
+    std::vector<std::string> digests;
+    std::vector<size_t> todo;
+};
 
-BatchSummary gradeBatch(const ModuleRegistry& modules, const DataPaths& paths,
-                        const BatchOptions& o) {
-    const auto start = std::chrono::steady_clock::now();
-    if (!fs::is_directory(o.batch)) throw Error(o.batch.string() + ": not a directory");
-    if (o.out.empty()) throw Error("--batch needs --out DIR for the reports");
+// The folders in the batch that belong to this shard, in name order.
+std::vector<fs::path> shardFolders(const BatchOptions& o) {
     std::vector<fs::path> students;
     for (const auto& e : fs::directory_iterator(o.batch)) {
         std::error_code ec;
@@ -186,36 +180,48 @@ BatchSummary gradeBatch(const ModuleRegistry& modules, const DataPaths& paths,
             students.push_back(e.path());
     }
     std::sort(students.begin(), students.end());
-    fs::create_directories(o.out);
+    return students;
+}
 
-    const std::string configuration = configurationDigest(modules, paths, o);
-    BatchSummary summary;
-    summary.students = students.size();
-    std::vector<StudentTotal> totals(students.size());
-    std::vector<size_t> todo;
-    std::vector<std::string> digests(students.size());
-    for (size_t i = 0; i < students.size(); ++i) {
-        const std::string name = students[i].filename().string();
+// Which submissions to grade: those without reports whose digest matches the submission's
+// files and the `configuration` now (the others are counted as skipped in `summary`).
+Submissions submissionsToGrade(std::vector<fs::path> students, const BatchOptions& o,
+                               const std::string& configuration, BatchSummary& summary) {
+    Submissions s{std::move(students), {}, {}, {}};
+    s.totals.resize(s.folders.size());
+    s.digests.resize(s.folders.size());
+    for (size_t i = 0; i < s.folders.size(); ++i) {
+        const std::string name = s.folders[i].filename().string();
         const fs::path out = o.out / name;
-        totals[i].student = name;
-        const std::string files = folderDigest(students[i]);
+        s.totals[i].student = name;
+        const std::string files = folderDigest(s.folders[i]);
         if (!configuration.empty() && !files.empty()) {
             Digest d;
             d.add(configuration);
             d.add(files);
-            digests[i] = d.hex();
+            s.digests[i] = d.hex();
         }
         std::error_code ec;
-        const bool unchanged = !digests[i].empty() && fs::exists(out / "report.json", ec) &&
+        const bool unchanged = !s.digests[i].empty() && fs::exists(out / "report.json", ec) &&
                                fs::exists(out / "digest.txt", ec) &&
-                               trimmed(readFile(out / "digest.txt")) == digests[i];
+                               trimmed(readFile(out / "digest.txt")) == s.digests[i];
         if (unchanged) {
             ++summary.skipped;
         } else {
-            todo.push_back(i);
+            s.todo.push_back(i);
         }
     }
+    return s;
+}
 
+// Grades the submissions to grade in worker processes, recording each one's error in its
+// total and drawing the progress as each ends.
+void gradeInWorkers(const ModuleRegistry& modules, const DataPaths& paths, const BatchOptions& o,
+                    Submissions& s, BatchSummary& summary,
+                    std::chrono::steady_clock::time_point start) {
+    const std::vector<fs::path>& students = s.folders;
+    std::vector<StudentTotal>& totals = s.totals;
+    const std::vector<size_t>& todo = s.todo;
     // Submissions at once, and grading processes each: about `jobs` processes in all.
     const size_t jobs = size_t(std::max(1, o.grade.jobs));
     const size_t atOnce = std::max<size_t>(1, std::min(jobs, todo.size()));
@@ -223,9 +229,6 @@ BatchSummary gradeBatch(const ModuleRegistry& modules, const DataPaths& paths,
     each.jobs = int(std::max<size_t>(1, jobs / atOnce));
     std::map<pid_t, size_t> running;
     size_t next = 0;
-    auto seconds = [&] {
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    };
     if (o.progress) drawProgress(summary.skipped, students.size(), summary.skipped, 0, 0, false);
     while (next < todo.size() || !running.empty()) {
         while (running.size() < atOnce && next < todo.size()) {
@@ -238,7 +241,7 @@ BatchSummary gradeBatch(const ModuleRegistry& modules, const DataPaths& paths,
             try {
                 fs::create_directories(out);
                 running[startWorker(modules, paths, each, o.assignment, students[i], out,
-                                    digests[i])] = i;
+                                    s.digests[i])] = i;
             } catch (const std::exception& e) {
                 totals[i].error = e.what();
             }
@@ -266,12 +269,17 @@ BatchSummary gradeBatch(const ModuleRegistry& modules, const DataPaths& paths,
                 "the grading process ended with status " + std::to_string(WEXITSTATUS(status));
         if (o.progress)
             drawProgress(summary.skipped + summary.graded, students.size(), summary.skipped,
-                         summary.graded, seconds(), false);
+                         summary.graded, secondsSince(start), false);
     }
+}
 
+// The class report's rows from each report.json, with each student's score in `totals`; a
+// report that cannot be read is that student's error (counted in `summary`, as are the
+// others').
+std::vector<ClassRow> readReports(const BatchOptions& o, std::vector<StudentTotal>& totals,
+                                  BatchSummary& summary) {
     std::vector<ClassRow> rows;
-    for (size_t i = 0; i < students.size(); ++i) {
-        StudentTotal& t = totals[i];
+    for (StudentTotal& t : totals) {
         if (!t.error.empty()) {
             ++summary.errors;
             continue;
@@ -288,6 +296,12 @@ BatchSummary gradeBatch(const ModuleRegistry& modules, const DataPaths& paths,
             ++summary.errors;
         }
     }
+    return rows;
+}
+
+// shard.json: which shard this is, what graded it and its students, for grade --merge.
+void writeShardIndex(const BatchOptions& o, const std::string& configuration,
+                     const std::vector<StudentTotal>& totals) {
     std::vector<std::string> names;
     for (const StudentTotal& t : totals) names.push_back(t.student);
     const json shard = {{"shard", o.shard},
@@ -295,15 +309,54 @@ BatchSummary gradeBatch(const ModuleRegistry& modules, const DataPaths& paths,
                         {"configuration", configuration},
                         {"students", names}};
     writeFileAtomically(o.out / "shard.json", shard.dump(2) + "\n");
+}
+
+// The class report's title: the batch folder's name, and the shard when there are several.
+std::string batchTitle(const BatchOptions& o) {
     fs::path folder = fs::absolute(o.batch).lexically_normal();
     if (!folder.has_filename()) folder = folder.parent_path();  // "class/"
     std::string title = folder.filename().string();
     if (o.shards > 1)
         title += " (shard " + std::to_string(o.shard) + " of " + std::to_string(o.shards) + ")";
-    writeClassReport(rows, totals, o.out, title);
-    summary.seconds = seconds();
+    return title;
+}
+
+}  // namespace
+
+std::pair<int, int> parseShard(const std::string& text) {
+    int i = -1, n = 0;
+    char slash = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &i, &slash, &n, &extra) != 3 || slash != '/' ||
+        n < 1 || i < 0 || i >= n)
+        throw Error("--shard \"" + text + "\": expected I/N with 0 <= I < N (e.g. 0/4)");
+    return {i, n};
+}
+
+int shardOf(const std::string& student, int shards) {
+    Digest d;
+    d.add(student);
+    return int(d.h % std::uint64_t(std::max(shards, 1)));
+}
+
+BatchSummary gradeBatch(const ModuleRegistry& modules, const DataPaths& paths,
+                        const BatchOptions& o) {
+    const auto start = std::chrono::steady_clock::now();
+    if (!fs::is_directory(o.batch)) throw Error(o.batch.string() + ": not a directory");
+    if (o.out.empty()) throw Error("--batch needs --out DIR for the reports");
+    std::vector<fs::path> students = shardFolders(o);
+    fs::create_directories(o.out);
+
+    const std::string configuration = configurationDigest(modules, paths, o);
+    BatchSummary summary;
+    summary.students = students.size();
+    Submissions s = submissionsToGrade(std::move(students), o, configuration, summary);
+    gradeInWorkers(modules, paths, o, s, summary, start);
+    const std::vector<ClassRow> rows = readReports(o, s.totals, summary);
+    writeShardIndex(o, configuration, s.totals);
+    writeClassReport(rows, s.totals, o.out, batchTitle(o));
+    summary.seconds = secondsSince(start);
     if (o.progress)
-        drawProgress(students.size(), students.size(), summary.skipped, summary.graded,
+        drawProgress(s.folders.size(), s.folders.size(), summary.skipped, summary.graded,
                      summary.seconds, true);
     return summary;
 }

@@ -87,6 +87,107 @@ private:
     fs::path dir_;
 };
 
+// A view that calls the step's function, on the inputs it hands it.
+struct Caller {
+    std::string what;  // for the message
+    const LoadedModule* module;
+    ParamValues params;
+    Scene scene;
+};
+
+// The step's callers: its own view, at each choice of its enum and bool parameters, and the
+// view of every later step whose reference solution calls it, loaded into `registries`.
+std::vector<Caller> callersOf(const LoadedModule& m, const DataPaths& paths, const Scene& scene,
+                              std::vector<std::unique_ptr<ModuleRegistry>>& registries) {
+    const ModuleDesc& d = *m.desc;
+    const std::string function = functionName(d.function);
+    std::vector<Caller> callers;
+    callers.push_back({"this step's view", &m, ParamValues(d.params), scene});
+    for (const ParamDecl& p : d.params) {
+        if (p.type != ParamType::Enum && p.type != ParamType::Bool) continue;
+        for (const std::string& a : exercisedValues(p))
+            callers.push_back({"this step's view with " + a, &m, withSets(d, {a}), scene});
+    }
+    // Later steps whose reference solution calls this one, loaded from this step's module
+    // folder (an out-of-tree caller elsewhere is not found and not graded here).
+    for (const ContractStep& step : contractSteps()) {
+        if (std::find(step.calls.begin(), step.calls.end(), d.id) == step.calls.end()) continue;
+        try {
+            registries.push_back(
+                std::make_unique<ModuleRegistry>(m.library.parent_path(), step.id));
+            const LoadedModule& caller = registries.back()->find(step.id);
+            callers.push_back({"step " + std::to_string(step.step) + " " + step.id + " (" +
+                                   functionName(step.function) + " calls your " + function + ")",
+                               &caller, ParamValues(caller.desc->params),
+                               loadScene(paths.scene(caller.desc->scene))});
+        } catch (const std::exception&) {
+        }
+    }
+    return callers;
+}
+
+// Whose code the callers' programs hold: the student's function (stepwise), or every step of
+// the student's up to this one (cumulative); the reference solutions for the rest.
+std::vector<std::string> studentSteps(const ModuleDesc& d, const StudentSource& source) {
+    const ContractStep* self = findContractStep(d.id);
+    std::vector<std::string> students{d.id};
+    if (source.cumulative && self)
+        for (const ContractStep& step : contractSteps())
+            if (step.step < self->step) students.push_back(step.id);
+    return students;
+}
+
+// NaN and Inf among a view's values on the callers' inputs, and the first such input.
+struct Broken {
+    int count = 0;
+    std::string firstAt;
+};
+
+// The caller's view built with `source`, on `set`: its NaN and Inf.
+Broken brokenValues(LabRenderer& renderer, const Caller& c, const StudentSource& source,
+                    const ExtremeSet& set) {
+    RenderRequest request{c.module,      &c.params, &c.scene,  source,
+                          &set.surfaces, set.width, set.height};
+    request.seamlessCubes = false;
+    const Image value = renderer.render(request).value;
+    Broken b;
+    for (size_t i = 0; i < set.labels.size(); ++i)
+        for (int k = 0; k < c.module->desc->components; ++k)
+            if (!std::isfinite(value.pixels[i * 4 + size_t(k)])) {
+                if (!b.count++) b.firstAt = set.labels[i];
+                break;
+            }
+    return b;
+}
+
+// --cumulative: which of the student's steps makes the caller's NaN (their own function alone,
+// else the first earlier step of theirs that does on its own), as the message adds it ("" when
+// it is the graded step's or none alone).
+std::string nanCulprit(LabRenderer& renderer, const Caller& c, const StudentSource& source,
+                       const std::vector<std::string>& students, const ExtremeSet& set,
+                       const std::string& graded) {
+    std::string culprit;
+    for (const std::string& id : students) {
+        const StepSubset only(source, {id});
+        Broken alone;
+        try {
+            alone = brokenValues(renderer, c, only.source(), set);
+        } catch (const std::exception&) {
+            continue;
+        }
+        if (alone.count) {
+            culprit = id;
+            break;
+        }
+    }
+    if (culprit.empty() || culprit == graded) return "";
+    const ContractStep* step = findContractStep(culprit);
+    return "; it comes from your step " +
+           (step ? std::to_string(step->step) + " " : std::string()) + culprit +
+           (step ? " (" + functionName(step->function) + ")" : std::string()) +
+           ", which gives NaN there on its own";
+}
+
 }  // namespace
 
 // No step may read what its own or a later step's reference solution computed (the
@@ -220,65 +321,12 @@ void StepGrader::gradeInvariants(const Scene& scene) {
 void StepGrader::gradeCallerInputs(const Scene& scene) {
     if (d_.estimator) return;
     stage("inputs its callers produce");
-    const std::string function = functionName(d_.function);
-    const ContractStep* self = findContractStep(d_.id);
-    struct Caller {
-        std::string what;  // for the message
-        const LoadedModule* module;
-        ParamValues params;
-        Scene scene;
-    };
-    std::vector<Caller> callers;
-    callers.push_back({"this step's view", &m_, ParamValues(d_.params), scene});
-    for (const ParamDecl& p : d_.params) {
-        if (p.type != ParamType::Enum && p.type != ParamType::Bool) continue;
-        for (const std::string& a : exercisedValues(p))
-            callers.push_back({"this step's view with " + a, &m_, withSets(d_, {a}), scene});
-    }
-    // Later steps whose reference solution calls this one, loaded from this step's module
-    // folder (an out-of-tree caller elsewhere is not found and not graded here).
     std::vector<std::unique_ptr<ModuleRegistry>> registries;
-    for (const ContractStep& step : contractSteps()) {
-        if (std::find(step.calls.begin(), step.calls.end(), d_.id) == step.calls.end()) continue;
-        try {
-            registries.push_back(
-                std::make_unique<ModuleRegistry>(m_.library.parent_path(), step.id));
-            const LoadedModule& caller = registries.back()->find(step.id);
-            callers.push_back({"step " + std::to_string(step.step) + " " + step.id + " (" +
-                                   functionName(step.function) + " calls your " + function + ")",
-                               &caller, ParamValues(caller.desc->params),
-                               loadScene(paths_.scene(caller.desc->scene))});
-        } catch (const std::exception&) {
-        }
-    }
-    // Whose code the callers' programs hold: the student's function (stepwise), or every step
-    // of the student's up to this one (cumulative); the reference solutions for the rest.
-    std::vector<std::string> students{d_.id};
-    if (source_.cumulative && self)
-        for (const ContractStep& step : contractSteps())
-            if (step.step < self->step) students.push_back(step.id);
+    const std::vector<Caller> callers = callersOf(m_, paths_, scene, registries);
+    const std::vector<std::string> students = studentSteps(d_, source_);
     std::unique_ptr<StepSubset> subset;
     if (!source_.dir.empty()) subset = std::make_unique<StepSubset>(source_, students);
 
-    // NaN and Inf among a view's values on the callers' inputs, and the first such input.
-    struct Broken {
-        int count = 0;
-        std::string firstAt;
-    };
-    auto broken = [&](const Caller& c, const StudentSource& source, const ExtremeSet& set) {
-        RenderRequest request{c.module,      &c.params, &c.scene,  source,
-                              &set.surfaces, set.width, set.height};
-        request.seamlessCubes = false;
-        const Image value = renderer_.render(request).value;
-        Broken b;
-        for (size_t i = 0; i < set.labels.size(); ++i)
-            for (int k = 0; k < c.module->desc->components; ++k)
-                if (!std::isfinite(value.pixels[i * 4 + size_t(k)])) {
-                    if (!b.count++) b.firstAt = set.labels[i];
-                    break;
-                }
-        return b;
-    };
     CheckReport r;
     r.name = "inputs its callers produce";
     r.kind = CheckKind::Invariant;
@@ -292,7 +340,7 @@ void StepGrader::gradeCallerInputs(const Scene& scene) {
         const StudentSource source = own || !subset ? source_ : subset->source();
         Broken b;
         try {
-            b = broken(c, source, set);
+            b = brokenValues(renderer_, c, source, set);
         } catch (const std::exception&) {
             // A caller's program that does not build with the student's file alone (it
             // includes another step's file): not graded here; the student's own program built.
@@ -308,31 +356,8 @@ void StepGrader::gradeCallerInputs(const Scene& scene) {
         r.detail = "NaN on an input its callers produce: " + c.what + " gives NaN or Inf at " +
                    std::to_string(b.count) + " of " + std::to_string(set.labels.size()) +
                    " inputs, first at " + b.firstAt;
-        // --cumulative: which of the student's steps makes it (their own function alone, else
-        // the first earlier step of theirs that does on its own).
-        if (source_.cumulative && !source_.dir.empty()) {
-            std::string culprit;
-            for (const std::string& id : students) {
-                const StepSubset only(source_, {id});
-                Broken alone;
-                try {
-                    alone = broken(c, only.source(), set);
-                } catch (const std::exception&) {
-                    continue;
-                }
-                if (alone.count) {
-                    culprit = id;
-                    break;
-                }
-            }
-            if (!culprit.empty() && culprit != d_.id) {
-                const ContractStep* step = findContractStep(culprit);
-                r.detail += "; it comes from your step " +
-                            (step ? std::to_string(step->step) + " " : std::string()) + culprit +
-                            (step ? " (" + functionName(step->function) + ")" : std::string()) +
-                            ", which gives NaN there on its own";
-            }
-        }
+        if (source_.cumulative && !source_.dir.empty())
+            r.detail += nanCulprit(renderer_, c, source_, students, set, d_.id);
         break;
     }
     if (r.passed)

@@ -124,16 +124,10 @@ bool flat(const std::vector<glm::dvec3>& v, const std::vector<size_t>& points, i
     return true;
 }
 
-// Whether the wrong points lie on one side of a threshold of one input while the other side
-// is right: "wrong only where N.L < 0". The inputs are the step's own (InputAxis) or the
-// generic ones. What is said after it follows what the two functions do on that side: a
-// clamp or guard the student's lacks (the reference constant there, the student's not), a
-// cut-off the contract does not have (the student's constant there, the reference's not).
-std::string region(const FeedbackInputs& in, bool* hinted = nullptr) {
-    if (hinted) *hinted = false;
+// Which points are wrong: not finite, or a component outside the band.
+std::vector<bool> wrongPoints(const FeedbackInputs& in, int& badCount) {
     const int n = in.module->components;
     std::vector<bool> bad;
-    int badCount = 0;
     for (size_t i = 0; i < in.values.size(); ++i) {
         bool b = !finite(in.values[i], n);
         for (int c = 0; c < n && !b; ++c)
@@ -141,6 +135,85 @@ std::string region(const FeedbackInputs& in, bool* hinted = nullptr) {
         bad.push_back(b);
         badCount += b;
     }
+    return bad;
+}
+
+// The threshold `shown` as written, with as many digits as it takes to lie between the
+// neighbours a and b: the roughness 0.995 between 0.99 and 1 is not "> 1".
+std::string thresholdBetween(double shown, double a, double b) {
+    std::string threshold = num(shown, 2);
+    for (int digits = 3; digits <= 6 && shown != 0.0; ++digits) {
+        const double written = std::stod(threshold);
+        if (written > a && written < b) break;
+        threshold = num(shown, digits);
+    }
+    return threshold;
+}
+
+// One side of a threshold of one input, the wrong points on it: the points sorted by the
+// input, the threshold between xs[k] and xs[k + 1], side 0 below it and 1 above.
+struct Split {
+    const InputAxis& axis;
+    const std::vector<std::pair<double, size_t>>& xs;
+    size_t k;
+    int side;
+    int inBad, sideSize;  // wrong points on that side, and all points there
+};
+
+// What region() says of the split that is its best so far: where the wrong points lie, and
+// what the two functions do there. Sets *hinted where that names a clamp, a guard or a cut-off.
+std::string describeSplit(const FeedbackInputs& in, const std::vector<bool>& bad,
+                          const Split& split, bool* hinted) {
+    const int n = in.module->components;
+    const InputAxis& f = split.axis;
+    const std::vector<std::pair<double, size_t>>& xs = split.xs;
+    const size_t k = split.k;
+    const int side = split.side;
+    // A threshold between the two neighbours; 0 when 0 lies between them
+    // (where clamps and guards sit).
+    const double a = xs[k].first, b = xs[k + 1].first;
+    const double shown = a <= 0 && b >= 0 ? 0.0 : 0.5 * (a + b);
+    const std::string threshold = thresholdBetween(shown, a, b);
+    // "<= 0" where the wrong side holds points at 0 itself (a probe's end).
+    const bool atZero = shown == 0 && (side == 0 ? a == 0 : b == 0);
+    const std::string where =
+        f.name + (side == 0 ? (atZero ? " <= " : " < ") : (atZero ? " >= " : " > ")) + threshold;
+    std::string best = "wrong only where " + where + " (" + std::to_string(split.inBad) + " of " +
+                       std::to_string(split.sideSize) + " points there), right elsewhere";
+    // The wrong points of that side (finite ones: a NaN says nothing of a shape).
+    std::vector<size_t> wrongThere;
+    for (size_t j = side == 0 ? 0 : k + 1; j < (side == 0 ? k + 1 : xs.size()); ++j)
+        if (bad[xs[j].second] && finite(in.values[xs[j].second], n))
+            wrongThere.push_back(xs[j].second);
+    const bool enough = wrongThere.size() >= 2;
+    const bool studentFlat = enough && flat(in.values, wrongThere, n);
+    const bool referenceFlat = enough && flat(in.expected, wrongThere, n);
+    if (studentFlat && !referenceFlat) {
+        std::string value;
+        for (int c = 0; c < n; ++c) value += (c ? ", " : "") + num(in.values[wrongThere[0]][c], 4);
+        if (n > 1) value = "(" + value + ")";
+        best += ": yours is " + value + " where " + where +
+                ", the reference is not: a cut-off the contract does not have?";
+        if (hinted) *hinted = true;
+    } else if (referenceFlat && !studentFlat && shown == 0 && side == 0) {
+        best += ": is a max(..., 0.0) or a guard for negative " + f.name + " missing?";
+        if (hinted) *hinted = true;
+    } else {
+        best += ".";
+        if (hinted) *hinted = false;
+    }
+    return best;
+}
+
+// Whether the wrong points lie on one side of a threshold of one input while the other side
+// is right: "wrong only where N.L < 0". The inputs are the step's own (InputAxis) or the
+// generic ones. What is said after it follows what the two functions do on that side: a
+// clamp or guard the student's lacks (the reference constant there, the student's not), a
+// cut-off the contract does not have (the student's constant there, the reference's not).
+std::string region(const FeedbackInputs& in, bool* hinted = nullptr) {
+    if (hinted) *hinted = false;
+    int badCount = 0;
+    const std::vector<bool> bad = wrongPoints(in, badCount);
     const int total = int(bad.size());
     if (badCount == 0 || badCount > 0.8 * total) return "";
     std::string best;
@@ -172,48 +245,7 @@ std::string region(const FeedbackInputs& in, bool* hinted = nullptr) {
                 const double score = double(inBad) / sideSize + 1e-6 * inBad;
                 if (score <= bestScore) continue;
                 bestScore = score;
-                // A threshold between the two neighbours; 0 when 0 lies between them
-                // (where clamps and guards sit).
-                const double a = xs[k].first, b = xs[k + 1].first;
-                const double shown = a <= 0 && b >= 0 ? 0.0 : 0.5 * (a + b);
-                // As many digits as it takes to lie between them: the roughness 0.995
-                // between 0.99 and 1 is not "> 1".
-                std::string threshold = num(shown, 2);
-                for (int digits = 3; digits <= 6 && shown != 0.0; ++digits) {
-                    const double written = std::stod(threshold);
-                    if (written > a && written < b) break;
-                    threshold = num(shown, digits);
-                }
-                // "<= 0" where the wrong side holds points at 0 itself (a probe's end).
-                const bool atZero = shown == 0 && (side == 0 ? a == 0 : b == 0);
-                const std::string where =
-                    f.name + (side == 0 ? (atZero ? " <= " : " < ") : (atZero ? " >= " : " > ")) +
-                    threshold;
-                best = "wrong only where " + where + " (" + std::to_string(inBad) + " of " +
-                       std::to_string(sideSize) + " points there), right elsewhere";
-                // The wrong points of that side (finite ones: a NaN says nothing of a shape).
-                std::vector<size_t> wrongThere;
-                for (size_t j = side == 0 ? 0 : k + 1; j < (side == 0 ? k + 1 : xs.size()); ++j)
-                    if (bad[xs[j].second] && finite(in.values[xs[j].second], n))
-                        wrongThere.push_back(xs[j].second);
-                const bool enough = wrongThere.size() >= 2;
-                const bool studentFlat = enough && flat(in.values, wrongThere, n);
-                const bool referenceFlat = enough && flat(in.expected, wrongThere, n);
-                if (studentFlat && !referenceFlat) {
-                    std::string value;
-                    for (int c = 0; c < n; ++c)
-                        value += (c ? ", " : "") + num(in.values[wrongThere[0]][c], 4);
-                    if (n > 1) value = "(" + value + ")";
-                    best += ": yours is " + value + " where " + where +
-                            ", the reference is not: a cut-off the contract does not have?";
-                    if (hinted) *hinted = true;
-                } else if (referenceFlat && !studentFlat && shown == 0 && side == 0) {
-                    best += ": is a max(..., 0.0) or a guard for negative " + f.name + " missing?";
-                    if (hinted) *hinted = true;
-                } else {
-                    best += ".";
-                    if (hinted) *hinted = false;
-                }
+                best = describeSplit(in, bad, {f, xs, k, side, inBad, sideSize}, hinted);
             }
         }
     }
@@ -536,6 +568,136 @@ std::string componentPower(const FeedbackInputs& in) {
     return "";
 }
 
+// A constant output: the message when the student's value is the same at every point and the
+// reference's is not, else "".
+std::string constantOutput(const FeedbackInputs& in, const std::vector<Entry>& all) {
+    double lo = all.front().value, hi = lo, elo = all.front().expected, ehi = elo;
+    for (const Entry& e : all) {
+        lo = std::min(lo, e.value), hi = std::max(hi, e.value);
+        elo = std::min(elo, e.expected), ehi = std::max(ehi, e.expected);
+    }
+    if (hi - lo <= 1e-7 * std::max(1.0, std::abs(hi)) && ehi - elo > 1e-6) {
+        const std::string constant = "Your function returns " + num(lo, 4) +
+                                     " whatever the inputs (the reference varies from " + num(elo) +
+                                     " to " + num(ehi) + ").";
+        // Without the student's code, a constant 0 is most often the stub.
+        const std::string why = lo != 0                  ? ""
+                                : in.studentCode.empty() ? "Is it still the kit's stub?"
+                                                         : whyAlwaysZero(in.studentCode);
+        return why.rfind("Your function", 0) == 0 ? why : constant + (why.empty() ? "" : " " + why);
+    }
+    return "";
+}
+
+// Swapped components (multi-component values): where the reference's components differ,
+// and at the points the reference does not explain (an estimator's band can be wide enough
+// for a sky's red and green to pass for each other where the student is right).
+std::string swappedComponents(const FeedbackInputs& in) {
+    const int n = in.module->components;
+    std::vector<bool> wrong;
+    int wrongCount = 0;
+    for (size_t i = 0; i < in.values.size(); ++i) {
+        bool w = false;
+        for (int c = 0; c < n; ++c)
+            w = w || !(std::abs(in.values[i][c] - in.expected[i][c]) <= in.slack[i][c]);
+        wrong.push_back(w);
+        wrongCount += w;
+    }
+    const int perms[][3] = {{1, 0, 2}, {0, 2, 1}, {2, 1, 0}, {1, 2, 0}, {2, 0, 1}};
+    for (const auto& p : perms) {
+        if (n == 2 && (p[0] >= 2 || p[1] >= 2)) continue;
+        int match = 0, considered = 0, matchWrong = 0;
+        for (size_t i = 0; i < in.values.size(); ++i) {
+            bool ok = true, differs = false, inBand = true;
+            for (int c = 0; c < n; ++c) {
+                const double e = in.expected[i][p[c]];
+                const double apart = std::abs(in.values[i][c] - e);
+                ok = ok && apart <= in.slack[i][p[c]] * 4 + 1e-3 * std::abs(e);
+                // Where the reference does not explain the value, the swapped one must, as
+                // the reference explains the right ones: within the band.
+                inBand = inBand && apart <= in.slack[i][p[c]] + 1e-4 * std::abs(e);
+                differs = differs || std::abs(in.expected[i][c] - e) > in.slack[i][c];
+            }
+            matchWrong += inBand && wrong[i];
+            if (!differs) continue;
+            ++considered;
+            match += ok;
+        }
+        if (considered > 8 && match >= 0.95 * considered && matchWrong >= 0.9 * wrongCount) {
+            const char* names = n == 2 ? "xy" : "xyz";
+            std::string s = "Your components are swapped: ";
+            for (int c = 0; c < n; ++c)
+                if (p[c] != c)
+                    s += std::string(c == 0 || p[0] == 0 ? "" : ", ") + names[c] + " holds " +
+                         names[p[c]];
+            return s + " of the reference.";
+        }
+    }
+    return "";
+}
+
+// A constant factor: value / expected the same (`ratios`, where the reference is clearly
+// nonzero) at nearly every point, the message naming the constant; else "".
+std::string constantFactor(const FeedbackInputs& in, const std::vector<Entry>& all,
+                           const std::vector<double>& ratios, double peak) {
+    if (ratios.size() >= 8) {
+        const double k = median(ratios);
+        // The points left out of the ratios (the reference about 0 there) must agree too: a
+        // light taken from the wrong side is 0 where the reference is lit (a "factor" of 0)
+        // and lit where the reference is 0, which no factor explains.
+        size_t unexplained = 0;
+        for (const Entry& e : all)
+            unexplained += std::abs(e.value - k * e.expected) >
+                           4 * e.slack + 2e-3 * std::abs(k * e.expected) + 1e-3 * peak;
+        if (std::abs(k - 1) > 2e-3 && shareNear(ratios, k, 2e-3) >= 0.9 &&
+            unexplained <= all.size() / 10) {
+            const std::string c = nameConstant(k);
+            std::string s =
+                "Your value is " + num(k, 4) + " x the reference" +
+                (c.empty() ? "" : " (= " + c + ")") +
+                (shareNear(ratios, k, 2e-3) >= 0.99 ? " everywhere" : " almost everywhere");
+            if (c == "pi" || c == "1/pi")
+                s += c == "pi" ? ": is a division by PI missing?"
+                               : ": is there an extra division by PI?";
+            else if (c == "-1")
+                s += ": is a sign flipped?";
+            else if (!c.empty())
+                s += ": is a constant factor wrong?";
+            else
+                s += ": a constant factor is off.";
+            // A term that is the same at every point of this check (the lesson's lights are
+            // all of colour 300) explains it as well: said too.
+            if (std::string t = nameTerm(in); !t.empty()) s += " " + t;
+            return s;
+        }
+    }
+    return "";
+}
+
+// A constant offset: value - expected the same at 95% of the points; else "".
+std::string constantOffset(const std::vector<double>& offsets) {
+    const double c = median(offsets);
+    if (std::abs(c) > 1e-6 && shareNear(offsets, c, 1e-3) >= 0.95)
+        return "Your value is the reference " + std::string(c > 0 ? "+ " : "- ") +
+               num(std::abs(c), 4) + " everywhere: a term is added or missing.";
+    return "";
+}
+
+// A power: value = expected^p where 0 < expected < 1 (or > 1), away from 1; else "".
+std::string referencePower(const std::vector<Entry>& all) {
+    std::vector<double> powers;
+    for (const Entry& e : all)
+        if (e.expected > 0 && e.value > 0 && std::abs(std::log(e.expected)) > 0.05)
+            powers.push_back(std::log(e.value) / std::log(e.expected));
+    if (powers.size() >= 8) {
+        const double p = median(powers);
+        if (std::abs(p - 1) > 0.02 && std::abs(p) > 0.05 && shareNear(powers, p, 0.01) >= 0.9)
+            return "Your value is the reference to the power " + num(p) + " (x^" + num(p) +
+                   " where the reference has x): an exponent is off.";
+    }
+    return "";
+}
+
 }  // namespace
 
 const std::vector<InputAxis>& inputAxes(const ModuleDesc& d) {
@@ -665,66 +827,9 @@ std::string classifyError(const FeedbackInputs& in, bool* exactOut) {
         return nonFiniteMessage(in, where);
     }
     if (all.empty()) return exact = false, "";
-    // A constant output.
-    double lo = all.front().value, hi = lo, elo = all.front().expected, ehi = elo;
-    for (const Entry& e : all) {
-        lo = std::min(lo, e.value), hi = std::max(hi, e.value);
-        elo = std::min(elo, e.expected), ehi = std::max(ehi, e.expected);
-    }
-    if (hi - lo <= 1e-7 * std::max(1.0, std::abs(hi)) && ehi - elo > 1e-6) {
-        const std::string constant = "Your function returns " + num(lo, 4) +
-                                     " whatever the inputs (the reference varies from " + num(elo) +
-                                     " to " + num(ehi) + ").";
-        // Without the student's code, a constant 0 is most often the stub.
-        const std::string why = lo != 0                  ? ""
-                                : in.studentCode.empty() ? "Is it still the kit's stub?"
-                                                         : whyAlwaysZero(in.studentCode);
-        return why.rfind("Your function", 0) == 0 ? why : constant + (why.empty() ? "" : " " + why);
-    }
-    // Swapped components (multi-component values): where the reference's components differ,
-    // and at the points the reference does not explain (an estimator's band can be wide enough
-    // for a sky's red and green to pass for each other where the student is right).
-    if (n >= 2) {
-        std::vector<bool> wrong;
-        int wrongCount = 0;
-        for (size_t i = 0; i < in.values.size(); ++i) {
-            bool w = false;
-            for (int c = 0; c < n; ++c)
-                w = w || !(std::abs(in.values[i][c] - in.expected[i][c]) <= in.slack[i][c]);
-            wrong.push_back(w);
-            wrongCount += w;
-        }
-        const int perms[][3] = {{1, 0, 2}, {0, 2, 1}, {2, 1, 0}, {1, 2, 0}, {2, 0, 1}};
-        for (const auto& p : perms) {
-            if (n == 2 && (p[0] >= 2 || p[1] >= 2)) continue;
-            int match = 0, considered = 0, matchWrong = 0;
-            for (size_t i = 0; i < in.values.size(); ++i) {
-                bool ok = true, differs = false, inBand = true;
-                for (int c = 0; c < n; ++c) {
-                    const double e = in.expected[i][p[c]];
-                    const double apart = std::abs(in.values[i][c] - e);
-                    ok = ok && apart <= in.slack[i][p[c]] * 4 + 1e-3 * std::abs(e);
-                    // Where the reference does not explain the value, the swapped one must, as
-                    // the reference explains the right ones: within the band.
-                    inBand = inBand && apart <= in.slack[i][p[c]] + 1e-4 * std::abs(e);
-                    differs = differs || std::abs(in.expected[i][c] - e) > in.slack[i][c];
-                }
-                matchWrong += inBand && wrong[i];
-                if (!differs) continue;
-                ++considered;
-                match += ok;
-            }
-            if (considered > 8 && match >= 0.95 * considered && matchWrong >= 0.9 * wrongCount) {
-                const char* names = n == 2 ? "xy" : "xyz";
-                std::string s = "Your components are swapped: ";
-                for (int c = 0; c < n; ++c)
-                    if (p[c] != c)
-                        s += std::string(c == 0 || p[0] == 0 ? "" : ", ") + names[c] + " holds " +
-                             names[p[c]];
-                return s + " of the reference.";
-            }
-        }
-    }
+    if (std::string c = constantOutput(in, all); !c.empty()) return c;
+    if (n >= 2)
+        if (std::string s = swappedComponents(in); !s.empty()) return s;
     // A constant factor: value / expected the same wherever the reference is clearly nonzero.
     double peak = 0;
     for (const Entry& e : all) peak = std::max(peak, std::abs(e.expected));
@@ -734,60 +839,12 @@ std::string classifyError(const FeedbackInputs& in, bool* exactOut) {
         if (std::abs(e.expected) > std::max(1e-3 * peak, 10 * e.slack))
             ratios.push_back(e.value / e.expected);
     }
-    if (ratios.size() >= 8) {
-        const double k = median(ratios);
-        // The points left out of the ratios (the reference about 0 there) must agree too: a
-        // light taken from the wrong side is 0 where the reference is lit (a "factor" of 0)
-        // and lit where the reference is 0, which no factor explains.
-        size_t unexplained = 0;
-        for (const Entry& e : all)
-            unexplained += std::abs(e.value - k * e.expected) >
-                           4 * e.slack + 2e-3 * std::abs(k * e.expected) + 1e-3 * peak;
-        if (std::abs(k - 1) > 2e-3 && shareNear(ratios, k, 2e-3) >= 0.9 &&
-            unexplained <= all.size() / 10) {
-            const std::string c = nameConstant(k);
-            std::string s =
-                "Your value is " + num(k, 4) + " x the reference" +
-                (c.empty() ? "" : " (= " + c + ")") +
-                (shareNear(ratios, k, 2e-3) >= 0.99 ? " everywhere" : " almost everywhere");
-            if (c == "pi" || c == "1/pi")
-                s += c == "pi" ? ": is a division by PI missing?"
-                               : ": is there an extra division by PI?";
-            else if (c == "-1")
-                s += ": is a sign flipped?";
-            else if (!c.empty())
-                s += ": is a constant factor wrong?";
-            else
-                s += ": a constant factor is off.";
-            // A term that is the same at every point of this check (the lesson's lights are
-            // all of colour 300) explains it as well: said too.
-            if (std::string t = nameTerm(in); !t.empty()) s += " " + t;
-            return s;
-        }
-    }
-    // A constant offset.
-    {
-        const double c = median(offsets);
-        if (std::abs(c) > 1e-6 && shareNear(offsets, c, 1e-3) >= 0.95)
-            return "Your value is the reference " + std::string(c > 0 ? "+ " : "- ") +
-                   num(std::abs(c), 4) + " everywhere: a term is added or missing.";
-    }
+    if (std::string f = constantFactor(in, all, ratios, peak); !f.empty()) return f;
+    if (std::string o = constantOffset(offsets); !o.empty()) return o;
     // A term of the step missing, applied twice or extra, or an input at another power
     // (term_fits.h): before the power of the reference, which gamma 3 also is.
     if (std::string t = nameTerm(in); !t.empty()) return t;
-    // A power: value = expected^p where 0 < expected < 1 (or > 1), away from 1.
-    {
-        std::vector<double> powers;
-        for (const Entry& e : all)
-            if (e.expected > 0 && e.value > 0 && std::abs(std::log(e.expected)) > 0.05)
-                powers.push_back(std::log(e.value) / std::log(e.expected));
-        if (powers.size() >= 8) {
-            const double p = median(powers);
-            if (std::abs(p - 1) > 0.02 && std::abs(p) > 0.05 && shareNear(powers, p, 0.01) >= 0.9)
-                return "Your value is the reference to the power " + num(p) + " (x^" + num(p) +
-                       " where the reference has x): an exponent is off.";
-        }
-    }
+    if (std::string p = referencePower(all); !p.empty()) return p;
     // The error explained by one input: value = reference + k x (albedo x ao, N.L, ...).
     if (std::string f = termFit(in); !f.empty()) return f;
     // The reference on other inputs, a direction at another length, a curve of one input

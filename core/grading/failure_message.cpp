@@ -45,6 +45,77 @@ std::string mistakeName(const fs::path& file) {
     return name;
 }
 
+// What leads the message: a broken contract (it reads what it may not) explains
+// everything after it; else the values check with its worst input; else the first failed.
+const CheckReport* leadingCheck(const std::vector<CheckReport>& checks) {
+    const CheckReport* first = nullptr;
+    for (const std::optional<CheckKind> kind :
+         {std::optional(CheckKind::Contract), std::optional(CheckKind::Values),
+          std::optional<CheckKind>()})
+        for (const CheckReport& c : checks)
+            if (!first && c.deducted && !c.passed && (!kind || c.kind == *kind)) first = &c;
+    return first;
+}
+
+// What the leading check says, with its worst input when it compares values ("" without one).
+std::string leadingMessage(const CheckReport* first, int components) {
+    std::string message;
+    if (first) {
+        message = first->name + ": " + first->detail;
+        if (first->kind == CheckKind::Values && !first->worstAt.empty())
+            message += "; at " + first->worstAt + ": yours " + vec(first->worstValue, components) +
+                       ", expected " + vec(first->worstExpected, components) + " (accepted " +
+                       vec(first->worstLo, components) + " .. " + vec(first->worstHi, components) +
+                       ")";
+    }
+    return message;
+}
+
+// A loop the guard cut (written as -K, view_main.frag): the one most points name.
+void noteCutLoop(const std::vector<glm::dvec3>& calls, const RenderResult& diagnosis,
+                 FeedbackInputs::NonFiniteOrigin& origin) {
+    std::map<size_t, int> cuts;
+    for (const glm::dvec3& c : calls)
+        if (c.z < -0.5 && -c.z <= double(diagnosis.loops.size())) ++cuts[size_t(std::lround(-c.z))];
+    for (const auto& [k, points] : cuts)
+        if (points > origin.cutPoints) {
+            origin.cut = diagnosis.loops[k - 1];
+            origin.cutPoints = points;
+            origin.loopBudget = diagnosis.loopBudget;
+        }
+}
+
+// The site most points share, among those where it is the cause (the value finite
+// with what the traced calls made replaced), else among all.
+void noteSharedSite(const std::vector<glm::dvec3>& calls, FeedbackInputs::NonFiniteOrigin& origin) {
+    std::map<std::pair<int, int>, int> confirmed, noted;
+    std::map<std::pair<int, int>, TraceSite> other;
+    for (const glm::dvec3& c : calls) {
+        const TraceSite site = traceSite(c.x);
+        if (!site.traced()) continue;
+        const std::pair<int, int> key{site.call, site.line};
+        ++(c.z > 0.5 ? confirmed : noted)[key];
+        if (traceSite(c.y).traced()) other[key] = traceSite(c.y);
+    }
+    origin.traced = int(calls.size());
+    origin.confirmed = !confirmed.empty();
+    for (const auto& [key, points] : confirmed.empty() ? noted : confirmed)
+        if (points > origin.points) {
+            origin.site = {key.first, key.second};
+            origin.other = other.count(key) ? other[key] : TraceSite{};
+            origin.points = points;
+        }
+}
+
+// Whether every value is the same (within 1e-7): a constant output says all there is to say.
+bool constantValues(const std::vector<glm::dvec3>& values) {
+    bool constant = !values.empty();
+    for (const glm::dvec3& v : values)
+        constant = constant &&
+                   glm::all(glm::lessThanEqual(glm::abs(v - values.front()), glm::dvec3(1e-7)));
+    return constant;
+}
+
 }  // namespace
 
 // What the typical mistakes and the mutants are compared with: up to 96 points of the failed
@@ -92,24 +163,8 @@ void StepGrader::explain() {
         result_.mistakeGroup = withoutFigures(loopCut_);
         return;
     }
-    // What leads the message: a broken contract (it reads what it may not) explains
-    // everything after it; else the values check with its worst input.
-    const CheckReport* first = nullptr;
-    for (const std::optional<CheckKind> kind :
-         {std::optional(CheckKind::Contract), std::optional(CheckKind::Values),
-          std::optional<CheckKind>()})
-        for (const CheckReport& c : result_.checks)
-            if (!first && c.deducted && !c.passed && (!kind || c.kind == *kind)) first = &c;
-    std::string message;
-    if (first) {
-        message = first->name + ": " + first->detail;
-        if (first->kind == CheckKind::Values && !first->worstAt.empty())
-            message += "; at " + first->worstAt + ": yours " +
-                       vec(first->worstValue, d_.components) + ", expected " +
-                       vec(first->worstExpected, d_.components) + " (accepted " +
-                       vec(first->worstLo, d_.components) + " .. " +
-                       vec(first->worstHi, d_.components) + ")";
-    }
+    const CheckReport* first = leadingCheck(result_.checks);
+    std::string message = leadingMessage(first, d_.components);
     if (failed_ && failed_->cause.empty() && failed_->fromScene && settings_.feedback)
         failed_->cause = derivativesCauseOf(*failed_);
     if (failed_ && !failed_->cause.empty()) {
@@ -120,128 +175,7 @@ void StepGrader::explain() {
         result_.namedBy = NamedBy::Pattern;
         result_.mistakeGroup = withoutFigures(failed_->cause);
     } else if (failed_ && settings_.feedback) {
-        stage("feedback");
-        FeedbackInputs in;
-        in.module = &d_;
-        const ValuesRun& f = *failed_;
-        for (size_t i = 0; i < f.surfaces.size(); ++i) {
-            if (!f.surfaces[i].covered) continue;
-            in.surfaces.push_back(f.surfaces[i]);
-            in.values.emplace_back(f.value.pixels[i * 4], f.value.pixels[i * 4 + 1],
-                                   f.value.pixels[i * 4 + 2]);
-            in.expected.push_back(f.band.expected[i]);
-            in.slack.push_back(f.band.slack[i]);
-        }
-        const Scene bound = applyParamBindings(f.scene, d_, f.params);
-        auto context = std::make_shared<ReferenceContext>(
-            referenceContext(renderer_, d_, bound, f.params, kGradingIbl));
-        in.reference = [this, context](const Surface& s) { return d_.reference(s, *context); };
-        in.context = context.get();
-        in.student = [this, &f](const std::vector<Surface>& surfaces) {
-            const Grid g = grid(surfaces);
-            RenderRequest request{&m_,         &f.params, &f.scene, source_,
-                                  &g.surfaces, g.width,   g.height};
-            request.seamlessCubes = false;
-            request.isolatePoints = true;
-            return pointValues(renderer_.render(request).value, surfaces.size());
-        };
-        // The points where the value is not finite, again, with the diagnosis build: which
-        // of the student's calls made the first NaN or Inf there.
-        in.traceNonFinite = [this, &f](const std::vector<Surface>& surfaces) {
-            FeedbackInputs::NonFiniteOrigin origin;
-            if (source_.dir.empty()) return origin;  // the reference solutions: no one to tell
-            StudentSource traced = source_;
-            traced.traceNonFinite = true;
-            const Grid g = grid(surfaces);
-            RenderRequest request{&m_, &f.params, &f.scene, traced, &g.surfaces, g.width, g.height};
-            request.seamlessCubes = false;
-            request.isolatePoints = true;
-            std::vector<glm::dvec3> calls;
-            RenderResult diagnosis;
-            try {
-                diagnosis = renderer_.render(request);
-                calls = pointValues(diagnosis.value, surfaces.size());
-            } catch (const Error&) {
-                return origin;  // the diagnosis build does not compile: nothing to say
-            }
-            // A loop the guard cut (written as -K, view_main.frag): the one most points name.
-            std::map<size_t, int> cuts;
-            for (const glm::dvec3& c : calls)
-                if (c.z < -0.5 && -c.z <= double(diagnosis.loops.size()))
-                    ++cuts[size_t(std::lround(-c.z))];
-            for (const auto& [k, points] : cuts)
-                if (points > origin.cutPoints) {
-                    origin.cut = diagnosis.loops[k - 1];
-                    origin.cutPoints = points;
-                    origin.loopBudget = diagnosis.loopBudget;
-                }
-            // The site most points share, among those where it is the cause (the value finite
-            // with what the traced calls made replaced), else among all.
-            std::map<std::pair<int, int>, int> confirmed, noted;
-            std::map<std::pair<int, int>, TraceSite> other;
-            for (const glm::dvec3& c : calls) {
-                const TraceSite site = traceSite(c.x);
-                if (!site.traced()) continue;
-                const std::pair<int, int> key{site.call, site.line};
-                ++(c.z > 0.5 ? confirmed : noted)[key];
-                if (traceSite(c.y).traced()) other[key] = traceSite(c.y);
-            }
-            origin.traced = int(calls.size());
-            origin.confirmed = !confirmed.empty();
-            for (const auto& [key, points] : confirmed.empty() ? noted : confirmed)
-                if (points > origin.points) {
-                    origin.site = {key.first, key.second};
-                    origin.other = other.count(key) ? other[key] : TraceSite{};
-                    origin.points = points;
-                }
-            return origin;
-        };
-        // The estimator's bands are not the reference's: the sensitivity test would
-        // compare against the same-sample reference, so it is left out there.
-        if (!d_.estimator) in.domain = d_.domain;
-        if (!source_.dir.empty()) {
-            try {
-                const fs::path file = source_.dir / (d_.id + ".glsl");
-                in.studentCode = readStudentFile(file, source_.dir);
-            } catch (const Error&) {
-                // No file of the student's here (the reference is graded): nothing to read.
-            }
-        }
-        bool exact = false;
-        result_.mistake = classifyError(in, &exact);
-        if (!result_.mistake.empty()) result_.namedBy = NamedBy::Pattern;
-        result_.mistakeGroup = withoutFigures(result_.mistake);
-        // A constant output says all there is to say: a typical mistake that is 0 where the
-        // reference is not (-L under a clamp) would "match" it on the failed points only.
-        bool constant = !in.values.empty();
-        for (const glm::dvec3& v : in.values)
-            constant = constant && glm::all(glm::lessThanEqual(glm::abs(v - in.values.front()),
-                                                               glm::dvec3(1e-7)));
-        const bool lookFurther = !(exact && constant);
-        // The candidates below are compared on a sample of the failed check's points.
-        Sample points;
-        if (lookFurther && (settings_.typicalMistakes || settings_.mutantCatalogue))
-            points = sample(f);
-        const std::string typical =
-            lookFurther && settings_.typicalMistakes ? typicalMistake(f, points) : "";
-        if (!typical.empty()) {
-            result_.mistake += (result_.mistake.empty() ? "" : " ") +
-                               std::string("It matches a typical mistake: ") + typical;
-            if (!exact) result_.namedBy = NamedBy::Typical;
-            result_.mistakeGroup = typical;
-        }
-        // When no pattern accounts for every point, the mutants of the reference solution:
-        // the one change the student's values equal.
-        if (lookFurther && !exact && typical.empty() && settings_.mutantCatalogue) {
-            stage("feedback: one change from the reference");
-            const MutantMatch match = mutantMatch(f, points);
-            if (!match.mistake.empty()) {
-                result_.mistake += (result_.mistake.empty() ? "" : " ") + match.mistake;
-                result_.namedBy = NamedBy::Mutant;
-                result_.mistakeGroup = match.mistake;
-                result_.instructorNote = "the reference with " + match.change;
-            }
-        }
+        nameMistake(*failed_);
     }
     for (const CheckReport& c : result_.checks)
         if (c.deducted && !c.passed && c.kind != CheckKind::Values && &c != first)
@@ -252,6 +186,111 @@ void StepGrader::explain() {
         result_.message = result_.mistake.empty() || (first && first->kind == CheckKind::Contract)
                               ? message + (result_.mistake.empty() ? "" : " " + result_.mistake)
                               : result_.mistake + " " + message;
+}
+
+// The mistake named from the failed run's error: the patterns first, then the step's typical
+// mistakes and the mutants of the reference where the patterns leave it open.
+void StepGrader::nameMistake(const ValuesRun& f) {
+    stage("feedback");
+    const FeedbackInputs in = feedbackInputs(f);
+    bool exact = false;
+    result_.mistake = classifyError(in, &exact);
+    if (!result_.mistake.empty()) result_.namedBy = NamedBy::Pattern;
+    result_.mistakeGroup = withoutFigures(result_.mistake);
+    // A constant output says all there is to say: a typical mistake that is 0 where the
+    // reference is not (-L under a clamp) would "match" it on the failed points only.
+    const bool constant = constantValues(in.values);
+    const bool lookFurther = !(exact && constant);
+    // The candidates below are compared on a sample of the failed check's points.
+    Sample points;
+    if (lookFurther && (settings_.typicalMistakes || settings_.mutantCatalogue)) points = sample(f);
+    const std::string typical =
+        lookFurther && settings_.typicalMistakes ? typicalMistake(f, points) : "";
+    if (!typical.empty()) {
+        result_.mistake += (result_.mistake.empty() ? "" : " ") +
+                           std::string("It matches a typical mistake: ") + typical;
+        if (!exact) result_.namedBy = NamedBy::Typical;
+        result_.mistakeGroup = typical;
+    }
+    // When no pattern accounts for every point, the mutants of the reference solution:
+    // the one change the student's values equal.
+    if (lookFurther && !exact && typical.empty() && settings_.mutantCatalogue) {
+        stage("feedback: one change from the reference");
+        const MutantMatch match = mutantMatch(f, points);
+        if (!match.mistake.empty()) {
+            result_.mistake += (result_.mistake.empty() ? "" : " ") + match.mistake;
+            result_.namedBy = NamedBy::Mutant;
+            result_.mistakeGroup = match.mistake;
+            result_.instructorNote = "the reference with " + match.change;
+        }
+    }
+}
+
+// What the error patterns read of the failed run: its covered points with the student's
+// values and the band, and the student's function and the reference on other inputs.
+FeedbackInputs StepGrader::feedbackInputs(const ValuesRun& f) {
+    FeedbackInputs in;
+    in.module = &d_;
+    for (size_t i = 0; i < f.surfaces.size(); ++i) {
+        if (!f.surfaces[i].covered) continue;
+        in.surfaces.push_back(f.surfaces[i]);
+        in.values.emplace_back(f.value.pixels[i * 4], f.value.pixels[i * 4 + 1],
+                               f.value.pixels[i * 4 + 2]);
+        in.expected.push_back(f.band.expected[i]);
+        in.slack.push_back(f.band.slack[i]);
+    }
+    const Scene bound = applyParamBindings(f.scene, d_, f.params);
+    auto context = std::make_shared<ReferenceContext>(
+        referenceContext(renderer_, d_, bound, f.params, kGradingIbl));
+    in.reference = [this, context](const Surface& s) { return d_.reference(s, *context); };
+    in.context = context.get();
+    in.student = [this, &f](const std::vector<Surface>& surfaces) {
+        const Grid g = grid(surfaces);
+        RenderRequest request{&m_, &f.params, &f.scene, source_, &g.surfaces, g.width, g.height};
+        request.seamlessCubes = false;
+        request.isolatePoints = true;
+        return pointValues(renderer_.render(request).value, surfaces.size());
+    };
+    in.traceNonFinite = [this, &f](const std::vector<Surface>& surfaces) {
+        return nonFiniteOrigin(f, surfaces);
+    };
+    // The estimator's bands are not the reference's: the sensitivity test would
+    // compare against the same-sample reference, so it is left out there.
+    if (!d_.estimator) in.domain = d_.domain;
+    if (!source_.dir.empty()) {
+        try {
+            const fs::path file = source_.dir / (d_.id + ".glsl");
+            in.studentCode = readStudentFile(file, source_.dir);
+        } catch (const Error&) {
+            // No file of the student's here (the reference is graded): nothing to read.
+        }
+    }
+    return in;
+}
+
+// The points where the value is not finite, again, with the diagnosis build: which
+// of the student's calls made the first NaN or Inf there.
+FeedbackInputs::NonFiniteOrigin StepGrader::nonFiniteOrigin(const ValuesRun& f,
+                                                            const std::vector<Surface>& surfaces) {
+    FeedbackInputs::NonFiniteOrigin origin;
+    if (source_.dir.empty()) return origin;  // the reference solutions: no one to tell
+    StudentSource traced = source_;
+    traced.traceNonFinite = true;
+    const Grid g = grid(surfaces);
+    RenderRequest request{&m_, &f.params, &f.scene, traced, &g.surfaces, g.width, g.height};
+    request.seamlessCubes = false;
+    request.isolatePoints = true;
+    std::vector<glm::dvec3> calls;
+    RenderResult diagnosis;
+    try {
+        diagnosis = renderer_.render(request);
+        calls = pointValues(diagnosis.value, surfaces.size());
+    } catch (const Error&) {
+        return origin;  // the diagnosis build does not compile: nothing to say
+    }
+    noteCutLoop(calls, diagnosis, origin);
+    noteSharedSite(calls, origin);
+    return origin;
 }
 
 StepGrader::Sample StepGrader::sample(const ValuesRun& f) {

@@ -138,10 +138,10 @@ const Direction kDirections[] = {
     {"N", &Surface::normal, "is the normal flipped?"},
 };
 
-std::vector<Substitution> substitutions(const FeedbackInputs& in, const Points& p) {
+// Directions negated, two of them swapped: every direction, also one the points share (a
+// probe's V = N) or that the reference reads from the scene's lights rather than L.
+std::vector<Substitution> directionSubstitutions() {
     std::vector<Substitution> out;
-    // Directions negated, two of them swapped: every direction, also one the points share (a
-    // probe's V = N) or that the reference reads from the scene's lights rather than L.
     std::vector<const Direction*> directions;
     for (const Direction& d : kDirections) directions.push_back(&d);
     for (const Direction* d : directions) {
@@ -168,13 +168,19 @@ std::vector<Substitution> substitutions(const FeedbackInputs& in, const Points& 
                                std::swap(t.*f, t.*g);
                            }});
         }
-    // The step's inputs (or the generic ones) that can be set.
-    struct Range {
-        const InputAxis* axis;
-        double lo, hi;
-    };
+    return out;
+}
+
+// An input of the step's (or a generic one) that can be set, with its range over the points.
+struct InputRange {
+    const InputAxis* axis;
+    double lo, hi;
+};
+
+// The step's inputs (or the generic ones) that can be set and vary over the points.
+std::vector<InputRange> settableRanges(const FeedbackInputs& in, const Points& p) {
     const std::vector<InputAxis>& axes = inputAxes(*in.module);
-    std::vector<Range> ranges;
+    std::vector<InputRange> ranges;
     for (const InputAxis& a : axes) {
         if (!a.set) continue;
         double lo = 1e300, hi = -1e300;
@@ -184,41 +190,50 @@ std::vector<Substitution> substitutions(const FeedbackInputs& in, const Points& 
         }
         if (hi - lo > 1e-9) ranges.push_back({&a, lo, hi});
     }
-    for (const Range& r : ranges) {
-        const InputAxis& a = *r.axis;
-        const auto [x, where] = symbol(a.name);
-        auto with = [&a](double (*f)(double)) {
-            return [&a, f](Surface& t) { a.set(t, f(a.value(t))); };
-        };
-        if (r.lo >= 0) {
-            out.push_back({x + "^2 in place of " + x + where,
-                           "is " + x + " squared where it is used, or passed on?",
-                           with([](double v) { return v * v; })});
-            out.push_back({"sqrt(" + x + ") in place of " + x + where,
-                           "is a square missing where " + x + " is used (" + x + " where " + x +
-                               "^2 belongs, or alpha where alpha^2 belongs)?",
-                           with([](double v) { return std::sqrt(v); })});
-        }
-        if (r.lo >= 0 && r.hi <= 1) {
-            const std::string complement = "1 - " + x;
-            out.push_back({complement + " in place of " + x + where,
-                           "is " + x + " used where " + complement +
-                               " belongs (mix arguments reversed, or " + complement + " missing)?",
-                           with([](double v) { return 1 - v; })});
-        }
-        // A sign: an input that takes two opposite values only (a handedness).
-        bool sign = r.lo < 0 && std::abs(r.lo + r.hi) < 1e-9;
-        for (size_t i : p.index)
-            sign = sign && std::abs(std::abs(a.value(in.surfaces[i])) - r.hi) < 1e-9;
-        if (sign)
-            out.push_back({"-" + x + " in place of " + x + where,
-                           "is what the sign of " + x +
-                               " decides (a direction, the order of a cross product) reversed?",
-                           with([](double v) { return -v; })});
+    return ranges;
+}
+
+// One input transformed where its range allows: squared, square-rooted, complemented, or its
+// sign flipped (appended to `out`).
+void addInputTransforms(const FeedbackInputs& in, const Points& p, const InputRange& r,
+                        std::vector<Substitution>& out) {
+    const InputAxis& a = *r.axis;
+    const auto [x, where] = symbol(a.name);
+    auto with = [&a](double (*f)(double)) {
+        return [&a, f](Surface& t) { a.set(t, f(a.value(t))); };
+    };
+    if (r.lo >= 0) {
+        out.push_back({x + "^2 in place of " + x + where,
+                       "is " + x + " squared where it is used, or passed on?",
+                       with([](double v) { return v * v; })});
+        out.push_back({"sqrt(" + x + ") in place of " + x + where,
+                       "is a square missing where " + x + " is used (" + x + " where " + x +
+                           "^2 belongs, or alpha where alpha^2 belongs)?",
+                       with([](double v) { return std::sqrt(v); })});
     }
+    if (r.lo >= 0 && r.hi <= 1) {
+        const std::string complement = "1 - " + x;
+        out.push_back({complement + " in place of " + x + where,
+                       "is " + x + " used where " + complement +
+                           " belongs (mix arguments reversed, or " + complement + " missing)?",
+                       with([](double v) { return 1 - v; })});
+    }
+    // A sign: an input that takes two opposite values only (a handedness).
+    bool sign = r.lo < 0 && std::abs(r.lo + r.hi) < 1e-9;
+    for (size_t i : p.index)
+        sign = sign && std::abs(std::abs(a.value(in.surfaces[i])) - r.hi) < 1e-9;
+    if (sign)
+        out.push_back({"-" + x + " in place of " + x + where,
+                       "is what the sign of " + x +
+                           " decides (a direction, the order of a cross product) reversed?",
+                       with([](double v) { return -v; })});
+}
+
+// Two inputs of [0, 1] swapped (appended to `out`).
+void addInputSwaps(const std::vector<InputRange>& ranges, std::vector<Substitution>& out) {
     for (size_t a = 0; a < ranges.size(); ++a)
         for (size_t b = a + 1; b < ranges.size(); ++b) {
-            const Range &r = ranges[a], &s = ranges[b];
+            const InputRange &r = ranges[a], &s = ranges[b];
             if (r.lo < 0 || r.hi > 1 || s.lo < 0 || s.hi > 1) continue;
             out.push_back(
                 {symbol(r.axis->name).first + " and " + symbol(s.axis->name).first + " swapped",
@@ -229,6 +244,14 @@ std::vector<Substitution> substitutions(const FeedbackInputs& in, const Points& 
                      y->set(t, u);
                  }});
         }
+}
+
+// Every transformation of the inputs the reference is tried on, for these points.
+std::vector<Substitution> substitutions(const FeedbackInputs& in, const Points& p) {
+    std::vector<Substitution> out = directionSubstitutions();
+    const std::vector<InputRange> ranges = settableRanges(in, p);
+    for (const InputRange& r : ranges) addInputTransforms(in, p, r, out);
+    addInputSwaps(ranges, out);
     // A texel that stores a vector of [-1, 1] in [0, 1], read as it is stored.
     bool texels = false;
     for (size_t i : p.index)
@@ -404,168 +427,202 @@ bool solve(const std::vector<std::array<double, 3>>& a, const std::vector<double
     return true;
 }
 
-}  // namespace
+// An input per component: a scalar (the same for every component) or a colour's channel.
+struct CurveInput {
+    std::string name;
+    std::function<double(const Surface&, int c)> at;
+    bool perChannel = false;
+};
 
-std::string nameCurve(const FeedbackInputs& in) {
-    if (!in.module || in.values.empty()) return "";
-    const int n = in.module->components;
-    const Points p = choose(in, 256);
-    if (p.wrongCount == 0) return "";
-    // An input per component: a scalar (the same for every component) or a colour's channel.
-    struct Input {
-        std::string name;
-        std::function<double(const Surface&, int c)> at;
-        bool perChannel = false;
-    };
-    std::vector<Input> inputs;
-    for (const InputAxis& a : inputAxes(*in.module))
+// The inputs a curve's variable may be: the step's (or the generic ones), then the colours.
+std::vector<CurveInput> curveInputs(const ModuleDesc& module) {
+    std::vector<CurveInput> inputs;
+    for (const InputAxis& a : inputAxes(module))
         inputs.push_back({a.name, [f = a.value](const Surface& s, int) { return f(s); }});
     inputs.push_back(
         {"the albedo texel", [](const Surface& s, int c) { return s.albedoTexel[c]; }, true});
     inputs.push_back({"the albedo", [](const Surface& s, int c) { return s.albedo[c]; }, true});
-    inputs.push_back(
-        {in.module->extraName, [](const Surface& s, int c) { return s.extra[c]; }, true});
+    inputs.push_back({module.extraName, [](const Surface& s, int c) { return s.extra[c]; }, true});
     inputs.push_back(
         {"the light's colour", [](const Surface& s, int c) { return s.lightColor[c]; }, true});
+    return inputs;
+}
+
+// An input that is the same at every point explains nothing as a curve's variable.
+bool variesOverPoints(const FeedbackInputs& in, const Points& p, const CurveInput& x) {
+    const int n = in.module->components;
+    for (size_t i : p.index)
+        for (int c = 0; c < n; ++c)
+            if (x.at(in.surfaces[i], c) != x.at(in.surfaces[p.index[0]], 0)) return true;
+    return false;
+}
+
+// A factor is one the reference is proportional to, where the points share its value too
+// (the lesson's lights are all of colour 300: a factor of radiance, none of N.L): the
+// reference with the colour or the albedo doubled, at a few points.
+bool proportional(const FeedbackInputs& in, const Points& p, const CurveInput& f) {
+    const int n = in.module->components;
+    if (f.name.empty()) return true;
+    if (!in.reference && !(in.context && in.module->reference)) return variesOverPoints(in, p, f);
+    auto reference = [&](const Surface& s) {
+        return in.context && in.module->reference ? in.module->reference(s, *in.context)
+                                                  : in.reference(s);
+    };
+    for (size_t k = 0; k < std::min<size_t>(p.index.size(), 4); ++k) {
+        Surface s = in.surfaces[p.index[k * p.index.size() / 4]];
+        const dvec3 r = reference(s);
+        (f.name == "the albedo" ? s.albedo : s.lightColor) *= 2.0;
+        const dvec3 twice = reference(s);
+        for (int c = 0; c < n; ++c)
+            if (std::abs(twice[c] - 2 * r[c]) > 1e-9 * std::max(1.0, std::abs(r[c]))) return false;
+    }
+    return true;
+}
+
+// (x, y = value / factor) at every point and component, in xs and ys; false when they are not
+// finite, or the input does not take many values (then any curve fits).
+bool curveSamples(const FeedbackInputs& in, const Points& p, const CurveInput& factor,
+                  const CurveInput& input, std::vector<double>& xs, std::vector<double>& ys) {
+    const int n = in.module->components;
+    bool usable = true;
+    for (size_t i : p.index)
+        for (int c = 0; c < n && usable; ++c) {
+            const double f = factor.at(in.surfaces[i], c);
+            if (std::abs(f) < 1e-9) continue;
+            xs.push_back(input.at(in.surfaces[i], c));
+            ys.push_back(in.values[i][c] / f);
+            usable = std::isfinite(xs.back()) && std::isfinite(ys.back());
+        }
+    if (!usable || xs.size() < 16) return false;
+    std::vector<double> distinct = xs;
+    std::sort(distinct.begin(), distinct.end());
+    return std::unique(distinct.begin(), distinct.end()) - distinct.begin() >= 12;
+}
+
+// A curve of one input, fitted by least squares, then measured like every candidate.
+struct Curve {
+    std::string said;
+    std::function<double(double)> g;
+    bool divides = false;  // said as "factor / (...)"
+};
+
+// a + b x (appended to `curves` when it fits and b is not 0).
+void fitLine(const std::vector<double>& xs, const std::vector<double>& ys, const std::string& x,
+             std::vector<Curve>& curves) {
+    std::vector<std::array<double, 3>> a;
+    for (double v : xs) a.push_back({1, v, 0});
+    std::array<double, 3> c{};
+    if (solve(a, ys, 2, c) && std::abs(c[1]) > 1e-9) {
+        const double c0 = std::abs(c[0]) < 1e-6 ? 0 : c[0];
+        const bool unit = std::abs(c[1] - 1) < 1e-4;
+        const std::string scaled = unit ? x : constant(c[1]) + " x " + x;
+        curves.push_back({c0 == 0 ? (unit ? x + " itself" : scaled) : constant(c0) + " + " + scaled,
+                          [c0, b = c[1]](double v) { return c0 + b * v; }});
+    }
+}
+
+// a x^p and a clamp(x, 0, 1)^p: a line in log-log, over the points inside (0, 1)
+// for the clamped one.
+void fitPowers(const std::vector<double>& xs, const std::vector<double>& ys, const std::string& x,
+               std::vector<Curve>& curves) {
+    for (const bool clamped : {false, true}) {
+        std::vector<std::array<double, 3>> a;
+        std::vector<double> ly;
+        for (size_t k = 0; k < xs.size(); ++k)
+            if (xs[k] > 0 && ys[k] > 0 && (!clamped || xs[k] < 1)) {
+                a.push_back({1, std::log(xs[k]), 0});
+                ly.push_back(std::log(ys[k]));
+            }
+        std::array<double, 3> c{};
+        if (ly.size() < 12 || !solve(a, ly, 2, c)) continue;
+        const double scale = std::exp(c[0]), power = c[1];
+        if (std::abs(power - 1) < 1e-3 && !clamped) continue;  // the line's case
+        if (std::abs(power) < 1e-3) continue;  // a constant: the input plays no part
+        const std::string base = clamped ? "clamp(" + x + ", 0, 1)" : x;
+        const std::string head = std::abs(scale - 1) < 1e-3 ? "" : constant(scale) + " x ";
+        const std::string exponent = constant(power);
+        curves.push_back(
+            {head + base + "^" +
+                 (exponent.find('/') != std::string::npos ? "(" + exponent + ")" : exponent),
+             [scale, power, clamped](double v) {
+                 return scale * std::pow(clamped ? std::clamp(v, 0.0, 1.0) : v, power);
+             }});
+    }
+}
+
+// 1 / (a + b x + c x^2): a falloff written as a polynomial.
+void fitInversePolynomial(const std::vector<double>& xs, const std::vector<double>& ys,
+                          const std::string& x, std::vector<Curve>& curves) {
+    std::vector<std::array<double, 3>> a;
+    std::vector<double> inv;
+    for (size_t k = 0; k < xs.size(); ++k)
+        if (std::abs(ys[k]) > 1e-12) {
+            a.push_back({1, xs[k], xs[k] * xs[k]});
+            inv.push_back(1 / ys[k]);
+        }
+    std::array<double, 3> c{};
+    if (inv.size() >= 12 && solve(a, inv, 3, c))
+        curves.push_back({"(" + constant(c[0]) + " + " + constant(c[1]) + " " + x + " + " +
+                              constant(c[2]) + " " + x + "^2)",
+                          [c](double v) { return 1 / (c[0] + c[1] * v + c[2] * v * v); }, true});
+}
+
+// The message for the first curve, times the factor, that explains the student's values;
+// "" when none does.
+std::string explainingCurve(const FeedbackInputs& in, const Points& p, const CurveInput& factor,
+                            const CurveInput& input, const std::vector<double>& xs,
+                            const std::vector<Curve>& curves, const std::string& where) {
+    const int n = in.module->components;
+    for (const Curve& curve : curves) {
+        // A curve that is flat over the points says the input plays no part.
+        double lo = 1e300, hi = -1e300;
+        for (double v : xs) lo = std::min(lo, curve.g(v)), hi = std::max(hi, curve.g(v));
+        if (!(hi - lo > 1e-6 * std::max(std::abs(hi), std::abs(lo)))) continue;
+        const Fit fit = measure(in, p, [&](size_t i) {
+            dvec3 v(0);
+            for (int c = 0; c < n; ++c)
+                v[c] = factor.at(in.surfaces[i], c) * curve.g(input.at(in.surfaces[i], c));
+            return v;
+        });
+        if (!fit.explains) continue;
+        const std::string value =
+            curve.divides ? (factor.name.empty() ? "1" : factor.name) + " / " + curve.said
+                          : (factor.name.empty() ? curve.said : factor.name + " x " + curve.said);
+        return "Your value is " + value + where +
+               (fit.misses == 0 ? " at every point" : fit.where()) +
+               (input.perChannel && n > 1 ? " (channel by channel)" : "") +
+               ", where the reference is not.";
+    }
+    return "";
+}
+
+}  // namespace
+
+std::string nameCurve(const FeedbackInputs& in) {
+    if (!in.module || in.values.empty()) return "";
+    const Points p = choose(in, 256);
+    if (p.wrongCount == 0) return "";
+    const std::vector<CurveInput> inputs = curveInputs(*in.module);
     // What the value may be a multiple of (the light's colour x a falloff), or 1: the
     // multiples first, which say more where the points have one light's colour only.
-    const std::vector<Input> factors = {
+    const std::vector<CurveInput> factors = {
         {"the light's colour", [](const Surface& s, int c) { return s.lightColor[c]; }},
         {"the albedo", [](const Surface& s, int c) { return s.albedo[c]; }},
         {"", [](const Surface&, int) { return 1.0; }},
     };
-    // An input that is the same at every point explains nothing as a curve's variable.
-    auto varies = [&](const Input& x) {
-        for (size_t i : p.index)
-            for (int c = 0; c < n; ++c)
-                if (x.at(in.surfaces[i], c) != x.at(in.surfaces[p.index[0]], 0)) return true;
-        return false;
-    };
-    // A factor is one the reference is proportional to, where the points share its value too
-    // (the lesson's lights are all of colour 300: a factor of radiance, none of N.L): the
-    // reference with the colour or the albedo doubled, at a few points.
-    auto proportional = [&](const Input& f) {
-        if (f.name.empty()) return true;
-        if (!in.reference && !(in.context && in.module->reference)) return varies(f);
-        auto reference = [&](const Surface& s) {
-            return in.context && in.module->reference ? in.module->reference(s, *in.context)
-                                                      : in.reference(s);
-        };
-        for (size_t k = 0; k < std::min<size_t>(p.index.size(), 4); ++k) {
-            Surface s = in.surfaces[p.index[k * p.index.size() / 4]];
-            const dvec3 r = reference(s);
-            (f.name == "the albedo" ? s.albedo : s.lightColor) *= 2.0;
-            const dvec3 twice = reference(s);
-            for (int c = 0; c < n; ++c)
-                if (std::abs(twice[c] - 2 * r[c]) > 1e-9 * std::max(1.0, std::abs(r[c])))
-                    return false;
-        }
-        return true;
-    };
-    for (const Input& factor : factors) {
-        if (!proportional(factor)) continue;
-        for (const Input& input : inputs) {
-            if (input.name == factor.name || !varies(input)) continue;
-            // (x, y = value / factor) at every point and component; the input must take many
-            // values, or any curve fits.
+    for (const CurveInput& factor : factors) {
+        if (!proportional(in, p, factor)) continue;
+        for (const CurveInput& input : inputs) {
+            if (input.name == factor.name || !variesOverPoints(in, p, input)) continue;
             std::vector<double> xs, ys;
-            bool usable = true;
-            for (size_t i : p.index)
-                for (int c = 0; c < n && usable; ++c) {
-                    const double f = factor.at(in.surfaces[i], c);
-                    if (std::abs(f) < 1e-9) continue;
-                    xs.push_back(input.at(in.surfaces[i], c));
-                    ys.push_back(in.values[i][c] / f);
-                    usable = std::isfinite(xs.back()) && std::isfinite(ys.back());
-                }
-            if (!usable || xs.size() < 16) continue;
-            std::vector<double> distinct = xs;
-            std::sort(distinct.begin(), distinct.end());
-            if (std::unique(distinct.begin(), distinct.end()) - distinct.begin() < 12) continue;
+            if (!curveSamples(in, p, factor, input, xs, ys)) continue;
             const auto [x, where] = symbol(input.name);
-            // The curves, each fitted by least squares, then measured like every candidate.
-            struct Curve {
-                std::string said;
-                std::function<double(double)> g;
-                bool divides = false;  // said as "factor / (...)"
-            };
             std::vector<Curve> curves;
-            {
-                std::vector<std::array<double, 3>> a;
-                for (double v : xs) a.push_back({1, v, 0});
-                std::array<double, 3> c{};
-                if (solve(a, ys, 2, c) && std::abs(c[1]) > 1e-9) {
-                    const double c0 = std::abs(c[0]) < 1e-6 ? 0 : c[0];
-                    const bool unit = std::abs(c[1] - 1) < 1e-4;
-                    const std::string scaled = unit ? x : constant(c[1]) + " x " + x;
-                    curves.push_back(
-                        {c0 == 0 ? (unit ? x + " itself" : scaled) : constant(c0) + " + " + scaled,
-                         [c0, b = c[1]](double v) { return c0 + b * v; }});
-                }
-            }
-            // a x^p and a clamp(x, 0, 1)^p: a line in log-log, over the points inside (0, 1)
-            // for the clamped one.
-            for (const bool clamped : {false, true}) {
-                std::vector<std::array<double, 3>> a;
-                std::vector<double> ly;
-                for (size_t k = 0; k < xs.size(); ++k)
-                    if (xs[k] > 0 && ys[k] > 0 && (!clamped || xs[k] < 1)) {
-                        a.push_back({1, std::log(xs[k]), 0});
-                        ly.push_back(std::log(ys[k]));
-                    }
-                std::array<double, 3> c{};
-                if (ly.size() < 12 || !solve(a, ly, 2, c)) continue;
-                const double scale = std::exp(c[0]), power = c[1];
-                if (std::abs(power - 1) < 1e-3 && !clamped) continue;  // the line's case
-                if (std::abs(power) < 1e-3) continue;  // a constant: the input plays no part
-                const std::string base = clamped ? "clamp(" + x + ", 0, 1)" : x;
-                const std::string head = std::abs(scale - 1) < 1e-3 ? "" : constant(scale) + " x ";
-                const std::string exponent = constant(power);
-                curves.push_back(
-                    {head + base + "^" +
-                         (exponent.find('/') != std::string::npos ? "(" + exponent + ")"
-                                                                  : exponent),
-                     [scale, power, clamped](double v) {
-                         return scale * std::pow(clamped ? std::clamp(v, 0.0, 1.0) : v, power);
-                     }});
-            }
-            // 1 / (a + b x + c x^2): a falloff written as a polynomial.
-            {
-                std::vector<std::array<double, 3>> a;
-                std::vector<double> inv;
-                for (size_t k = 0; k < xs.size(); ++k)
-                    if (std::abs(ys[k]) > 1e-12) {
-                        a.push_back({1, xs[k], xs[k] * xs[k]});
-                        inv.push_back(1 / ys[k]);
-                    }
-                std::array<double, 3> c{};
-                if (inv.size() >= 12 && solve(a, inv, 3, c))
-                    curves.push_back(
-                        {"(" + constant(c[0]) + " + " + constant(c[1]) + " " + x + " + " +
-                             constant(c[2]) + " " + x + "^2)",
-                         [c](double v) { return 1 / (c[0] + c[1] * v + c[2] * v * v); }, true});
-            }
-            for (const Curve& curve : curves) {
-                // A curve that is flat over the points says the input plays no part.
-                double lo = 1e300, hi = -1e300;
-                for (double v : xs) lo = std::min(lo, curve.g(v)), hi = std::max(hi, curve.g(v));
-                if (!(hi - lo > 1e-6 * std::max(std::abs(hi), std::abs(lo)))) continue;
-                const Fit fit = measure(in, p, [&](size_t i) {
-                    dvec3 v(0);
-                    for (int c = 0; c < n; ++c)
-                        v[c] = factor.at(in.surfaces[i], c) * curve.g(input.at(in.surfaces[i], c));
-                    return v;
-                });
-                if (!fit.explains) continue;
-                const std::string value =
-                    curve.divides
-                        ? (factor.name.empty() ? "1" : factor.name) + " / " + curve.said
-                        : (factor.name.empty() ? curve.said : factor.name + " x " + curve.said);
-                return "Your value is " + value + where +
-                       (fit.misses == 0 ? " at every point" : fit.where()) +
-                       (input.perChannel && n > 1 ? " (channel by channel)" : "") +
-                       ", where the reference is not.";
-            }
+            fitLine(xs, ys, x, curves);
+            fitPowers(xs, ys, x, curves);
+            fitInversePolynomial(xs, ys, x, curves);
+            const std::string said = explainingCurve(in, p, factor, input, xs, curves, where);
+            if (!said.empty()) return said;
         }
     }
     return "";

@@ -33,6 +33,66 @@ constexpr double kTolerance = 1e-4;
 // texels a fragment on each; `pbrlab -v check ID` prints it as "linear in radiance".
 constexpr int kPoints = 128;
 
+// The point of `got` farthest from `expected`, and by how much (relative).
+struct Worst {
+    double deviation = 0;  // relative
+    int index = -1;
+    glm::dvec3 got{0}, expected{0};
+};
+
+// The worst deviation of `got` from `expected` over the covered points of `g`. Deviations are
+// relative to the expected value, floored at 1e-3 of its mean magnitude (a point that reads
+// almost nothing is compared absolutely).
+Worst worstDeviation(const ModuleDesc& d, const Grid& g, const std::vector<glm::dvec3>& got,
+                     const std::vector<glm::dvec3>& expected) {
+    double mean = 0;
+    int count = 0;
+    for (size_t i = 0; i < g.surfaces.size(); ++i)
+        if (g.surfaces[i].covered)
+            for (int c = 0; c < d.components; ++c) mean += std::abs(expected[i][c]), ++count;
+    mean /= std::max(count, 1);
+    Worst w;
+    for (size_t i = 0; i < g.surfaces.size(); ++i) {
+        if (!g.surfaces[i].covered) continue;
+        for (int c = 0; c < d.components; ++c) {
+            const double a = got[i][c], e = expected[i][c];
+            // NaN or Inf where the environment is finite: as far from linear as it gets.
+            const double deviation = std::isfinite(a) && std::isfinite(e)
+                                         ? std::abs(a - e) / std::max(std::abs(e), 1e-3 * mean)
+                                         : HUGE_VAL;
+            if (deviation > w.deviation || w.index < 0)
+                w = {deviation, int(i), got[i], expected[i]};
+        }
+    }
+    return w;
+}
+
+// The linearity check `name` from its worst deviation; `what` says what a linear function gives.
+CheckReport linearityReport(const ModuleDesc& d, const Grid& g, const std::string& name,
+                            const Worst& w, const std::string& what) {
+    CheckReport c;
+    c.name = name;
+    // A broken contract (radiance in, radiance out): it leads the message.
+    c.kind = CheckKind::Contract;
+    c.category = CheckCategory::Invariants;
+    c.measured = w.deviation;
+    c.expected = "<= " + number(kTolerance) + " of the value";
+    c.passed = w.deviation <= kTolerance;
+    c.detail = what;
+    if (!c.passed && w.index >= 0)
+        c.detail = "nonlinear in radiance: " + what + " at " +
+                   describeInputs(d, g.surfaces[size_t(w.index)]) + ": yours " + number(w.got[0]) +
+                   ", " + number(w.got[1]) + ", " + number(w.got[2]) +
+                   ", a linear function gives " + number(w.expected[0]) + ", " +
+                   number(w.expected[1]) + ", " + number(w.expected[2]) + " (" +
+                   number(w.deviation, 3) +
+                   " off relatively; float rounding: under 1e-4). Is a clamp, a tone map or "
+                   "another nonlinearity applied to the radiance it reads?";
+    else
+        c.detail += ": within " + number(w.deviation, 3) + " of a linear function's";
+    return c;
+}
+
 }  // namespace
 
 void StepGrader::gradeLinearity(const Scene& scene) {
@@ -43,90 +103,42 @@ void StepGrader::gradeLinearity(const Scene& scene) {
     for (Surface& s : inputs) s.emissive = glm::dvec3(0);  // emission is no radiance read
     const Grid g = grid(std::move(inputs));
     const ParamValues params(d_.params);
-    auto valuesOn = [&](const std::string& environment) {
-        Scene s = scene;
-        s.environment = environment;
-        RenderRequest request{&m_, &params, &s, source_, &g.surfaces, g.width, g.height};
-        request.seamlessCubes = false;
-        request.isolatePoints = true;
-        return pointValues(renderer_.render(request).value, g.surfaces.size());
-    };
-    const std::vector<glm::dvec3> sum = valuesOn(kSum);
-    // Deviations are relative to the expected value, floored at 1e-3 of its mean magnitude
-    // (a point that reads almost nothing is compared absolutely).
-    struct Worst {
-        double deviation = 0;  // relative
-        int index = -1;
-        glm::dvec3 got{0}, expected{0};
-    };
-    auto compare = [&](const std::vector<glm::dvec3>& got,
-                       const std::vector<glm::dvec3>& expected) {
-        double mean = 0;
-        int count = 0;
-        for (size_t i = 0; i < g.surfaces.size(); ++i)
-            if (g.surfaces[i].covered)
-                for (int c = 0; c < d_.components; ++c) mean += std::abs(expected[i][c]), ++count;
-        mean /= std::max(count, 1);
-        Worst w;
-        for (size_t i = 0; i < g.surfaces.size(); ++i) {
-            if (!g.surfaces[i].covered) continue;
-            for (int c = 0; c < d_.components; ++c) {
-                const double a = got[i][c], e = expected[i][c];
-                // NaN or Inf where the environment is finite: as far from linear as it gets.
-                const double deviation = std::isfinite(a) && std::isfinite(e)
-                                             ? std::abs(a - e) / std::max(std::abs(e), 1e-3 * mean)
-                                             : HUGE_VAL;
-                if (deviation > w.deviation || w.index < 0)
-                    w = {deviation, int(i), got[i], expected[i]};
-            }
-        }
-        return w;
-    };
-    auto report = [&](const std::string& name, const Worst& w, const std::string& what) {
-        CheckReport c;
-        c.name = name;
-        // A broken contract (radiance in, radiance out): it leads the message.
-        c.kind = CheckKind::Contract;
-        c.category = CheckCategory::Invariants;
-        c.measured = w.deviation;
-        c.expected = "<= " + number(kTolerance) + " of the value";
-        c.passed = w.deviation <= kTolerance;
-        c.detail = what;
-        if (!c.passed && w.index >= 0)
-            c.detail = "nonlinear in radiance: " + what + " at " +
-                       describeInputs(d_, g.surfaces[size_t(w.index)]) + ": yours " +
-                       number(w.got[0]) + ", " + number(w.got[1]) + ", " + number(w.got[2]) +
-                       ", a linear function gives " + number(w.expected[0]) + ", " +
-                       number(w.expected[1]) + ", " + number(w.expected[2]) + " (" +
-                       number(w.deviation, 3) +
-                       " off relatively; float rounding: under 1e-4). Is a clamp, a tone map or "
-                       "another nonlinearity applied to the radiance it reads?";
-        else
-            c.detail += ": within " + number(w.deviation, 3) + " of a linear function's";
-        record(c);
-    };
+    const std::vector<glm::dvec3> sum = valuesOnEnvironment(scene, kSum, params, g);
     for (double k : kScales) {
         const std::string scaled = std::string(kSum) + "*" + number(k, 17);
-        const std::vector<glm::dvec3> got = valuesOn(scaled);
+        const std::vector<glm::dvec3> got = valuesOnEnvironment(scene, scaled, params, g);
         std::vector<glm::dvec3> expected = sum;
         for (glm::dvec3& v : expected) v *= k;
         const std::string factor = k > 1 ? "1024" : "1/1024";
-        report("linear in radiance: the environment " + factor + " x as bright",
-               compare(got, expected),
-               "with every radiance of the environment (" + std::string(kSum) + ") times " +
-                   factor + ", the values are to be " + factor + " x as large");
+        record(linearityReport(
+            d_, g, "linear in radiance: the environment " + factor + " x as bright",
+            worstDeviation(d_, g, got, expected),
+            "with every radiance of the environment (" + std::string(kSum) + ") times " + factor +
+                ", the values are to be " + factor + " x as large"));
     }
     // The maps derived from the environment (split_sum's) are homogeneous in it but not
     // additive: the host's bins stand for their texels at radiance-weighted centres, so the
     // maps of a sum are not the sum of the maps (measured on the reference: 5.6e-4). Their
     // readers are checked by the scales alone, which are exact.
     if (d_.needs & NeedsPrecomputedMaps) return;
-    const std::vector<glm::dvec3> soft = valuesOn(kSoft), lobes = valuesOn(kLobes);
+    const std::vector<glm::dvec3> soft = valuesOnEnvironment(scene, kSoft, params, g),
+                                  lobes = valuesOnEnvironment(scene, kLobes, params, g);
     std::vector<glm::dvec3> expected(sum.size());
     for (size_t i = 0; i < sum.size(); ++i) expected[i] = soft[i] + lobes[i];
-    report("linear in radiance: two environments summed", compare(sum, expected),
-           "on the sum of two environments (the soft sky and a bright lobe of 1e4 to 1e5), the "
-           "values are to be the sum of the values on each");
+    record(linearityReport(
+        d_, g, "linear in radiance: two environments summed", worstDeviation(d_, g, sum, expected),
+        "on the sum of two environments (the soft sky and a bright lobe of 1e4 to 1e5), the "
+        "values are to be the sum of the values on each"));
+}
+
+// The step's values at the points of `g` with the scene's environment replaced by `environment`.
+std::vector<glm::dvec3> StepGrader::valuesOnEnvironment(const Scene& scene,
+                                                        const std::string& environment,
+                                                        const ParamValues& params, const Grid& g) {
+    Scene s = scene;
+    s.environment = environment;
+    return pointValues(renderPoints(params, s, g.surfaces, g.width, g.height).value,
+                       g.surfaces.size());
 }
 
 }  // namespace pbrlab::step_grading

@@ -4,7 +4,8 @@
 //   values.cpp           values against the reference's band: the probe, the scenes (the
 //                        sphere grid among a step's declared cases), random inputs, every
 //                        exercised parameter value, coloured lights
-//   estimator_band.cpp   estimators by convergence to the converged integral
+//   estimator*.cpp       estimators by convergence to the converged integral (estimator.h)
+//   sun.cpp              an environment with a real sun
 //   linearity.cpp        linear in radiance: steps that read the environment
 //   checks.cpp           the contract (what a step may read), invariants, robustness
 //   failure_message.cpp  the failure message and the mistake named from the error
@@ -143,35 +144,72 @@ private:
     // Which of `count` lights a step that fails with them ignores, as the message says it
     // ("ignores light 9 and up: right with NUM_LIGHTS up to 8, wrong from 9"); "" unknown.
     std::string lightsDiagnosis(const Scene& scene, int count, const Grid& g);
+    Evaluation evaluatePoints(const Scene& scene, const ParamValues& params, const Grid& g,
+                              const IblSettings& ibl = kGradingIbl);
+    std::string hostValuesBefore(const std::string& name);
+    void gradeLightCounts(const Scene& scene, const Grid& g, const Grid& few);
+    void gradeMapSizes(const Scene& scene, const Grid& g);
+    std::string hardCodedMapValues(const std::string& label, const IblSettings& s,
+                                   const Scene& scene, const Grid& g);
 
-    // grading/estimator_band.cpp
+    // grading/estimator_band.cpp (estimator.h)
     struct PointSet;
+    struct RelativeError;
     void gradeEstimator(const Scene& scene);
     std::vector<Estimate> convergedIntegrals(const std::vector<const Surface*>& points,
                                              const Scene& judged, const ReferenceContext& context,
                                              std::uint32_t samples);
+    RenderResult renderPoints(const ParamValues& params, const Scene& scene,
+                              const std::vector<Surface>& surfaces, int width, int height,
+                              const IblSettings& ibl = kGradingIbl);
+    RenderResult renderRescaled(const std::string& scaleName, const ParamValues& params,
+                                const Scene& scene, const std::vector<Surface>& surfaces, int width,
+                                int height, const std::vector<Estimate>& truth,
+                                const IblSettings& ibl = kGradingIbl);
+    // `nameConstants`: a failed factor is said as the constant it is near ("off by pi?");
+    // off where a factor is not the likely cause (a sun's light dropped).
+    void rescale(const std::string& name, Image& value, const std::vector<Surface>& surfaces,
+                 const std::vector<Estimate>& truth, bool nameConstants = true);
+
+    // grading/estimator_convergence.cpp
     void gradeConvergence(const Scene& scene, const std::string& environment, bool first);
-    void gradeSun(const Scene& scene);
+    std::vector<PointSet> convergencePointSets(const Scene& judged, const ReferenceContext& context,
+                                               const std::string& onEnvironment);
+    void gradeConvergenceAt(PointSet& set, const Scene& judged, const ParamValues& params, int n,
+                            const std::vector<int>& counts, const std::string& onEnvironment,
+                            RelativeError& error);
+    void biasTest(const std::vector<PointSet>& sets, int n, const std::string& onEnvironment);
+
+    // grading/estimator_counts.cpp
+    void gradeHighCounts(const Scene& judged, const PointSet& probe, const PointSet& random);
+    PointSet highCountPoints(const PointSet& probe, const PointSet& random) const;
+    bool gradeHighCount(const Scene& judged, const PointSet& points, int n);
+    void gradeEnvironmentSize(const Scene& judged, const PointSet& random);
+    std::string environmentSizeCause(const Scene& judged, const Grid& g, int n,
+                                     const IblSettings& ibl, const std::vector<Estimate>& truth,
+                                     double errorAtN);
+
+    // grading/estimator_picture.cpp
+    void gradePicture(const Scene& scene);
+
     // grading/sun.cpp
+    void gradeSun(const Scene& scene);
+    void gradeSunAt(const Scene& judged, const PointSet& set, const std::vector<Estimate>& sunPart,
+                    int n, bool cleanBefore, const std::string& on);
     void gradeSunValues(const Scene& scene);
     // The direction of the sun of `judged`'s environment (its brightest texel).
     glm::dvec3 sunDirection(const Scene& judged);
     // No deducted check failed so far: a failure from here on is the sun's to explain.
     bool noFailureSoFar() const;
+
     // grading/derivatives.cpp: a picture's check failed, its pixels drawn alone pass: the
     // cause (else "").
     std::string derivativesCauseOf(const ValuesRun& run);
-    void gradePicture(const Scene& scene);
-    void gradeHighCounts(const Scene& judged, const PointSet& probe, const PointSet& random);
-    void gradeEnvironmentSize(const Scene& judged, const PointSet& random);
-    // `nameConstants`: a failed factor is said as the constant it is near ("off by pi?");
-    // off where a factor is not the likely cause (a sun's light dropped).
-    void rescale(const std::string& name, Image& value, const std::vector<Surface>& surfaces,
-                 const std::vector<Estimate>& truth, bool nameConstants = true);
-    void biasTest(const std::vector<PointSet>& sets, int n, const std::string& onEnvironment);
 
     // grading/linearity.cpp: steps that read the environment, on multiples and sums of it
     void gradeLinearity(const Scene& scene);
+    std::vector<glm::dvec3> valuesOnEnvironment(const Scene& scene, const std::string& environment,
+                                                const ParamValues& params, const Grid& g);
 
     // grading/checks.cpp
     void checkSamplers(const Program& program);
@@ -187,6 +225,13 @@ private:
     struct Agreement;
     struct MutantMatch;
     void explain();
+    // The mistake named from the failed run `f` (result_.mistake and how it was named).
+    void nameMistake(const ValuesRun& f);
+    // What the error patterns read of `f`: its points, values and band, the functions on others.
+    FeedbackInputs feedbackInputs(const ValuesRun& f);
+    // Which of the student's calls made the first NaN or Inf at `surfaces` (the diagnosis build).
+    FeedbackInputs::NonFiniteOrigin nonFiniteOrigin(const ValuesRun& f,
+                                                    const std::vector<Surface>& surfaces);
     Sample sample(const ValuesRun& f);
     Image valuesOn(const ValuesRun& f, const Sample& sample, const StudentSource& source);
     Agreement agreement(const ValuesRun& f, const Sample& sample, const Image& candidate) const;

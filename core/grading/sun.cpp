@@ -1,12 +1,13 @@
-// A real sun in the environment (step_grader.h): where it is, points that face it, and the
-// values check of steps that read the environment's maps (the estimators' sun check is with
-// their convergence, grading/estimator_band.cpp).
+// A real sun in the environment (step_grader.h, estimator.h): where it is, points that face it,
+// the values check of steps that read the environment's maps, and the estimators' check on the
+// points that face it.
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "grading/step_grader.h"
+#include "assets/envgen.h"
+#include "grading/estimator.h"
 #include "ibl/precompute.h"
 
 namespace pbrlab::step_grading {
@@ -162,6 +163,117 @@ void StepGrader::gradeSunValues(const Scene& scene) {
         }
     run.tier = ValuesRun::Tier::LabUse;
     keep(std::move(run));
+}
+
+namespace {
+
+// The points of `surfaces` (with their converged integrals `truth` and the sun's part of them)
+// at which the sun is resolved at n samples, the others uncovered: by the truth (its part's
+// standard error under 5% of it, or the part under 0.1% of the value) and by n samples (their
+// noise under 25% of the value).
+std::vector<Surface> sunResolved(const ModuleDesc& d, const std::vector<Surface>& surfaces,
+                                 const std::vector<Estimate>& truth,
+                                 const std::vector<Estimate>& sunPart, int n) {
+    const EstimatorSpec& e = *d.estimator;
+    std::vector<Surface> judgedPoints = surfaces;
+    for (size_t i = 0; i < judgedPoints.size(); ++i) {
+        if (!judgedPoints[i].covered) continue;
+        bool resolved = true;
+        for (int c = 0; c < d.components; ++c) {
+            const double value = std::abs(truth[i].mean[c]);
+            const double part = std::abs(sunPart[i].mean[c]);
+            const bool truthResolves = part <= 1e-3 * value || sunPart[i].error[c] <= 0.05 * part;
+            const bool countResolves =
+                n == 0 || truth[i].sigma[c] / std::sqrt(double(n)) <= 0.25 * value;
+            resolved = resolved && value > e.systematic.absolute && truthResolves && countResolves;
+        }
+        judgedPoints[i].covered = resolved;
+    }
+    return judgedPoints;
+}
+
+}  // namespace
+
+// An environment with a real sun (EstimatorSpec::sunEnvironment): a disc of a fraction of
+// a degree, 1e5 times the sky. A rule that treats bright samples differently from the others
+// (a firefly clamp, a rejection relative to the other samples) is linear under the scaling
+// and sum checks and invisible on the smooth skies, and drops most of the light where the sun
+// is in the lobe. Judged on points facing the sun, where the sun is met often enough by the
+// samples of the counts graded to be resolved: the converged integral there comes with the
+// sun's own part (`sunOnly`, the disc alone, same samples), and a point is judged at n only
+// when the truth resolves the sun (its part's standard error under 5% of it, or the part
+// under 0.1% of the value) and n samples do too (the noise of n samples under 25% of the
+// value: a handful of sun samples at least, so that a correct estimator's error is near
+// normal there).
+void StepGrader::gradeSun(const Scene& scene) {
+    const EstimatorSpec& e = *d_.estimator;
+    if ((e.sunEnvironment.empty() && settings_.sunEnvironment.empty()) ||
+        !(d_.needs & NeedsEnvironment) || !d_.domain)
+        return;
+    Scene judged = scene, sunOnly = scene;
+    judged.environment =
+        settings_.sunEnvironment.empty() ? e.sunEnvironment : settings_.sunEnvironment;
+    sunOnly.environment = judged.environment + kBrightSuffix;
+    const std::string on = " (" + judged.environment + ")";
+    const ParamValues defaults(d_.params);
+    const ReferenceContext context = referenceContext(renderer_, d_, judged, defaults, kGradingIbl);
+    const ReferenceContext sunContext =
+        referenceContext(renderer_, d_, sunOnly, defaults, kGradingIbl);
+    Grid g = grid(sunFacingSurfaces(d_, settings_.seed, e.sunPoints, sunDirection(judged),
+                                    e.sunMaxRoughness));
+    PointSet set{"points facing the sun", g.surfaces, g.width, g.height, nullptr, {}, {}};
+    const std::vector<const Surface*> points = addresses(set.surfaces);
+    stage("converged integrals" + on);
+    set.truth = convergedIntegrals(points, judged, context, e.sunTruthSamples);
+    const std::vector<Estimate> sunPart =
+        convergedIntegrals(points, sunOnly, sunContext, e.sunTruthSamples);
+    // Every check before passed: a failure here is the sun's, and the message may say so.
+    const bool cleanBefore = noFailureSoFar();
+    const std::vector<int> counts = e.samplesParam.empty() ? std::vector<int>{0} : e.sunCounts;
+    for (int n : counts) gradeSunAt(judged, set, sunPart, n, cleanBefore, on);
+}
+
+// One count of gradeSun: the points where the sun is resolved at n samples against the band,
+// the overall scale and the bias test there, each failure told its cause from the error's shape
+// (sunCause).
+void StepGrader::gradeSunAt(const Scene& judged, const PointSet& set,
+                            const std::vector<Estimate>& sunPart, int n, bool cleanBefore,
+                            const std::string& on) {
+    const EstimatorSpec& e = *d_.estimator;
+    const ParamValues params = paramsAt(d_, n);
+    const std::vector<Surface> judgedPoints = sunResolved(d_, set.surfaces, set.truth, sunPart, n);
+    const int count = int(std::count_if(judgedPoints.begin(), judgedPoints.end(),
+                                        [](const Surface& s) { return s.covered; }));
+    const std::string name = std::to_string(count) + " " + set.name + atCount(e, n) + on;
+    stage(name);
+    RenderResult r = renderPoints(params, judged, set.surfaces, set.width, set.height);
+    Band band = convergedBand(d_, judgedPoints, set.truth, n, e.systematic);
+    // Which way the values are off, before an overall factor is divided out (a sun's light
+    // dropped is a factor of its own where the sun is most of the value).
+    const std::string cause = sunCause(r.value, judgedPoints, band, d_.components, cleanBefore);
+    if (e.scaleTolerance > 0) {
+        rescale(name, r.value, judgedPoints, set.truth, false);
+        CheckReport& scale = result_.checks.back();
+        if (!scale.passed && !cause.empty()) scale.detail = cause + "; " + scale.detail;
+    }
+    PointSet judgedSet = set;
+    judgedSet.surfaces = judgedPoints;
+    judgedSet.last = r.value;
+    ValuesRun run = estimatorRun(name, d_, judgedPoints, std::move(r.value), std::move(band),
+                                 judged, params, nullptr, set.width, set.height);
+    run.tier = !e.sampleCounts.empty() && n > e.sampleCounts.back()
+                   ? ValuesRun::Tier::AboveGradedCounts
+                   : ValuesRun::Tier::LabUse;
+    if (!run.report.passed && !cause.empty()) {
+        run.report.detail = cause + "; " + run.report.detail;
+        if (cleanBefore) run.cause = cause;
+    }
+    keep(std::move(run));
+    if (n > 0) {
+        biasTest({judgedSet}, n, on);
+        CheckReport& bias = result_.checks.back();
+        if (!bias.passed && !cause.empty()) bias.detail = cause + "; " + bias.detail;
+    }
 }
 
 }  // namespace pbrlab::step_grading

@@ -200,6 +200,26 @@ std::string mapValues(const IblSettings& s) {
            std::to_string(s.environmentSize) + "^2";
 }
 
+// A value the function assumes is wrong wherever the value matters: most points (a
+// hard-coded uPrefilterMaxLod or map size is wrong at every roughness above 0, a fixed
+// light count at every point the missing lights face). A few points outside say that the
+// function is wrong there for another reason (a highlight limited relative to the
+// irradiance crossed its limit at 4 of 2048 points with the largest maps), so the name
+// needs a tenth of the points.
+bool widespread(int outside, int compared) {
+    return 10 * outside >= compared;
+}
+
+// A failed run's message led by the host value it names as hard-coded, where the failure is
+// widespread and the value was right (`right`) in every check before.
+void nameHardCoded(ValuesRun& run, const std::string& value, const std::string& right,
+                   const std::string& now) {
+    if (run.report.passed || right.empty() || !widespread(run.report.outside, run.report.points))
+        return;
+    run.report.detail = "hard-coded host value (" + value + "): right with " + right +
+                        ", wrong with " + now + "; " + run.report.detail;
+}
+
 }  // namespace
 
 void StepGrader::noteHostValues(const Scene& scene, const ParamValues& params,
@@ -416,14 +436,7 @@ bool StepGrader::codeQueriesTextureSize() const {
 // not show on those points.
 std::string StepGrader::lightsDiagnosis(const Scene& scene, int count, const Grid& g) {
     const ParamValues defaults(d_.params);
-    auto run = [&](const Scene& s) {
-        EvalRequest request;
-        request.render = {&m_, &defaults, &s, source_, &g.surfaces, g.width, g.height};
-        request.render.seamlessCubes = false;
-        request.render.isolatePoints = true;
-        request.bandCache = settings_.bands;
-        return evaluate(renderer_, request);
-    };
+    auto run = [&](const Scene& s) { return evaluatePoints(s, defaults, g); };
     auto passes = [&](const Scene& s) {
         return run(s).comparison.passes(d_.nonNegative, d_.tolerance.outlierFraction);
     };
@@ -474,6 +487,18 @@ std::string StepGrader::lightsDiagnosis(const Scene& scene, int count, const Gri
     return what;
 }
 
+// The step evaluated against the reference's band at the points of `g`, each drawn alone.
+Evaluation StepGrader::evaluatePoints(const Scene& scene, const ParamValues& params, const Grid& g,
+                                      const IblSettings& ibl) {
+    EvalRequest request;
+    request.render = {&m_, &params, &scene, source_, &g.surfaces, g.width, g.height};
+    request.render.ibl = ibl;
+    request.render.seamlessCubes = false;
+    request.render.isolatePoints = true;
+    request.bandCache = settings_.bands;
+    return evaluate(renderer_, request);
+}
+
 // Each value the host provides, at values no other check gives it and over the range the host
 // can produce, on random inputs of the domain. When only such a check fails, the step is right
 // with the host's defaults and wrong with other values it meets in real use: a hard-coded host
@@ -484,68 +509,67 @@ std::string StepGrader::lightsDiagnosis(const Scene& scene, int count, const Gri
 // lights are ignored, which map setting is hard-coded) runs only once the check has failed.
 void StepGrader::gradeHostValues(const Scene& scene) {
     if (!d_.domain) return;
-    const ParamValues defaults(d_.params);
     const Grid g = grid(domainSurfaces(d_, settings_.seed, settings_.domainPoints));
     const Grid few = grid(domainSurfaces(d_, settings_.seed, kFewPoints));
-    // The values each host value had in the checks before (all passed: a failure below is the
-    // value itself).
-    auto before = [&](const std::string& name) {
-        for (const CheckReport& c : result_.checks)
-            if (c.kind == CheckKind::Values && c.deducted && !c.passed) return std::string();
-        std::string values;
-        for (const std::string& v : result_.hostValues[name])
-            values += (values.empty() ? "" : ", ") + v;
-        return values;
-    };
-    // A value the function assumes is wrong wherever the value matters: most points (a
-    // hard-coded uPrefilterMaxLod or map size is wrong at every roughness above 0, a fixed
-    // light count at every point the missing lights face). A few points outside say that the
-    // function is wrong there for another reason (a highlight limited relative to the
-    // irradiance crossed its limit at 4 of 2048 points with the largest maps), so the name
-    // needs a tenth of the points.
-    auto widespread = [](int outside, int compared) { return 10 * outside >= compared; };
-    auto named = [&](ValuesRun& run, const std::string& value, const std::string& right,
-                     const std::string& now) {
-        if (run.report.passed || right.empty() ||
-            !widespread(run.report.outside, run.report.points))
-            return;
-        run.report.detail = "hard-coded host value (" + value + "): right with " + right +
-                            ", wrong with " + now + "; " + run.report.detail;
-    };
     if (readsSceneLights(renderer_, m_, {}, 7) || readsSceneLights(renderer_, m_, source_, 7))
-        for (int count : kGradedLightCounts) {
-            const std::string right = before("NUM_LIGHTS"), n = std::to_string(count);
-            // Above the first count on kFewPoints points: the reference's band sums every light
-            // at each of its perturbed inputs (64 lights on 2048 points: 180 ms of CPU, on 64:
-            // 6 ms), and a light ignored shows at the points it faces, about half of any set.
-            const Grid& points = count == kGradedLightCounts[0] ? g : few;
-            ValuesRun run = runValues(
-                "random inputs with " + n + " lights (NUM_LIGHTS = " + n + ")" +
-                    (&points == &few ? " (" + std::to_string(kFewPoints) + " points)" : ""),
-                CheckCategory::Random, withLights(scene, count), defaults, &points.surfaces,
-                points.width, points.height, nullptr);
-            const bool failed = !run.report.passed && run.report.deducted;
-            const std::string what =
-                failed && !settings_.stopAtFirstFailure ? lightsDiagnosis(scene, count, few) : "";
-            if (what.empty()) {
-                named(run, "NUM_LIGHTS", "NUM_LIGHTS = " + right, n);
-                keep(std::move(run));
-            } else {
-                // The cause is named: not handed to the feedback, whose patterns read the
-                // inputs of one light (they told a loop capped at 32 "wrong only where N.L <
-                // 0.56", the N.L of light 1).
-                run.report.detail = what + "; " + run.report.detail;
-                record(run.report);
-            }
-            if (failed) break;  // the counts above say no more
-        }
+        gradeLightCounts(scene, g, few);
     if (!(d_.needs & NeedsPrecomputedMaps)) return;
+    gradeMapSizes(scene, g);
+}
+
+// The values a host value had in the checks before, as a message lists them; "" when a
+// deducted values check failed (all passed: a failure after is the value itself).
+std::string StepGrader::hostValuesBefore(const std::string& name) {
+    for (const CheckReport& c : result_.checks)
+        if (c.kind == CheckKind::Values && c.deducted && !c.passed) return std::string();
+    std::string values;
+    for (const std::string& v : result_.hostValues[name])
+        values += (values.empty() ? "" : ", ") + v;
+    return values;
+}
+
+// NUM_LIGHTS at kGradedLightCounts, up to the first count that fails (the lights it ignores
+// named).
+void StepGrader::gradeLightCounts(const Scene& scene, const Grid& g, const Grid& few) {
+    const ParamValues defaults(d_.params);
+    for (int count : kGradedLightCounts) {
+        const std::string right = hostValuesBefore("NUM_LIGHTS"), n = std::to_string(count);
+        // Above the first count on kFewPoints points: the reference's band sums every light
+        // at each of its perturbed inputs (64 lights on 2048 points: 180 ms of CPU, on 64:
+        // 6 ms), and a light ignored shows at the points it faces, about half of any set.
+        const Grid& points = count == kGradedLightCounts[0] ? g : few;
+        ValuesRun run =
+            runValues("random inputs with " + n + " lights (NUM_LIGHTS = " + n + ")" +
+                          (&points == &few ? " (" + std::to_string(kFewPoints) + " points)" : ""),
+                      CheckCategory::Random, withLights(scene, count), defaults, &points.surfaces,
+                      points.width, points.height, nullptr);
+        const bool failed = !run.report.passed && run.report.deducted;
+        const std::string what =
+            failed && !settings_.stopAtFirstFailure ? lightsDiagnosis(scene, count, few) : "";
+        if (what.empty()) {
+            nameHardCoded(run, "NUM_LIGHTS", "NUM_LIGHTS = " + right, n);
+            keep(std::move(run));
+        } else {
+            // The cause is named: not handed to the feedback, whose patterns read the
+            // inputs of one light (they told a loop capped at 32 "wrong only where N.L <
+            // 0.56", the N.L of light 1).
+            run.report.detail = what + "; " + run.report.detail;
+            record(run.report);
+        }
+        if (failed) break;  // the counts above say no more
+    }
+}
+
+// The precomputed maps at the smallest and the largest the host makes (hostMapEnds), each
+// failure taken apart into the values that are hard-coded where everything before passed.
+void StepGrader::gradeMapSizes(const Scene& scene, const Grid& g) {
+    const ParamValues defaults(d_.params);
     auto reads = [&](const StudentSource& source, const char* name) {
         return renderer_.programs().get(renderer_.viewRecipe(m_, source, true, 1))->uses(name);
     };
     const auto [smallest, largest] =
         hostMapEnds(reads({}, "uEnvironment") || reads(source_, "uEnvironment"));
-    const bool passedBefore = !before("uBrdfLut").empty();
+    const bool passedBefore = !hostValuesBefore("uBrdfLut").empty();
     for (const auto& [label, s] :
          {std::pair{"the smallest maps", smallest}, std::pair{"the largest maps", largest}}) {
         ValuesRun run = runValues(
@@ -553,26 +577,29 @@ void StepGrader::gradeHostValues(const Scene& scene) {
             CheckCategory::Random, scene, defaults, &g.surfaces, g.width, g.height, nullptr, s);
         // Taken apart only where it can name the value: everything before passed.
         if (!run.report.passed && passedBefore && !settings_.stopAtFirstFailure) {
-            std::string wrong;
-            for (const HostMapValue& v : hostMapValues(s)) {
-                stage(label + std::string(": ") + v.value + " alone");
-                EvalRequest request;
-                request.render = {&m_, &defaults, &scene, source_, &g.surfaces, g.width, g.height};
-                request.render.ibl = v.settings;
-                request.render.seamlessCubes = false;
-                request.render.isolatePoints = true;
-                request.bandCache = settings_.bands;
-                const Evaluation e = evaluate(renderer_, request);
-                if (!e.comparison.passes(d_.nonNegative, d_.tolerance.outlierFraction) &&
-                    widespread(e.comparison.outside, e.comparison.compared))
-                    wrong += (wrong.empty() ? "" : "; ") +
-                             ("hard-coded host value (" + v.value + "): right with " + v.right +
-                              ", wrong with " + v.wrong);
-            }
+            const std::string wrong = hardCodedMapValues(label, s, scene, g);
             if (!wrong.empty()) run.report.detail = wrong + "; " + run.report.detail;
         }
         record(run.report);
     }
+}
+
+// The values of map settings `s` (labelled `label`) that fail on their own, widespread, each
+// as "hard-coded host value (...)"; "" when none does.
+std::string StepGrader::hardCodedMapValues(const std::string& label, const IblSettings& s,
+                                           const Scene& scene, const Grid& g) {
+    const ParamValues defaults(d_.params);
+    std::string wrong;
+    for (const HostMapValue& v : hostMapValues(s)) {
+        stage(label + std::string(": ") + v.value + " alone");
+        const Evaluation e = evaluatePoints(scene, defaults, g, v.settings);
+        if (!e.comparison.passes(d_.nonNegative, d_.tolerance.outlierFraction) &&
+            widespread(e.comparison.outside, e.comparison.compared))
+            wrong += (wrong.empty() ? "" : "; ") +
+                     ("hard-coded host value (" + v.value + "): right with " + v.right +
+                      ", wrong with " + v.wrong);
+    }
+    return wrong;
 }
 
 }  // namespace pbrlab::step_grading

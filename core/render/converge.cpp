@@ -119,38 +119,42 @@ void score(ConvergeRow& row, const Image& value, const Truth& truth,
     row.displayRmse = n ? std::sqrt(sumDisplay / n) : 0;
 }
 
-}  // namespace
-
-std::vector<ConvergeRow> runConverge(const DataPaths& paths, const ConvergeOptions& o) {
-    Scene scene = loadScene(paths.scene(o.scene));
-    Image equirect = loadEnvironmentImage(scene.environment);
-    ref::EquirectEnvironment environment(equirect);
-    const IblSettings& defaults = o.ibl;
-    // Measure every precompute: a renderer of its own, without the disk cache.
-    RendererOptions noDiskCache;
-    noDiskCache.cacheRoot.clear();
-    noDiskCache.onPrecomputePass = o.onPrecomputePass;
-    LabRenderer renderer(paths, noDiskCache);
+// What every measured method shares: the scene, the renderer that times it, the truth it is
+// scored against and the rows measured so far.
+struct Measurements {
+    const ConvergeOptions& o;
+    const Scene& scene;
+    LabRenderer& renderer;
     const ParamValues none;  // what the parameterless methods are given
+    Truth truth;
+    std::vector<ConvergeRow> rows;
+
+    Measurements(const ConvergeOptions& options, const Scene& s, LabRenderer& r)
+        : o(options), scene(s), renderer(r) {}
+
     // A picture of the scene with these parameters and maps (the default view).
-    auto request = [&](const Method& method, const ParamValues& params, const IblSettings& ibl) {
+    RenderRequest request(const Method& method, const ParamValues& params,
+                          const IblSettings& ibl) const {
         RenderRequest r{&method.module, &params, &scene, {}, nullptr, o.size, o.size};
         r.ibl = ibl;
         return r;
-    };
+    }
 
-    Method bruteForce(paths, "specular_brute_force",
-                      {intParam("samples", 64, 1, 1 << 20, "Monte Carlo samples")});
-    Method splitSum(paths, "specular_split_sum");
-    Method convolution(paths, "diffuse_convolution");
-    Method harmonics(paths, "diffuse_sh");
+    // A row scored against `reference` (the truth's specular or diffuse term), then kept.
+    void keep(ConvergeRow& row, const Image& value, const std::vector<glm::dvec3>& reference) {
+        score(row, value, truth, reference);
+        rows.push_back(row);
+    }
+};
 
-    // The truth, per pixel of the scene, in double precision on the CPU.
+// The truth, per pixel of the scene, in double precision on the CPU.
+Truth cpuTruth(const Measurements& m, const Method& splitSum, const Image& equirect,
+               const ref::EquirectEnvironment& environment) {
     Truth truth;
     {
-        RenderRequest r = request(splitSum, none, defaults);
+        RenderRequest r = m.request(splitSum, m.none, m.o.ibl);
         r.readSurfaces = true;
-        truth.surfaces = renderer.render(r).surfaces;
+        truth.surfaces = m.renderer.render(r).surfaces;
     }
     truth.specular.assign(truth.surfaces.size(), glm::dvec3(0));
     truth.diffuse = truth.specular;
@@ -164,7 +168,7 @@ std::vector<ConvergeRow> runConverge(const DataPaths& paths, const ConvergeOptio
         // often). Wide lobes (alpha = r^2 >= 0.25, > 14 degrees): the texel sum.
         truth.specular[size_t(i)] =
             s.roughness < 0.5 ? ref::specularIBLReference(environment, s.normal, s.view, F0,
-                                                          s.roughness, unsigned(o.truthSamples))
+                                                          s.roughness, unsigned(m.o.truthSamples))
                               : specularByTexels(coarse, s.normal, s.view, F0, s.roughness);
         truth.diffuse[size_t(i)] = s.albedo * ref::irradianceAt(equirect, s.normal);
     });
@@ -174,84 +178,112 @@ std::vector<ConvergeRow> runConverge(const DataPaths& paths, const ConvergeOptio
             std::to_string(
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()) +
             " s");
+    return truth;
+}
 
-    std::vector<ConvergeRow> rows;
-    auto precomputeMs = [](const IblMaps& maps, const std::string& map) {
-        return maps.milliseconds(map);
-    };
-
-    // Brute force: every frame pays for every sample.
-    for (int n = 1; n <= o.maxBruteForce; n *= (o.quick ? 16 : 2)) {
+// Brute force: every frame pays for every sample.
+void measureBruteForce(Measurements& m, const Method& bruteForce) {
+    for (int n = 1; n <= m.o.maxBruteForce; n *= (m.o.quick ? 16 : 2)) {
         ParamValues params(bruteForce.desc.params);
         params.set("samples", glm::dvec3(n, 0, 0));
-        RenderResult r = timedRender(renderer, request(bruteForce, params, defaults));
+        RenderResult r = timedRender(m.renderer, m.request(bruteForce, params, m.o.ibl));
         ConvergeRow row{"specular", "brute_force", "N=" + std::to_string(n), n, r.milliseconds};
-        score(row, r.value, truth, truth.specular);
-        rows.push_back(row);
+        m.keep(row, r.value, m.truth.specular);
     }
+}
 
-    // Split sum: a cheap frame, after a precompute whose quality varies.
-    auto splitSumRow = [&](const IblSettings& s, const std::string& setting, int samples) {
-        RenderResult r = timedRender(renderer, request(splitSum, none, s));
-        const IblMaps& maps = renderer.environmentMaps(scene, s);
-        ConvergeRow row{
-            "specular",     "split_sum",
-            setting,        samples,
-            r.milliseconds, precomputeMs(maps, "prefilter") + precomputeMs(maps, "lut")};
-        score(row, r.value, truth, truth.specular);
-        rows.push_back(row);
-    };
+// One split-sum row: the frame with maps of these settings, and the precompute they cost.
+void measureSplitSumRow(Measurements& m, const Method& splitSum, const IblSettings& s,
+                        const std::string& setting, int samples) {
+    RenderResult r = timedRender(m.renderer, m.request(splitSum, m.none, s));
+    const IblMaps& maps = m.renderer.environmentMaps(m.scene, s);
+    ConvergeRow row{"specular",     "split_sum",
+                    setting,        samples,
+                    r.milliseconds, maps.milliseconds("prefilter") + maps.milliseconds("lut")};
+    m.keep(row, r.value, m.truth.specular);
+}
+
+// Split sum: a cheap frame, after a precompute whose quality varies.
+void measureSplitSum(Measurements& m, const Method& splitSum) {
+    const IblSettings& defaults = m.o.ibl;
     std::vector<int> prefilterSamples =
-        o.quick ? std::vector<int>{16, 256} : std::vector<int>{16, 32, 64, 128, 256, 512, 1024};
+        m.o.quick ? std::vector<int>{16, 256} : std::vector<int>{16, 32, 64, 128, 256, 512, 1024};
     for (bool fis : {false, true})
         for (int samples : prefilterSamples) {
             IblSettings s = defaults;
             s.prefilterSamples = samples;
             s.prefilter = fis ? PrefilterMethod::Filtered : PrefilterMethod::StepPass;
-            splitSumRow(s,
-                        std::string("prefilter=") + std::to_string(samples) +
-                            (fis ? " fis=on" : " fis=off"),
-                        samples);
+            measureSplitSumRow(m, splitSum, s,
+                               std::string("prefilter=") + std::to_string(samples) +
+                                   (fis ? " fis=on" : " fis=off"),
+                               samples);
         }
     std::vector<int> lutSizes =
-        o.quick ? std::vector<int>{16, 128} : std::vector<int>{16, 32, 64, 128, 256, 512};
+        m.o.quick ? std::vector<int>{16, 128} : std::vector<int>{16, 32, 64, 128, 256, 512};
     for (int size : lutSizes) {
         IblSettings s = defaults;
         s.lutWidth = s.lutHeight = size;
-        splitSumRow(s, "lut=" + std::to_string(size), s.lutSamples);
+        measureSplitSumRow(m, splitSum, s, "lut=" + std::to_string(size), s.lutSamples);
     }
+}
 
+// The diffuse term from the irradiance cube, with the precompute it costs.
+void measureConvolution(Measurements& m, const Method& convolution) {
+    const IblSettings& defaults = m.o.ibl;
+    RenderResult r = timedRender(m.renderer, m.request(convolution, m.none, defaults));
+    ConvergeRow row{"diffuse",
+                    "convolution",
+                    "irradiance " + std::to_string(defaults.irradianceSize) + "^2 x 6",
+                    32 * 128,
+                    r.milliseconds,
+                    m.renderer.environmentMaps(m.scene, defaults).milliseconds("irradiance")};
+    m.keep(row, r.value, m.truth.diffuse);
+}
+
+// The diffuse term from 9 spherical-harmonic coefficients, projected on the CPU (timed).
+void measureHarmonics(Measurements& m, const Method& harmonics, const Image& equirect) {
+    auto t0 = std::chrono::steady_clock::now();
+    ref::SH9 sh = ref::projectSH9(equirect);
+    double shMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    RenderRequest shRequest = m.request(harmonics, m.none, m.o.ibl);
+    shRequest.extraUniforms = [&](const Program& p) {
+        std::vector<glm::vec3> c;
+        for (const auto& v : sh.c) c.emplace_back(v);
+        p.set("uSH[0]", c);
+    };
+    RenderResult r = timedRender(m.renderer, shRequest);
+    ConvergeRow row{"diffuse", "spherical_harmonics", "9 coefficients (CPU projection)",
+                    9,         r.milliseconds,        shMs};
+    m.keep(row, r.value, m.truth.diffuse);
+}
+
+}  // namespace
+
+std::vector<ConvergeRow> runConverge(const DataPaths& paths, const ConvergeOptions& o) {
+    Scene scene = loadScene(paths.scene(o.scene));
+    Image equirect = loadEnvironmentImage(scene.environment);
+    ref::EquirectEnvironment environment(equirect);
+    // Measure every precompute: a renderer of its own, without the disk cache.
+    RendererOptions noDiskCache;
+    noDiskCache.cacheRoot.clear();
+    noDiskCache.onPrecomputePass = o.onPrecomputePass;
+    LabRenderer renderer(paths, noDiskCache);
+
+    Method bruteForce(paths, "specular_brute_force",
+                      {intParam("samples", 64, 1, 1 << 20, "Monte Carlo samples")});
+    Method splitSum(paths, "specular_split_sum");
+    Method convolution(paths, "diffuse_convolution");
+    Method harmonics(paths, "diffuse_sh");
+
+    Measurements m(o, scene, renderer);
+    m.truth = cpuTruth(m, splitSum, equirect, environment);
+    measureBruteForce(m, bruteForce);
+    measureSplitSum(m, splitSum);
     // Diffuse: the irradiance cube against 9 spherical-harmonic coefficients.
-    {
-        RenderResult r = timedRender(renderer, request(convolution, none, defaults));
-        ConvergeRow row{"diffuse",
-                        "convolution",
-                        "irradiance " + std::to_string(defaults.irradianceSize) + "^2 x 6",
-                        32 * 128,
-                        r.milliseconds,
-                        precomputeMs(renderer.environmentMaps(scene, defaults), "irradiance")};
-        score(row, r.value, truth, truth.diffuse);
-        rows.push_back(row);
-    }
-    {
-        auto t0 = std::chrono::steady_clock::now();
-        ref::SH9 sh = ref::projectSH9(equirect);
-        double shMs =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                .count();
-        RenderRequest shRequest = request(harmonics, none, defaults);
-        shRequest.extraUniforms = [&](const Program& p) {
-            std::vector<glm::vec3> c;
-            for (const auto& v : sh.c) c.emplace_back(v);
-            p.set("uSH[0]", c);
-        };
-        RenderResult r = timedRender(renderer, shRequest);
-        ConvergeRow row{"diffuse", "spherical_harmonics", "9 coefficients (CPU projection)",
-                        9,         r.milliseconds,        shMs};
-        score(row, r.value, truth, truth.diffuse);
-        rows.push_back(row);
-    }
-    return rows;
+    measureConvolution(m, convolution);
+    measureHarmonics(m, harmonics, equirect);
+    return std::move(m.rows);
 }
 
 void writeConvergeReport(const std::vector<ConvergeRow>& rows, const fs::path& out) {

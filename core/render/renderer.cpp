@@ -161,55 +161,20 @@ LoopLimits viewLoopLimits(const ModuleDesc& module, const ParamValues& params, s
     return limits;
 }
 
-void LabRenderer::runView(const RenderRequest& request, const Scene& scene, bool probe,
-                          const std::vector<GLuint>& inputs, int width, int height,
-                          const glm::mat4& viewProjection, RenderResult& result) {
-    const LoadedModule& module = *request.module;
-    const ModuleDesc& d = *module.desc;
-    // reloadIfChanged: an edited student file is recompiled; if that fails, the error is thrown
-    // and the last good program stays cached for the next call.
-    auto program = programs_.reloadIfChanged(
-        viewRecipe(module, request.source, probe, int(scene.lights.size()), request.view));
-    // The environment and the maps the view may read, built before anything is bound (the
-    // precompute passes use the texture units). A derived map is readable only by steps after
-    // the one whose reference solution computes it; every other sampler the program uses
-    // reads black (the contract declares them all).
-    struct Binding {
-        const char* name;
-        GLenum target;
-        GLuint texture;
-    };
-    std::vector<Binding> bindings;
-    if (program->uses("uEnvironment"))
-        bindings.push_back({"uEnvironment", GL_TEXTURE_CUBE_MAP,
-                            mayRead(d, "uEnvironment")
-                                ? environment(scene, request.ibl, false).maps->environment.id()
-                                : 0});
-    for (const DerivedMap& map : kDerivedMaps) {
-        if (!program->uses(map.sampler)) continue;
-        const GLenum target =
-            std::string(map.sampler) == "uBrdfLut" ? GL_TEXTURE_2D : GL_TEXTURE_CUBE_MAP;
-        GLuint texture = 0;
-        if (mayRead(d, map.sampler)) {
-            const IblMaps& maps = *environment(scene, request.ibl, true).maps;
-            texture = target == GL_TEXTURE_2D                        ? maps.lut.id()
-                      : std::string(map.sampler) == "uIrradianceMap" ? maps.irradiance.id()
-                                                                     : maps.prefilter.id();
-        }
-        bindings.push_back({map.sampler, target, texture});
-    }
-    for (Binding& b : bindings)
-        if (!b.texture) b.texture = blackTexture(b.target);
-    if (!valueTarget_ || valueTarget_->width() != width || valueTarget_->height() != height)
-        valueTarget_ = std::make_unique<gl::RenderTarget>(width, height, 1, false);
-    valueTarget_->bind();
-    program->use();
+namespace {
+
+// The view's inputs (the G-buffer's textures or the uploaded points), units 0 on, as
+// uSurface0...
+void bindSurfaceInputs(const Program& program, const std::vector<GLuint>& inputs) {
     for (size_t i = 0; i < inputs.size(); ++i) {
         gl::ActiveTexture(GLenum(GL_TEXTURE0 + i));
         gl::BindTexture(GL_TEXTURE_2D, inputs[i]);
-        program->set("uSurface" + std::to_string(i), int(i));
+        program.set("uSurface" + std::to_string(i), int(i));
     }
-    if (probe) program->set("uPointQuad", request.width > 0 ? width / request.width : 1);
+}
+
+// The scene's lights, in every slot of the light arrays.
+void setLightUniforms(const Program& program, const Scene& scene) {
     // Every slot past the scene's lights is a black light at the last one's position (see
     // common.glsl): it adds nothing, and no 0/0 where the real lights have none.
     std::vector<glm::vec3> positions, colors;
@@ -220,12 +185,87 @@ void LabRenderer::runView(const RenderRequest& request, const Scene& scene, bool
     const glm::vec3 padding = positions.empty() ? glm::vec3(0, 100, 0) : positions.back();
     positions.resize(lightSlots(scene.lights.size()), padding);
     colors.resize(positions.size(), glm::vec3(0));
-    program->set("uLightPositions", positions);
-    program->set("uLightColors", colors);
+    program.set("uLightPositions", positions);
+    program.set("uLightColors", colors);
+}
+
+// The step's parameters, as the uniforms parameterUniforms declares.
+void setParameterUniforms(const Program& program, const ModuleDesc& d, const ParamValues& params) {
+    for (const ParamDecl& p : d.params) {
+        glm::dvec3 v = params.vector(p.name);
+        const std::string u = p.uniformName();
+        switch (p.type) {
+            case ParamType::Float:
+                program.set(u, float(v.x));
+                break;
+            case ParamType::Int:
+            case ParamType::Bool:
+            case ParamType::Enum:
+                program.set(u, int(v.x));
+                break;
+            case ParamType::Color:
+            case ParamType::Direction:
+                program.set(u, glm::vec3(v));
+                break;
+        }
+    }
+}
+
+}  // namespace
+
+// The environment and the maps the view may read, built before anything is bound (the
+// precompute passes use the texture units). A derived map is readable only by steps after
+// the one whose reference solution computes it; every other sampler the program uses
+// reads black (the contract declares them all).
+std::vector<LabRenderer::SamplerBinding> LabRenderer::iblBindings(const Program& program,
+                                                                  const ModuleDesc& d,
+                                                                  const Scene& scene,
+                                                                  const IblSettings& ibl) {
+    std::vector<SamplerBinding> bindings;
+    if (program.uses("uEnvironment"))
+        bindings.push_back({"uEnvironment", GL_TEXTURE_CUBE_MAP,
+                            mayRead(d, "uEnvironment")
+                                ? environment(scene, ibl, false).maps->environment.id()
+                                : 0});
+    for (const DerivedMap& map : kDerivedMaps) {
+        if (!program.uses(map.sampler)) continue;
+        const GLenum target =
+            std::string(map.sampler) == "uBrdfLut" ? GL_TEXTURE_2D : GL_TEXTURE_CUBE_MAP;
+        GLuint texture = 0;
+        if (mayRead(d, map.sampler)) {
+            const IblMaps& maps = *environment(scene, ibl, true).maps;
+            texture = target == GL_TEXTURE_2D                        ? maps.lut.id()
+                      : std::string(map.sampler) == "uIrradianceMap" ? maps.irradiance.id()
+                                                                     : maps.prefilter.id();
+        }
+        bindings.push_back({map.sampler, target, texture});
+    }
+    for (SamplerBinding& b : bindings)
+        if (!b.texture) b.texture = blackTexture(b.target);
+    return bindings;
+}
+
+void LabRenderer::runView(const RenderRequest& request, const Scene& scene, bool probe,
+                          const std::vector<GLuint>& inputs, int width, int height,
+                          const glm::mat4& viewProjection, RenderResult& result) {
+    const LoadedModule& module = *request.module;
+    const ModuleDesc& d = *module.desc;
+    // reloadIfChanged: an edited student file is recompiled; if that fails, the error is thrown
+    // and the last good program stays cached for the next call.
+    auto program = programs_.reloadIfChanged(
+        viewRecipe(module, request.source, probe, int(scene.lights.size()), request.view));
+    const std::vector<SamplerBinding> bindings = iblBindings(*program, d, scene, request.ibl);
+    if (!valueTarget_ || valueTarget_->width() != width || valueTarget_->height() != height)
+        valueTarget_ = std::make_unique<gl::RenderTarget>(width, height, 1, false);
+    valueTarget_->bind();
+    program->use();
+    bindSurfaceInputs(*program, inputs);
+    if (probe) program->set("uPointQuad", request.width > 0 ? width / request.width : 1);
+    setLightUniforms(*program, scene);
     if (program->uses("uCameraPosition"))
         program->set("uCameraPosition", glm::vec3(scene.camera.position));
     int unit = int(inputs.size());
-    for (const Binding& b : bindings) {
+    for (const SamplerBinding& b : bindings) {
         gl::ActiveTexture(GLenum(GL_TEXTURE0 + unit));
         gl::BindTexture(b.target, b.texture);
         program->set(b.name, unit++);
@@ -236,24 +276,7 @@ void LabRenderer::runView(const RenderRequest& request, const Scene& scene, bool
         program->set("uInverseViewProjection", glm::inverse(viewProjection));
         program->set("uViewportSize", glm::vec2(float(width), float(height)));
     }
-    for (const ParamDecl& p : d.params) {
-        glm::dvec3 v = request.params->vector(p.name);
-        const std::string u = p.uniformName();
-        switch (p.type) {
-            case ParamType::Float:
-                program->set(u, float(v.x));
-                break;
-            case ParamType::Int:
-            case ParamType::Bool:
-            case ParamType::Enum:
-                program->set(u, int(v.x));
-                break;
-            case ParamType::Color:
-            case ParamType::Direction:
-                program->set(u, glm::vec3(v));
-                break;
-        }
-    }
+    setParameterUniforms(*program, d, *request.params);
     result.loops = program->loops();
     result.loopBudget = 0;
     if (program->uses(kLoopBudgetUniform)) {

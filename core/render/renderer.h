@@ -209,6 +209,9 @@ private:
     // it drew with.
     glm::mat4 drawGBuffer(const Scene& scene, unsigned needs, int width, int height,
                           const RenderRequest& request);
+    // drawGBuffer's pieces: a material's maps bound to its program, and one draw's mesh.
+    void bindMaterialMaps(const Program& program, const MaterialDesc& material);
+    void drawItemMesh(const DrawItem& item, const Camera& camera, int height, bool coarseSpheres);
     // drawGBuffer's disk cache, for the lesson's sphere grid above all (49 spheres of 9216
     // triangles: half a second of llvmpipe in every grading process). The key of these draws
     // (empty: not cacheable), and the attachments read from a file or written to it.
@@ -221,6 +224,16 @@ private:
     void runView(const RenderRequest& request, const Scene& scene, bool probe,
                  const std::vector<GLuint>& inputs, int width, int height,
                  const glm::mat4& viewProjection, RenderResult& result);
+    // A sampler of a view's program and the texture runView binds to it.
+    struct SamplerBinding {
+        const char* name;
+        GLenum target;
+        GLuint texture;
+    };
+    // runView's IBL samplers: what the program uses, each with its map where the module may
+    // read it, else black.
+    std::vector<SamplerBinding> iblBindings(const Program& program, const ModuleDesc& module,
+                                            const Scene& scene, const IblSettings& ibl);
     GLuint texture(const TextureSource& source);  // read and uploaded on first use
     // The scene's environment with these settings: the cube only, or with the derived maps
     // too.

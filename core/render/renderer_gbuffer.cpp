@@ -112,6 +112,71 @@ std::vector<LabRenderer::MaterialMap> LabRenderer::materialMaps(const MaterialDe
             {NeedsEmissive, &m.emissiveMap, "HAS_EMISSIVE_MAP", "uEmissiveMap"}};
 }
 
+namespace {
+
+// The camera's view-projection for a picture of this size. Near and far planes from the
+// camera's distance, so models of any size keep depth precision (a unit sphere at distance 3:
+// 0.05 .. 200, as before).
+glm::mat4 gbufferViewProjection(const Camera& cam, int width, int height) {
+    const double distance = glm::length(cam.position - cam.target);
+    glm::mat4 view =
+        glm::lookAt(glm::vec3(cam.position), glm::vec3(cam.target), glm::vec3(0, 1, 0));
+    glm::mat4 proj = glm::perspective(glm::radians(float(cam.fovY)), float(width) / float(height),
+                                      float(distance / 60), float(distance * 60));
+    return proj * view;
+}
+
+// A draw's transforms and its material's factors, as the G-buffer program reads them.
+void setMaterialUniforms(const Program& program, const glm::mat4& model,
+                         const glm::mat4& viewProjection, const MaterialDesc& m) {
+    program.set("uModel", model);
+    glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
+    gl::UniformMatrix3fv(program.location("uNormalMatrix"), 1, GL_FALSE, &normalMatrix[0][0]);
+    program.set("uViewProjection", viewProjection);
+    program.set("uAlbedo", glm::vec3(m.albedo));
+    // The albedo factor as an sRGB texture would store it (exact curve, no 8-bit rounding).
+    program.set("uAlbedoTexel",
+                glm::vec3(srgbEncode(m.albedo.r), srgbEncode(m.albedo.g), srgbEncode(m.albedo.b)));
+    program.set("uMetallic", float(m.metallic));
+    program.set("uRoughness", float(m.roughness));
+    program.set("uAo", float(m.ao));
+    program.set("uOcclusionStrength", float(m.occlusionStrength));
+    program.set("uNormalScale", float(m.normalScale));
+    program.set("uEmissive", glm::vec3(m.emissive));
+}
+
+}  // namespace
+
+// The material's maps that the program compiled in, each on a unit of its own.
+void LabRenderer::bindMaterialMaps(const Program& program, const MaterialDesc& m) {
+    int unit = 0;
+    for (const MaterialMap& map : materialMaps(m)) {
+        if (!program.uses(map.sampler)) continue;  // not compiled in: never loaded
+        gl::ActiveTexture(GL_TEXTURE0 + unit);
+        gl::BindTexture(GL_TEXTURE_2D, texture(*map.source));
+        // Wrapping is the map's, not the image's (two maps may share one image).
+        gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, glWrap(map.source->wrapU));
+        gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, glWrap(map.source->wrapV));
+        program.set(map.sampler, unit++);
+    }
+}
+
+// A draw's mesh: a built-in sphere with fewer segments where coarse spheres are asked for and
+// keep its outline, else the full mesh.
+void LabRenderer::drawItemMesh(const DrawItem& item, const Camera& camera, int height,
+                               bool coarseSpheres) {
+    const int segments = coarseSpheres && !item.mesh
+                             ? sphereSegments(sphereRadiusPixels(item.transform, camera, height))
+                             : kSphereSegments;
+    if (segments < kSphereSegments) {
+        auto& sphere = coarseSpheres_[segments];
+        if (!sphere) sphere = std::make_unique<gl::GpuMesh>(makeUvSphere(segments, segments / 2));
+        sphere->draw();
+    } else {
+        mesh(item.mesh).draw();
+    }
+}
+
 glm::mat4 LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width, int height,
                                    const RenderRequest& request) {
     const bool coarseSpheres = request.coarseSpheres;
@@ -120,15 +185,7 @@ glm::mat4 LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width
         target = std::make_unique<gl::RenderTarget>(width, height, kGBufferTextures);
         if (!coarseSpheres) gbufferHolds_.clear();
     }
-    const Camera& cam = scene.camera;
-    // Near and far planes from the camera's distance, so models of any size keep depth
-    // precision (a unit sphere at distance 3: 0.05 .. 200, as before).
-    const double distance = glm::length(cam.position - cam.target);
-    glm::mat4 view =
-        glm::lookAt(glm::vec3(cam.position), glm::vec3(cam.target), glm::vec3(0, 1, 0));
-    glm::mat4 proj = glm::perspective(glm::radians(float(cam.fovY)), float(width) / float(height),
-                                      float(distance / 60), float(distance * 60));
-    const glm::mat4 viewProjection = proj * view;
+    const glm::mat4 viewProjection = gbufferViewProjection(scene.camera, width, height);
     for (const SceneModel& model : scene.models) keepModels_.insert(model.data);
 
     const std::vector<DrawItem> items = drawItems(scene);
@@ -154,43 +211,9 @@ glm::mat4 LabRenderer::drawGBuffer(const Scene& scene, unsigned needs, int width
         const MaterialDesc& m = scene.materials.at(size_t(item.material));
         auto program = programs_.get(gbufferRecipe(m, needs));
         program->use();
-        const glm::mat4 model(item.transform);
-        program->set("uModel", model);
-        glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
-        gl::UniformMatrix3fv(program->location("uNormalMatrix"), 1, GL_FALSE, &normalMatrix[0][0]);
-        program->set("uViewProjection", viewProjection);
-        program->set("uAlbedo", glm::vec3(m.albedo));
-        // The albedo factor as an sRGB texture would store it (exact curve, no 8-bit rounding).
-        program->set("uAlbedoTexel", glm::vec3(srgbEncode(m.albedo.r), srgbEncode(m.albedo.g),
-                                               srgbEncode(m.albedo.b)));
-        program->set("uMetallic", float(m.metallic));
-        program->set("uRoughness", float(m.roughness));
-        program->set("uAo", float(m.ao));
-        program->set("uOcclusionStrength", float(m.occlusionStrength));
-        program->set("uNormalScale", float(m.normalScale));
-        program->set("uEmissive", glm::vec3(m.emissive));
-        int unit = 0;
-        for (const MaterialMap& map : materialMaps(m)) {
-            if (!program->uses(map.sampler)) continue;  // not compiled in: never loaded
-            gl::ActiveTexture(GL_TEXTURE0 + unit);
-            gl::BindTexture(GL_TEXTURE_2D, texture(*map.source));
-            // Wrapping is the map's, not the image's (two maps may share one image).
-            gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, glWrap(map.source->wrapU));
-            gl::TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, glWrap(map.source->wrapV));
-            program->set(map.sampler, unit++);
-        }
-        const int segments =
-            coarseSpheres && !item.mesh
-                ? sphereSegments(sphereRadiusPixels(item.transform, scene.camera, height))
-                : kSphereSegments;
-        if (segments < kSphereSegments) {
-            auto& sphere = coarseSpheres_[segments];
-            if (!sphere)
-                sphere = std::make_unique<gl::GpuMesh>(makeUvSphere(segments, segments / 2));
-            sphere->draw();
-        } else {
-            mesh(item.mesh).draw();
-        }
+        setMaterialUniforms(*program, glm::mat4(item.transform), viewProjection, m);
+        bindMaterialMaps(*program, m);
+        drawItemMesh(item, scene.camera, height, coarseSpheres);
     }
     gl::Disable(GL_DEPTH_TEST);
     gl::checkError("G-buffer pass");

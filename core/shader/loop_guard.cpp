@@ -111,22 +111,24 @@ bool declares(const std::string& condition) {
     return std::regex_search(condition, declaration);
 }
 
-}  // namespace
-
-std::string guardLoops(const std::string& text, const std::string& name, const std::string& file,
-                       std::vector<LoopSite>& sites) {
-    const Code code = codeOf(text);
-    const std::string& s = code.text;
-    // The ranges scanned: the code outside directives as one, and each #define's body as its
-    // own (a loop in a macro is wrapped where it is written; its parentheses close there).
-    std::vector<bool> skip(s.size(), false);
+// The ranges guardLoops scans: the code outside directives as one (`skip` marks the
+// directives' characters), and each #define's body as its own (a loop in a macro is wrapped
+// where it is written; its parentheses close there).
+struct ScanRanges {
+    std::vector<bool> skip;
     std::vector<std::pair<size_t, size_t>> defines;
+};
+
+// The file's directives found (a #define of a loop keyword refused).
+ScanRanges scanRanges(const Code& code, const std::string& name) {
+    const std::string& s = code.text;
+    ScanRanges ranges{std::vector<bool>(s.size(), false), {}};
     for (size_t begin = 0; begin < s.size();) {
         size_t end = s.find('\n', begin);
         if (end == std::string::npos) end = s.size();
         const size_t first = s.find_first_not_of(" \t\r\f\v", begin);
         if (first < end && s[first] == '#') {
-            std::fill(skip.begin() + long(begin), skip.begin() + long(end), true);
+            std::fill(ranges.skip.begin() + long(begin), ranges.skip.begin() + long(end), true);
             static const std::regex define(R"(^#\s*define\s+(\w+))");
             std::smatch m;
             const std::string directive = s.substr(first, end - first);
@@ -139,83 +141,125 @@ std::string guardLoops(const std::string& text, const std::string& name, const s
                                "every loop of your file by its keywords)");
                 size_t body = first + size_t(m.length(0));
                 if (body < end && s[body] == '(') body = s.find(')', body) + 1;  // parameters
-                if (body > first && body < end) defines.emplace_back(body, end);
+                if (body > first && body < end) ranges.defines.emplace_back(body, end);
             }
         }
         begin = end + 1;
     }
-    std::vector<Insertion> insertions;
-    auto scan = [&](size_t begin, size_t end, bool useSkip) {
-        auto code_at = [&](size_t i) { return useSkip && skip[i] ? ' ' : s[i]; };
-        for (size_t i = begin; i < end;) {
-            if (!wordChar(code_at(i))) {
-                ++i;
-                continue;
-            }
-            size_t wordEnd = i;
-            while (wordEnd < end && wordChar(code_at(wordEnd))) ++wordEnd;
-            // A number's suffix (1e5, 2u) is no word; a field (.x) is no keyword.
-            const bool isNumber = std::isdigit(static_cast<unsigned char>(s[i]));
-            const bool isField = i > begin && code_at(i - 1) == '.';
-            const std::string word = s.substr(i, wordEnd - i);
-            const size_t keyword = i;
-            i = wordEnd;
-            if (isNumber || isField || (word != "while" && word != "for")) continue;
-            const int line = code.lineOf[keyword];
-            size_t open = wordEnd;
-            while (open < end && std::isspace(static_cast<unsigned char>(code_at(open)))) ++open;
-            if (open >= end || code_at(open) != '(')
-                refuse(name, line,
-                       "`" + word +
-                           "` without its parenthesis here: pbrlab bounds every loop of your "
-                           "file, and needs the loop's condition written in parentheses right "
-                           "after `" +
-                           word + "` (not through a macro)");
-            int depth = 0;
-            size_t close = std::string::npos;
-            std::vector<size_t> semicolons;
-            for (size_t j = open; j < end; ++j) {
-                const char c = code_at(j);
-                if (c == '(') ++depth;
-                if (c == ')' && --depth == 0) {
-                    close = j;
-                    break;
-                }
-                if (c == ';' && depth == 1) semicolons.push_back(j);
-            }
-            if (close == std::string::npos)
-                refuse(name, line,
-                       "the parenthesis after `" + word + "` is not closed" +
-                           (useSkip ? std::string() : " on the #define's line"));
-            size_t from = open + 1, to = close;
-            if (word == "for") {
-                // Not three clauses: the compiler says what is wrong.
-                if (semicolons.size() != 2) continue;
-                from = semicolons[0] + 1;
-                to = semicolons[1];
-            }
-            std::string condition;
-            for (size_t j = from; j < to; ++j) condition += code_at(j);
-            if (declares(condition))
-                refuse(name, line,
-                       "a declaration as the loop's condition (`" + word +
-                           " (... bool b = ...)`): declare the variable before the loop and "
-                           "test it in the condition");
-            const std::string k = std::to_string(sites.size() + 1);
-            sites.push_back({file, line});
-            if (condition.find_first_not_of(" \t\r\n\f\v") == std::string::npos) {
-                if (word == "while") continue;  // `while ()`: the compiler's error
-                insertions.push_back({code.origin[from - 1] + 1, " pbrlab_loop(" + k + ", true)"});
-            } else {
-                insertions.push_back({code.origin[from - 1] + 1, "pbrlab_loop(" + k + ", ("});
-                insertions.push_back({code.origin[to], "))"});
-            }
-            // Nested loops in a for's clauses are no GLSL: what follows the parenthesis is next.
-            i = open + 1;
+    return ranges;
+}
+
+// guardLoops' scan: each `for` and `while` of a range found, its site noted and its condition
+// wrapped in pbrlab_loop (insertions into the file). `useSkip`: the range is the code outside
+// directives (false: a #define's body).
+struct LoopScan {
+    const Code& code;
+    const std::vector<bool>& skip;
+    const std::string& name;  // the file as messages name it
+    const std::string& file;  // the file as LoopSite names it
+    std::vector<LoopSite>& sites;
+    std::vector<Insertion>& insertions;
+
+    // The code's character at i, a space in a directive when skipped.
+    char codeAt(size_t i, bool useSkip) const { return useSkip && skip[i] ? ' ' : code.text[i]; }
+    void scan(size_t begin, size_t end, bool useSkip);
+    size_t guardLoop(const std::string& word, size_t keyword, size_t end, bool useSkip);
+    size_t closingParenthesis(size_t open, size_t end, bool useSkip,
+                              std::vector<size_t>& semicolons) const;
+};
+
+// Finds the loop keywords of [begin, end), guarding each loop.
+void LoopScan::scan(size_t begin, size_t end, bool useSkip) {
+    const std::string& s = code.text;
+    for (size_t i = begin; i < end;) {
+        if (!wordChar(codeAt(i, useSkip))) {
+            ++i;
+            continue;
         }
-    };
-    scan(0, s.size(), true);
-    for (const auto& [begin, end] : defines) scan(begin, end, false);
+        size_t wordEnd = i;
+        while (wordEnd < end && wordChar(codeAt(wordEnd, useSkip))) ++wordEnd;
+        // A number's suffix (1e5, 2u) is no word; a field (.x) is no keyword.
+        const bool isNumber = std::isdigit(static_cast<unsigned char>(s[i]));
+        const bool isField = i > begin && codeAt(i - 1, useSkip) == '.';
+        const std::string word = s.substr(i, wordEnd - i);
+        const size_t keyword = i;
+        i = wordEnd;
+        if (isNumber || isField || (word != "while" && word != "for")) continue;
+        i = guardLoop(word, keyword, end, useSkip);
+    }
+}
+
+// Notes the loop whose keyword `word` is at `keyword` and wraps its condition; returns where
+// the scan goes on.
+size_t LoopScan::guardLoop(const std::string& word, size_t keyword, size_t end, bool useSkip) {
+    const size_t wordEnd = keyword + word.size();
+    const int line = code.lineOf[keyword];
+    size_t open = wordEnd;
+    while (open < end && std::isspace(static_cast<unsigned char>(codeAt(open, useSkip)))) ++open;
+    if (open >= end || codeAt(open, useSkip) != '(')
+        refuse(name, line,
+               "`" + word +
+                   "` without its parenthesis here: pbrlab bounds every loop of your "
+                   "file, and needs the loop's condition written in parentheses right "
+                   "after `" +
+                   word + "` (not through a macro)");
+    std::vector<size_t> semicolons;
+    const size_t close = closingParenthesis(open, end, useSkip, semicolons);
+    if (close == std::string::npos)
+        refuse(name, line,
+               "the parenthesis after `" + word + "` is not closed" +
+                   (useSkip ? std::string() : " on the #define's line"));
+    size_t from = open + 1, to = close;
+    if (word == "for") {
+        // Not three clauses: the compiler says what is wrong.
+        if (semicolons.size() != 2) return wordEnd;
+        from = semicolons[0] + 1;
+        to = semicolons[1];
+    }
+    std::string condition;
+    for (size_t j = from; j < to; ++j) condition += codeAt(j, useSkip);
+    if (declares(condition))
+        refuse(name, line,
+               "a declaration as the loop's condition (`" + word +
+                   " (... bool b = ...)`): declare the variable before the loop and "
+                   "test it in the condition");
+    const std::string k = std::to_string(sites.size() + 1);
+    sites.push_back({file, line});
+    if (condition.find_first_not_of(" \t\r\n\f\v") == std::string::npos) {
+        if (word == "while") return wordEnd;  // `while ()`: the compiler's error
+        insertions.push_back({code.origin[from - 1] + 1, " pbrlab_loop(" + k + ", true)"});
+    } else {
+        insertions.push_back({code.origin[from - 1] + 1, "pbrlab_loop(" + k + ", ("});
+        insertions.push_back({code.origin[to], "))"});
+    }
+    // Nested loops in a for's clauses are no GLSL: what follows the parenthesis is next.
+    return open + 1;
+}
+
+// The parenthesis that closes the one at `open` (npos: none before `end`), with the
+// semicolons directly inside it (a for's clauses).
+size_t LoopScan::closingParenthesis(size_t open, size_t end, bool useSkip,
+                                    std::vector<size_t>& semicolons) const {
+    int depth = 0;
+    for (size_t j = open; j < end; ++j) {
+        const char c = codeAt(j, useSkip);
+        if (c == '(') ++depth;
+        if (c == ')' && --depth == 0) return j;
+        if (c == ';' && depth == 1) semicolons.push_back(j);
+    }
+    return std::string::npos;
+}
+
+}  // namespace
+
+std::string guardLoops(const std::string& text, const std::string& name, const std::string& file,
+                       std::vector<LoopSite>& sites) {
+    const Code code = codeOf(text);
+    const ScanRanges ranges = scanRanges(code, name);
+    std::vector<Insertion> insertions;
+    LoopScan loops{code, ranges.skip, name, file, sites, insertions};
+    loops.scan(0, code.text.size(), true);
+    for (const auto& [begin, end] : ranges.defines) loops.scan(begin, end, false);
     std::sort(insertions.begin(), insertions.end(),
               [](const Insertion& a, const Insertion& b) { return a.at > b.at; });
     std::string out = text;

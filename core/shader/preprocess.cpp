@@ -698,38 +698,125 @@ std::string hintFor(const std::string& message, const std::string& name, const s
     return "";
 }
 
-}  // namespace
+// "file:L(C): error: message" as mapCompilerLog writes Mesa's messages.
+const std::regex& locatedMessage() {
+    static const std::regex located(R"(^(.*):(\d+)\((\d+)\): (error|warning): (.*)$)");
+    return located;
+}
 
-std::string mapCompilerLog(const std::string& log, const ExpandedShader& shader) {
-    // A student wrote the built-in's name: messages about its definition say that name.
-    std::string mapped = mapCompilerLog(log, shader.sourceNames);
+// The log with each routed built-in's definition (definedBuiltins()) named as the built-in.
+std::string withBuiltinNames(std::string mapped) {
     for (const auto& [builtin, definition] : definedBuiltins())
         for (size_t at = mapped.find(definition); at != std::string::npos;
              at = mapped.find(definition, at + builtin.size()))
             mapped.replace(at, definition.size(), builtin);
+    return mapped;
+}
+
+// The host's function names a student may collide with: contract functions are declared
+// by prototypes (each before its step's part); others are found by their definition in
+// the host's text.
+std::vector<std::string> hostFunctionNames(const ExpandedShader& shader) {
+    std::vector<std::string> hostNames;
+    static const std::regex prototype(R"(^\s*\w+\s+(\w+)\s*\([^;{]*\)\s*;)");
+    static const std::regex marker(R"(^#line \d+ (\d+)$)");
+    std::istringstream in(shader.text);
+    int source = -1;
+    for (std::string line; std::getline(in, line);) {
+        std::smatch m;
+        if (std::regex_match(line, m, marker))
+            source = std::stoi(m[1].str());
+        else if (!shader.studentTexts.count(source) && std::regex_search(line, m, prototype))
+            hostNames.push_back(m[1].str());
+    }
+    return hostNames;
+}
+
+// "student file:line" of the student's call of the routed built-in `message` names (at the
+// reported `line` if that line calls it, else its first call), or "".
+std::string routedBuiltinAt(const ExpandedShader& shader, const std::string& message, int line) {
+    for (const auto& [builtin, definition] : definedBuiltins()) {
+        const std::regex named("\\b" + builtin + "\\b");
+        if (!std::regex_search(message, named)) continue;
+        for (const auto& [index, code] : shader.studentTexts) {
+            const int at = lineHas(code, line, builtin) ? line : callLine(code, builtin);
+            if (at) return shader.sourceNames[size_t(index)] + ":" + std::to_string(at);
+        }
+    }
+    return "";
+}
+
+// The loop guard's wrapping (loop_guard.h) of a condition that is not a bool: the
+// compiler names pbrlab_loop, which the student never wrote. (Mesa reports it, and its
+// own "loop condition must be scalar boolean" after it, at a line of common.glsl.) The
+// message said in the student's terms, at the place the compiler gave.
+std::string loopConditionMessage(const std::string& line) {
+    static const std::regex angleLocated(R"(^((ERROR|WARNING): [^:]+:\d+:))");
+    const std::string what =
+        " a loop's condition must be a bool (GLSL converts no number to one: `i != 0`, "
+        "not `i`)";
+    std::smatch m;
+    return std::regex_match(line, m, locatedMessage())
+               ? m[1].str() + ":" + m[2].str() + "(" + m[3].str() + "): error:" + what
+           : std::regex_search(line, m, angleLocated) ? m[1].str() + what
+                                                      : "error:" + what;
+}
+
+// Whether `out` ends with `line` and its newline (a message's candidates repeat it).
+bool endsWithLine(const std::string& out, const std::string& line) {
+    return out.size() >= line.size() + 1 &&
+           out.compare(out.size() - line.size() - 1, line.size() + 1, line + "\n") == 0;
+}
+
+// A located message (`m`) about a call of `name`, which the program does not declare, moved
+// to the student's call; `line` as it is when no student's file calls it.
+std::string undeclaredCallLine(const ExpandedShader& shader, const std::smatch& m,
+                               const std::string& name, const std::string& line) {
+    for (const auto& [index, code] : shader.studentTexts) {
+        const int at = callLine(code, name);
+        if (at == 0) continue;
+        const std::string why = unreachableReason(shader, index, name);
+        return shader.sourceNames[size_t(index)] + ":" + std::to_string(at) + ": " + m[4].str() +
+               ": " + (why.empty() ? m[5].str() : why);
+    }
+    return line;
+}
+
+// A located message (`m`) of the host's code about function `name`, moved to the student's
+// file with a hint; `line` as it is when no student's file defines (or, for recursion, calls)
+// it.
+std::string namedFunctionLine(const ExpandedShader& shader, const std::smatch& m,
+                              const std::string& name, const std::vector<std::string>& hostNames,
+                              const std::string& line) {
+    const std::string message = m[5].str();
+    for (const auto& [index, code] : shader.studentTexts) {
+        // Where the student defines the function, else where the student calls it
+        // (a host function in the cycle is reached from the student's call).
+        const int defined = definitionLine(code, name);
+        const bool recursion = message.find("recursion") != std::string::npos;
+        const int at = defined ? defined : recursion ? callLine(code, name) : 0;
+        if (at == 0) continue;
+        const std::string hint = defined ? hintFor(message, name, code, hostNames)
+                                         : "you call " + name +
+                                               ", which calls your function back, and GLSL "
+                                               "allows no recursion: compute that part yourself.";
+        return shader.sourceNames[size_t(index)] + ":" + std::to_string(at) + ": " + m[4].str() +
+               ": " + message + (hint.empty() ? "" : "\nhint: " + hint);
+    }
+    return line;
+}
+
+}  // namespace
+
+std::string mapCompilerLog(const std::string& log, const ExpandedShader& shader) {
+    // A student wrote the built-in's name: messages about its definition say that name.
+    const std::string mapped = withBuiltinNames(mapCompilerLog(log, shader.sourceNames));
     if (shader.studentTexts.empty()) return mapped;
-    // "file:L(C): error: message" as mapCompilerLog writes Mesa's messages.
-    static const std::regex located(R"(^(.*):(\d+)\((\d+)\): (error|warning): (.*)$)");
+    const std::regex& located = locatedMessage();
     // The function a message is about: `name' redefined, `float name(float)' has static
     // recursion.
     static const std::regex named(R"(`(?:[\w ]*\s)?(\w+)(?:\([^']*\))?')");
-    // The host's function names a student may collide with: contract functions are declared
-    // by prototypes (each before its step's part); others are found by their definition in
-    // the host's text.
-    std::vector<std::string> hostNames;
-    {
-        static const std::regex prototype(R"(^\s*\w+\s+(\w+)\s*\([^;{]*\)\s*;)");
-        static const std::regex marker(R"(^#line \d+ (\d+)$)");
-        std::istringstream in(shader.text);
-        int source = -1;
-        for (std::string line; std::getline(in, line);) {
-            std::smatch m;
-            if (std::regex_match(line, m, marker))
-                source = std::stoi(m[1].str());
-            else if (!shader.studentTexts.count(source) && std::regex_search(line, m, prototype))
-                hostNames.push_back(m[1].str());
-        }
-    }
+    const std::vector<std::string> hostNames = hostFunctionNames(shader);
     // A call of a function the program does not declare. Mesa reports it at a wrong source
     // string (common.glsl's), so it is moved to the student's call; a contract function of a
     // later step is said as such (ShaderPart::unreachable).
@@ -739,43 +826,20 @@ std::string mapCompilerLog(const std::string& log, const ExpandedShader& shader)
     // file, and so is every message after it at the same place (its candidates, what follows
     // from it).
     std::map<std::string, std::string> movedPlaces;  // "file:line" -> "student file:line"
-    auto routedBuiltinAt = [&](const std::string& message, int line) -> std::string {
-        for (const auto& [builtin, definition] : definedBuiltins()) {
-            const std::regex named("\\b" + builtin + "\\b");
-            if (!std::regex_search(message, named)) continue;
-            for (const auto& [index, code] : shader.studentTexts) {
-                const int at = lineHas(code, line, builtin) ? line : callLine(code, builtin);
-                if (at) return shader.sourceNames[size_t(index)] + ":" + std::to_string(at);
-            }
-        }
-        return "";
-    };
     std::istringstream in(mapped);
     std::string out;
     for (std::string line; std::getline(in, line);) {
         std::smatch m, n;
-        // The loop guard's wrapping (loop_guard.h) of a condition that is not a bool: the
-        // compiler names pbrlab_loop, which the student never wrote. (Mesa reports it, and its
-        // own "loop condition must be scalar boolean" after it, at a line of common.glsl.)
         if (line.find("pbrlab_loop") != std::string::npos) {
-            static const std::regex angleLocated(R"(^((ERROR|WARNING): [^:]+:\d+:))");
-            const std::string what =
-                " a loop's condition must be a bool (GLSL converts no number to one: `i != 0`, "
-                "not `i`)";
-            line = std::regex_match(line, m, located)
-                       ? m[1].str() + ":" + m[2].str() + "(" + m[3].str() + "): error:" + what
-                   : std::regex_search(line, m, angleLocated) ? m[1].str() + what
-                                                              : "error:" + what;
-            if (out.size() >= line.size() + 1 &&
-                out.compare(out.size() - line.size() - 1, line.size() + 1, line + "\n") == 0)
-                continue;  // its candidates, said once
+            line = loopConditionMessage(line);
+            if (endsWithLine(out, line)) continue;  // its candidates, said once
             out += line + "\n";
             continue;
         }
         if (std::regex_match(line, m, located) && !isStudentSource(shader, m[1].str())) {
             const std::string place = m[1].str() + ":" + m[2].str();
             if (!movedPlaces.count(place)) {
-                const std::string to = routedBuiltinAt(m[5].str(), std::stoi(m[2].str()));
+                const std::string to = routedBuiltinAt(shader, m[5].str(), std::stoi(m[2].str()));
                 if (!to.empty()) movedPlaces[place] = to;
             }
             if (movedPlaces.count(place)) {
@@ -783,36 +847,11 @@ std::string mapCompilerLog(const std::string& log, const ExpandedShader& shader)
                 continue;
             }
         }
-        if (std::regex_match(line, m, located) && std::regex_search(line, n, undeclared)) {
-            const std::string name = n[1].str();
-            for (const auto& [index, code] : shader.studentTexts) {
-                const int at = callLine(code, name);
-                if (at == 0) continue;
-                const std::string why = unreachableReason(shader, index, name);
-                line = shader.sourceNames[size_t(index)] + ":" + std::to_string(at) + ": " +
-                       m[4].str() + ": " + (why.empty() ? m[5].str() : why);
-                break;
-            }
-        } else if (std::regex_match(line, m, located) && !isStudentSource(shader, m[1].str()) &&
-                   std::regex_search(line, n, named)) {
-            const std::string message = m[5].str(), name = n[1].str();
-            for (const auto& [index, code] : shader.studentTexts) {
-                // Where the student defines the function, else where the student calls it
-                // (a host function in the cycle is reached from the student's call).
-                const int defined = definitionLine(code, name);
-                const bool recursion = message.find("recursion") != std::string::npos;
-                const int at = defined ? defined : recursion ? callLine(code, name) : 0;
-                if (at == 0) continue;
-                const std::string hint =
-                    defined ? hintFor(message, name, code, hostNames)
-                            : "you call " + name +
-                                  ", which calls your function back, and GLSL allows no "
-                                  "recursion: compute that part yourself.";
-                line = shader.sourceNames[size_t(index)] + ":" + std::to_string(at) + ": " +
-                       m[4].str() + ": " + message + (hint.empty() ? "" : "\nhint: " + hint);
-                break;
-            }
-        }
+        if (std::regex_match(line, m, located) && std::regex_search(line, n, undeclared))
+            line = undeclaredCallLine(shader, m, n[1].str(), line);
+        else if (std::regex_match(line, m, located) && !isStudentSource(shader, m[1].str()) &&
+                 std::regex_search(line, n, named))
+            line = namedFunctionLine(shader, m, n[1].str(), hostNames, line);
         out += line + "\n";
     }
     if (!mapped.empty() && mapped.back() != '\n' && !out.empty()) out.pop_back();

@@ -43,6 +43,42 @@ std::string validate(const ModuleDesc& d, const ContractStep& step) {
     return {};
 }
 
+// The libraries named pbrlab-<id>.so in a folder, in order of their names.
+std::vector<fs::path> librariesIn(const fs::path& dir) {
+    std::error_code ec;
+    std::vector<fs::path> here;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind(kPrefix, 0) == 0 && entry.path().extension() == kSuffix &&
+            name.size() > std::strlen(kPrefix) + std::strlen(kSuffix))
+            here.push_back(entry.path());
+    }
+    std::sort(here.begin(), here.end());
+    return here;
+}
+
+// Empty when the opened library is a module that may be step `id` (`desc` is then its
+// descriptor); otherwise why not: its symbols, ABI version and descriptor, and whether a module
+// of that id is `loaded` already.
+std::string libraryProblem(void* handle, const ContractStep& step, const std::string& id,
+                           const std::vector<LoadedModule>& loaded, const ModuleDesc*& desc) {
+    auto abi = reinterpret_cast<int (*)()>(dlsym(handle, "pbrlab_module_abi"));
+    auto get = reinterpret_cast<const ModuleDesc* (*)()>(dlsym(handle, "pbrlab_module"));
+    if (!abi || !get) return "not a pbrlab module (no pbrlab_module_abi/pbrlab_module symbols)";
+    if (abi() != kModuleAbiVersion)
+        return "ABI version " + std::to_string(abi()) + ", this host needs " +
+               std::to_string(kModuleAbiVersion) + "; rebuild the module";
+    desc = get();
+    std::string reason = desc ? validate(*desc, step) : "pbrlab_module() returned null";
+    if (reason.empty()) {
+        auto dup = std::find_if(loaded.begin(), loaded.end(),
+                                [&](const LoadedModule& m) { return m.desc->id == id; });
+        if (dup != loaded.end())
+            reason = "id '" + id + "' already loaded from " + dup->library.string();
+    }
+    return reason;
+}
+
 }  // namespace
 
 ModuleRegistry::ModuleRegistry(const std::vector<fs::path>& moduleDirs, const std::string& onlyId) {
@@ -52,14 +88,7 @@ ModuleRegistry::ModuleRegistry(const std::vector<fs::path>& moduleDirs, const st
         if (!fs::is_directory(dir, ec))
             throw Error("module directory " + dir.string() + " does not exist");
         addStepRoot(dir);
-        std::vector<fs::path> here;
-        for (const auto& entry : fs::directory_iterator(dir, ec)) {
-            const std::string name = entry.path().filename().string();
-            if (name.rfind(kPrefix, 0) == 0 && entry.path().extension() == kSuffix &&
-                name.size() > std::strlen(kPrefix) + std::strlen(kSuffix))
-                here.push_back(entry.path());
-        }
-        std::sort(here.begin(), here.end());
+        const std::vector<fs::path> here = librariesIn(dir);
         libraries.insert(libraries.end(), here.begin(), here.end());
     }
     if (!onlyId.empty()) {
@@ -81,28 +110,12 @@ ModuleRegistry::ModuleRegistry(const std::vector<fs::path>& moduleDirs, const st
             failures_.push_back({lib, std::string("cannot load: ") + dlerror()});
             continue;
         }
-        auto abi = reinterpret_cast<int (*)()>(dlsym(handle, "pbrlab_module_abi"));
-        auto get = reinterpret_cast<const ModuleDesc* (*)()>(dlsym(handle, "pbrlab_module"));
-        std::string reason;
-        if (!abi || !get) {
-            reason = "not a pbrlab module (no pbrlab_module_abi/pbrlab_module symbols)";
-        } else if (abi() != kModuleAbiVersion) {
-            reason = "ABI version " + std::to_string(abi()) + ", this host needs " +
-                     std::to_string(kModuleAbiVersion) + "; rebuild the module";
-        } else {
-            const ModuleDesc* desc = get();
-            reason = desc ? validate(*desc, *step) : "pbrlab_module() returned null";
-            if (reason.empty()) {
-                auto dup = std::find_if(modules_.begin(), modules_.end(),
-                                        [&](const LoadedModule& m) { return m.desc->id == id; });
-                if (dup != modules_.end())
-                    reason = "id '" + id + "' already loaded from " + dup->library.string();
-            }
-            if (reason.empty()) {
-                adopt(*desc, *step, lib);
-                handles_.push_back(handle);
-                continue;
-            }
+        const ModuleDesc* desc = nullptr;
+        const std::string reason = libraryProblem(handle, *step, id, modules_, desc);
+        if (reason.empty()) {
+            adopt(*desc, *step, lib);
+            handles_.push_back(handle);
+            continue;
         }
         failures_.push_back({lib, reason});
         dlclose(handle);

@@ -115,8 +115,8 @@ ModuleDesc describeModule() {
     };
     // 4% of the points may be outside the band: Chebyshev's bound for any correct estimator
     // (with the true sigma, P(|error| > 5 sigma / sqrt(n)) <= 1/25), on the random inputs,
-    // whose errors are independent (grading/estimator_band.cpp): there correct estimators reached
-    // 2.1% (mc_specular, one set of random numbers for the whole picture, docs/grading.md).
+    // whose errors are independent (grading/estimator_convergence.cpp): there correct estimators
+    // reached 2.1% (mc_specular, one set of random numbers for the whole picture, docs/grading.md).
     e.systematic = {2e-4, 2e-3, 0, 0.04};
     d.estimator = e;
     d.domain = [](DomainRandom& r) {

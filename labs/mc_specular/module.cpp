@@ -110,8 +110,8 @@ ModuleDesc describeModule() {
     };
     // 4% of the points may be outside the band: Chebyshev's bound for any correct estimator
     // (with the true sigma, P(|error| > 5 sigma / sqrt(n)) <= 1/25), on the random inputs,
-    // whose errors are independent (grading/estimator_band.cpp): there correct estimators reached
-    // 2.1% (mc_specular, one set of random numbers for the whole picture, docs/grading.md).
+    // whose errors are independent (grading/estimator_convergence.cpp): there correct estimators
+    // reached 2.1% (mc_specular, one set of random numbers for the whole picture, docs/grading.md).
     e.systematic = {1e-3, 3e-3, 0, 0.04};
     d.estimator = e;
     // N anywhere, V in its hemisphere (N.V 0.05 to 1), any material, roughness 0.05 to 1.

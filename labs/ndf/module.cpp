@@ -29,6 +29,43 @@ std::vector<NamedTerm> ndfTerms() {
                      [](double e) { return "the denominator to the power " + exponentText(e); })});
 }
 
+// A point with N = z and L = V = H at polar angle theta and azimuth phi around it (so the
+// view's halfwayVector(L, V) returns that H).
+Surface halfwayAt(double theta, double phi, double roughness) {
+    Surface s;
+    s.covered = true;
+    s.normal = {0, 0, 1};
+    s.view = s.light = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                        std::cos(theta)};
+    s.roughness = roughness;
+    return s;
+}
+
+// Normalisation: integral of D(h) (n.h) over the hemisphere = 1. Midpoint rule, 512 theta
+// x 8 phi (D does not depend on phi); on the reference the rule is within 2e-5 of 1 at
+// these roughnesses, so 1 +- 0.01 judges the student's D, not the quadrature.
+std::vector<InvariantResult> normalisation(const EvaluateFn& evaluate) {
+    std::vector<InvariantResult> out;
+    const int thetas = 512, phis = 8;
+    const double pi = std::numbers::pi, dTheta = pi / 2 / thetas, dPhi = 2 * pi / phis;
+    for (double r : {0.3, 0.6, 1.0}) {
+        std::vector<Surface> hs;
+        for (int i = 0; i < thetas; ++i)
+            for (int j = 0; j < phis; ++j)
+                hs.push_back(halfwayAt((i + 0.5) * dTheta, (j + 0.5) * dPhi, r));
+        std::vector<glm::dvec3> D = evaluate(hs);
+        double integral = 0;
+        for (size_t k = 0; k < hs.size(); ++k)
+            integral +=
+                D[k].x * hs[k].view.z * std::sqrt(1 - hs[k].view.z * hs[k].view.z) * dTheta * dPhi;
+        char name[96];
+        std::snprintf(name, sizeof name, "integral of D(h) (n.h) dw at roughness %.1f", r);
+        out.push_back({name, integral, "1 +- 0.01", std::abs(integral - 1) <= 0.01,
+                       "D is a density of normals: a constant factor (PI, 4) is off"});
+    }
+    return out;
+}
+
 ModuleDesc describeModule() {
     ModuleDesc d;
     d.title = "GGX normal distribution D";
@@ -69,38 +106,7 @@ ModuleDesc describeModule() {
         s.roughness = 0.05 + 0.95 * y;
         return s;
     };
-    // Normalisation: integral of D(h) (n.h) over the hemisphere = 1. Midpoint rule, 512 theta
-    // x 8 phi (D does not depend on phi); on the reference the rule is within 2e-5 of 1 at
-    // these roughnesses, so 1 +- 0.01 judges the student's D, not the quadrature.
-    d.invariants = [](const EvaluateFn& evaluate) {
-        std::vector<InvariantResult> out;
-        const int thetas = 512, phis = 8;
-        const double pi = std::numbers::pi, dTheta = pi / 2 / thetas, dPhi = 2 * pi / phis;
-        for (double r : {0.3, 0.6, 1.0}) {
-            std::vector<Surface> hs;
-            for (int i = 0; i < thetas; ++i)
-                for (int j = 0; j < phis; ++j) {
-                    double theta = (i + 0.5) * dTheta, phi = (j + 0.5) * dPhi;
-                    Surface s;
-                    s.covered = true;
-                    s.normal = {0, 0, 1};
-                    s.view = s.light = {std::sin(theta) * std::cos(phi),
-                                        std::sin(theta) * std::sin(phi), std::cos(theta)};
-                    s.roughness = r;
-                    hs.push_back(s);
-                }
-            std::vector<glm::dvec3> D = evaluate(hs);
-            double integral = 0;
-            for (size_t k = 0; k < hs.size(); ++k)
-                integral += D[k].x * hs[k].view.z * std::sqrt(1 - hs[k].view.z * hs[k].view.z) *
-                            dTheta * dPhi;
-            char name[96];
-            std::snprintf(name, sizeof name, "integral of D(h) (n.h) dw at roughness %.1f", r);
-            out.push_back({name, integral, "1 +- 0.01", std::abs(integral - 1) <= 0.01,
-                           "D is a density of normals: a constant factor (PI, 4) is off"});
-        }
-        return out;
-    };
+    d.invariants = normalisation;
     // The function receives N and H = halfwayVector(L, V): an error is located by N.H (in the
     // scenes V and L differ, so N.V and N.L would name the wrong axis).
     d.inputAxes = {

@@ -43,6 +43,53 @@ glm::dvec3 lobeAverage(const Surface& s, const ReferenceContext& c, double weigh
     return sum / double(n) / std::pow(total / double(n), normalised);
 }
 
+// Graded by convergence (README.md, "Grading"): on the soft sky, at 4, 64 and 1024
+// samples, within 5 sigma / sqrt(n) of the converged lobe average (sigma of the ratio
+// estimator by the delta method), + 1% for what filtered importance sampling's blur and
+// texel filtering leave; the mean error must fall at least 3x from 4 to 1024.
+EstimatorSpec convergence() {
+    EstimatorSpec e;
+    e.samplesParam = "samples";
+    e.sampleCounts = {4, 64, 1024};
+    e.converged = [](const Surface& s, const ReferenceContext& c, std::uint32_t samples) {
+        if (!c.ibl) return Estimate{};
+        const ref::CubeEnvironment env(c.ibl->environment);
+        const glm::dvec3 R = glm::reflect(-s.view, s.normal);
+        const ref::Moments m = ref::prefilterMoments(env, R, s.roughness, samples);
+        return Estimate{m.mean, m.sigma, m.error};
+    };
+    // 4% of the points may be outside the band: Chebyshev's bound for any correct estimator
+    // (with the true sigma, P(|error| > 5 sigma / sqrt(n)) <= 1/25), on the random inputs,
+    // whose errors are independent (grading/estimator_convergence.cpp): there correct estimators
+    // reached 2.1% (mc_specular, one set of random numbers for the whole picture, docs/grading.md).
+    e.systematic = {1e-3, 1e-2, 0, 0.04};
+    // At 65536 samples filtered importance sampling reads LOD 0: its blur, what the 1% is
+    // for, is gone, and a lobe of the wrong width hid inside it (L = 2.2 (V.H) H - V, about
+    // 8% narrower: 1.12x the 1% band at 65536). With 0.3% there (mc_specular's): that lobe
+    // 1.65x, 4 of the 28 points outside; every correct variant at most 0.33x (docs/grading.md).
+    e.systematicAtLargestCount = Tolerance{1e-3, 3e-3, 0, 0.04};
+    return e;
+}
+
+// Named terms for feedback (ModuleDesc::namedTerms): the lobe average with each sample's N.L
+// weight, or the division by the mean weight, at another power.
+std::vector<NamedTerm> lobeTerms() {
+    NamedTerm weight, mean;
+    weight.symbol = "N.L";
+    weight.name = "the N.L weight of each sample";
+    weight.value = [](const Surface& s, const ReferenceContext& c, double e) {
+        return lobeAverage(s, c, e, 1);
+    };
+    mean.symbol = "sum(N.L) / n";
+    mean.name =
+        "the division by the mean weight sum(N.L) / n (the weighted sum divided by the sample "
+        "count instead of the sum of weights)";
+    mean.value = [](const Surface& s, const ReferenceContext& c, double e) {
+        return lobeAverage(s, c, 1, e);
+    };
+    return {weight, mean};
+}
+
 ModuleDesc describeModule() {
     ModuleDesc d;
     d.title = "Prefiltered environment (GGX lobe average)";
@@ -82,45 +129,8 @@ ModuleDesc describeModule() {
         s.roughness = y;
         return s;
     };
-    // Graded by convergence (README.md, "Grading"): on the soft sky, at 4, 64 and 1024
-    // samples, within 5 sigma / sqrt(n) of the converged lobe average (sigma of the ratio
-    // estimator by the delta method), + 1% for what filtered importance sampling's blur and
-    // texel filtering leave; the mean error must fall at least 3x from 4 to 1024.
-    EstimatorSpec e;
-    e.samplesParam = "samples";
-    e.sampleCounts = {4, 64, 1024};
-    e.converged = [](const Surface& s, const ReferenceContext& c, std::uint32_t samples) {
-        if (!c.ibl) return Estimate{};
-        const ref::CubeEnvironment env(c.ibl->environment);
-        const glm::dvec3 R = glm::reflect(-s.view, s.normal);
-        const ref::Moments m = ref::prefilterMoments(env, R, s.roughness, samples);
-        return Estimate{m.mean, m.sigma, m.error};
-    };
-    // 4% of the points may be outside the band: Chebyshev's bound for any correct estimator
-    // (with the true sigma, P(|error| > 5 sigma / sqrt(n)) <= 1/25), on the random inputs,
-    // whose errors are independent (grading/estimator_band.cpp): there correct estimators reached
-    // 2.1% (mc_specular, one set of random numbers for the whole picture, docs/grading.md).
-    e.systematic = {1e-3, 1e-2, 0, 0.04};
-    // At 65536 samples filtered importance sampling reads LOD 0: its blur, what the 1% is
-    // for, is gone, and a lobe of the wrong width hid inside it (L = 2.2 (V.H) H - V, about
-    // 8% narrower: 1.12x the 1% band at 65536). With 0.3% there (mc_specular's): that lobe
-    // 1.65x, 4 of the 28 points outside; every correct variant at most 0.33x (docs/grading.md).
-    e.systematicAtLargestCount = Tolerance{1e-3, 3e-3, 0, 0.04};
-    d.estimator = e;
-    NamedTerm weight, mean;
-    weight.symbol = "N.L";
-    weight.name = "the N.L weight of each sample";
-    weight.value = [](const Surface& s, const ReferenceContext& c, double e) {
-        return lobeAverage(s, c, e, 1);
-    };
-    mean.symbol = "sum(N.L) / n";
-    mean.name =
-        "the division by the mean weight sum(N.L) / n (the weighted sum divided by the sample "
-        "count instead of the sum of weights)";
-    mean.value = [](const Surface& s, const ReferenceContext& c, double e) {
-        return lobeAverage(s, c, 1, e);
-    };
-    d.namedTerms = {weight, mean};
+    d.estimator = convergence();
+    d.namedTerms = lobeTerms();
     // N anywhere, V in its hemisphere, roughness 0 to 1.
     d.domain = [](DomainRandom& r) {
         Surface s;

@@ -245,6 +245,12 @@ private:
     template <class Kernel>
     void accumulate(const dvec3& N, double lobeWidth, const Kernel& kernel, dvec3& weighted,
                     double& weight) const;
+    // The constructor's pieces: the finest level from the texels, each coarser level from the
+    // one below, and a block's bound once its sums are complete.
+    std::vector<Block> finestLevel(int bw, int bh);
+    std::vector<Block> coarserLevel(const std::vector<Block>& fine, int fw, int fh, int bw, int bh,
+                                    int size);
+    Bound finish(Block& b, int x0, int y0, int x1, int y1) const;
     dvec3 texel(int x, int y) const {
         const float* p =
             &image_
