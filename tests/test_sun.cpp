@@ -2,10 +2,13 @@
 // by others as the sky with a sun (GradeSettings::sunEnvironment), the reference solutions of
 // the steps that read the environment pass every check facing its sun, and a rule that limits
 // bright light relative to the rest fails one, named for what it does. Skipped when
-// ../shared/data (beside the repository, not part of it) is absent.
+// ../shared/data (beside the repository, not part of it) is absent. And the command line that
+// chooses such a sky.
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "gl/context.h"
 #include "grading/grade_step.h"
@@ -67,4 +70,25 @@ TEST(Sun, ARealHdrsSunIsGradedAsTheGeneratedOne) {
             EXPECT_NE(r.message.find("bright light"), std::string::npos) << r.message;
         }
     }
+}
+
+// An instructor's sky reaches the grade from the command line: `check --sun-environment` grades
+// the sun check on it (here the shipped sky, whose sun is a 1.2 degree disc) instead of
+// sky-sun, and the reference solution passes there.
+TEST(Sun, TheCommandLineChoosesTheSkyWithASun) {
+    test::TempDir dir;
+    const fs::path report = dir.path / "report.json";
+    const test::CommandRun check =
+        test::run(dir, std::string(PBRLAB_EXECUTABLE) +
+                           " check split_sum --sun-environment sky --json " + report.string());
+    ASSERT_EQ(check.status, 0) << check.output;
+    std::ifstream in(report);
+    const nlohmann::json grade = nlohmann::json::parse(in);
+    bool graded = false;
+    for (const nlohmann::json& c : grade.at("modules").at(0).at("checks"))
+        if (c.value("name", "") == "random inputs facing the sun (sky)") {
+            graded = true;
+            EXPECT_TRUE(c.value("passed", false)) << c.dump();
+        }
+    EXPECT_TRUE(graded) << check.output;
 }

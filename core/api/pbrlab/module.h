@@ -318,28 +318,30 @@ inline glm::dvec3 atCosine(const glm::dvec3& n, const glm::dvec3& d, double c) {
 // student's values when no other does as well. pbrlab/named_terms.h builds them from a model
 // written once with all its exponents in a struct (the built-in steps and `pbrlab new-step`'s
 // template do so).
+// Every member has a default, so that a step may write a term with designated initializers
+// naming only what it sets ({.kind = ..., .symbol = ..., .value = ...}).
 struct NamedTerm {
     // Factor: a quantity the value is multiplied by, tried missing, twice, or extra.
     // Exponent: the power of an input, fitted over [lo, hi] (or tried at `tries`).
     // Switch: another way of writing the step, tried as a whole (`name` says what it is).
     enum class Kind { Factor, Exponent, Switch };
     Kind kind = Kind::Factor;
-    std::string symbol;  // as the formula writes it: "N.L"
-    std::string name;    // what it is: "the N.L weight of each sample"
+    std::string symbol{};  // as the formula writes it: "N.L"
+    std::string name{};    // what it is: "the N.L weight of each sample"
     // The step's value with this term at exponent e, every other part as the reference has it.
-    std::function<glm::dvec3(const Surface&, const ReferenceContext&, double e)> value;
+    std::function<glm::dvec3(const Surface&, const ReferenceContext&, double e)> value{};
     // The exponent the reference has: 0 where it has no such factor; a Switch's reference is 0
     // (off) for a form tried on, 1 for a part tried removed.
     double reference = 1;
     // The exponents tried. Empty: a Factor tries 0 and twice its reference (1 and -1 when the
     // reference has none); an Exponent with lo < hi is fitted instead.
-    std::vector<double> tries;
+    std::vector<double> tries{};
     double lo = 0, hi = 0;
-    std::function<std::string(double e)> format;  // Exponent: e in the input's terms
+    std::function<std::string(double e)> format{};  // Exponent: e in the input's terms
     bool whole = false;  // Factor: multiplies the whole value (said as a ratio to the reference)
     // The exponents this term sets, as ids the step chooses: two terms that share one (G and
     // G1(N.V)) are not independent factors. Empty: its own.
-    std::vector<int> knobs;
+    std::vector<int> knobs{};
 };
 
 // A scalar the step's function receives, in the lesson's terms, as its view derives it from

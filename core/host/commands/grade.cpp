@@ -68,6 +68,7 @@ public:
         cmd.add_option("--seed", options_.settings.seed,
                        "Seed of the random domain points (default 1: instructors may keep "
                        "their own)");
+        cmd.add_option("--sun-environment", options_.settings.sunEnvironment, help::sunEnvironment);
         cmd.add_option("--assignment", assignmentFile_,
                        "Grade by this assignment file: its steps, points, partial credit and "
                        "time limit (docs/assignment.md)");

@@ -93,6 +93,7 @@ public:
         cmd.add_flag("--cumulative", cumulative_, help::cumulative);
         cmd.add_option("--size", size_, "Side of the scene checks N or NxN (default 96)");
         cmd.add_option("--seed", seed_, help::seed);
+        cmd.add_option("--sun-environment", sunEnvironment_, help::sunEnvironment);
         cmd.add_flag("--stats", stats_, help::stats);
         cmd.add_option("--json", json_, "Also write the grade here (as `grade --json` does)");
     }
@@ -106,6 +107,7 @@ public:
         grade.cumulative = cumulative_;
         grade.settings.size = side;
         grade.settings.seed = seed_;
+        grade.settings.sunEnvironment = sunEnvironment_;
         const ModuleGrade g = gradeModule(*session.renderer, m, session.paths, grade);
         for (const auto& c : g.checks) {
             const bool passed = c.value("passed", false), deducted = c.value("deducted", true);
@@ -132,7 +134,7 @@ public:
     }
 
 private:
-    std::string id_, submission_, size_ = "96", json_;
+    std::string id_, submission_, size_ = "96", json_, sunEnvironment_;
     bool cumulative_ = false, stats_ = false;
     std::uint64_t seed_ = 1;
 };

@@ -74,6 +74,10 @@ inline constexpr const char* model =
 inline constexpr const char* stats =
     "Print what was compiled (each permutation), loaded and precomputed, with times";
 inline constexpr const char* seed = "Seed of the random domain points (default 1)";
+inline constexpr const char* sunEnvironment =
+    "The environment with a sun that the steps reading the environment are also graded on: "
+    "a generated one's name or an .hdr/.exr file, such as a real sky (default: each step's, "
+    "sky-sun)";
 }  // namespace help
 
 }  // namespace pbrlab
