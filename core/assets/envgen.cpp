@@ -276,7 +276,7 @@ std::pair<std::string, double> splitFactor(const std::string& name) {
 bool isGeneratedEnvironment(const std::string& name) {
     const std::string base = splitFactor(name).first;
     return base == "sky" || base == "sky-soft" || base == "smooth" || base == "hdr-lobe" ||
-           base == "sky-hdr" || base == "sky-sun";
+           base == "sky-hdr" || base == "sky-sun" || base == "white";
 }
 
 Image generateEnvironment(const std::string& name) {
@@ -299,10 +299,24 @@ Image generateEnvironment(const std::string& name) {
             image.pixels[i] = float(double(image.pixels[i]) + double(lobes.pixels[i]));
     } else if (base == "sky-sun")
         image = generateSunSky(2048);
+    else if (base == "white")
+        image = generateWhiteEnvironment();
     else
         throw Error("no generated environment is called '" + name + "'");
     if (factor != 1.0)
         for (float& v : image.pixels) v = float(double(v) * factor);
+    return image;
+}
+
+Image generateWhiteEnvironment(int width) {
+    if (width < 16 || width % 2 != 0)
+        throw Error("generateWhiteEnvironment: width " + std::to_string(width) +
+                    " (even, at least 16)");
+    Image image;
+    image.width = width;
+    image.height = width / 2;
+    image.channels = 3;
+    image.pixels.assign(size_t(image.width) * size_t(image.height) * 3, 1.0f);
     return image;
 }
 

@@ -58,11 +58,17 @@ Image generateSunSky(int width = 2048);
 inline const std::string kBrightSuffix = "#bright";
 Image brightTexels(const Image& environment, double overMedian = 1000);
 
+// The white furnace ("white" in scenes): radiance 1 in every direction. A surface that reflects
+// all the light it receives is 1 everywhere in it, whatever its roughness; one that loses energy
+// (single-scattering GGX at high roughness) shows as darker than the background.
+Image generateWhiteEnvironment(int width = 64);
+
 // An environment by the name scenes and grading give it, or nullopt when the name is no
 // generated one (a file path): "sky" (512), "sky-soft" (512), "smooth" (256), "hdr-lobe"
 // (512), "sky-hdr" (sky-soft plus hdr-lobe, texel by texel: the soft sky with real
-// dynamic range), "sky-sun" (2048: generateSunSky), and any of them times a constant, "NAME*K" (K a
-// number: "sky-hdr*1024"), for the linearity checks of the estimators (grading/linearity.cpp).
+// dynamic range), "sky-sun" (2048: generateSunSky), "white" (64: the white furnace), and any
+// of them times a constant, "NAME*K" (K a number: "sky-hdr*1024"), for the linearity checks of
+// the estimators (grading/linearity.cpp).
 bool isGeneratedEnvironment(const std::string& name);
 Image generateEnvironment(const std::string& name);
 

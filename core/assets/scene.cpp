@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "assets/envgen.h"
 #include "util/error.h"
 
 namespace fs = std::filesystem;
@@ -149,12 +150,15 @@ json readSceneJson(const fs::path& file) {
     return doc;
 }
 
-// "environment": a built-in sky's name, or a file beside the scene (its path then).
+// "environment": a generated environment's name (envgen.h), or a file beside the scene (its path
+// then).
 std::string readEnvironment(const Reader& r, const json& j) {
     if (!j.is_string())
-        r.fail("environment", "expected \"sky\", \"sky-soft\", \"smooth\" or a file path");
+        r.fail("environment",
+               "expected a generated environment's name (\"sky\", \"sky-soft\", "
+               "\"white\", ...) or a file path");
     std::string env = j.get<std::string>();
-    if (env != "sky" && env != "sky-soft" && env != "smooth") {
+    if (!isGeneratedEnvironment(env)) {
         fs::path p = r.file.parent_path() / env;
         if (!fs::exists(p)) r.fail("environment", p.string() + " does not exist");
         env = p.string();

@@ -291,11 +291,11 @@ LoopLimits viewLoopLimits(const ModuleDesc& module, const ParamValues& params, s
 // round one when its radius is `radiusPixels` on screen; 96 (the built-in sphere's) at most.
 int sphereSegments(double radiusPixels);
 
-// Loads an environment: "sky", "sky-soft", "smooth" (generated) or an equirectangular
-// .hdr/.exr file; any of them followed by "#bright" is its bright texels alone (brightTexels:
-// the sun of a sky, what grading's sun check needs to know it has resolved). The generated ones are
-// kept in `cache` (when not empty) after the first time: the sky takes a second to generate, and
-// grading reads it in every child process.
+// Loads an environment: a generated one's name ("sky", "sky-soft", "white", ...: envgen.h) or an
+// equirectangular .hdr/.exr file; any of them followed by "#bright" is its bright texels alone
+// (brightTexels: the sun of a sky, what grading's sun check needs to know it has resolved). The
+// generated ones are kept in `cache` (when not empty) after the first time: the sky takes a
+// second to generate, and grading reads it in every child process.
 Image loadEnvironmentImage(const std::string& source, const std::filesystem::path& cache = {});
 
 }  // namespace pbrlab

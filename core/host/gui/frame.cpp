@@ -3,6 +3,7 @@
 #include <cmath>
 #include <ctime>
 
+#include "assets/envgen.h"
 #include "lab.h"
 #include "render/display.h"
 #include "shader/student_file.h"
@@ -101,8 +102,11 @@ bool Lab::carryOut(GuiState& state, Requests& requests) {
     }
     if (requests.environment) {
         const std::string& env = *requests.environment;
-        if (env != "sky" && !fs::exists(env)) {
-            shown_.sceneError = env + ": no such file (use \"sky\" or an .hdr/.exr path)";
+        if (!isGeneratedEnvironment(env) && !fs::exists(env)) {
+            shown_.sceneError =
+                env +
+                ": no such file (use a generated sky such as \"sky\" or \"white\", or an "
+                ".hdr/.exr path)";
         } else {
             shown_.scene.environment = env;
             shown_.sceneError.clear();
