@@ -19,7 +19,7 @@ grep -q "solutions withheld: ndotl, ndf, smith, fresnel, specular$" "$work/out.t
     fail "the withheld steps"
 for id in ndotl ndf smith fresnel specular; do
     test -f "$work/data/labs/$id/starter.glsl" || fail "$id has no starter.glsl"
-    for gone in solution.glsl mistakes module.cpp; do
+    for gone in solution.glsl mistakes variants module.cpp; do
         test ! -e "$work/data/labs/$id/$gone" || fail "$id still has $gone"
     done
     grep -q "BEGIN SOLUTION" "$work/data/labs/$id/starter.glsl" || fail "$id: not the kit's starter"

@@ -9,6 +9,8 @@
 //                                        every other check passes, so a band that lets
 //                                        everything through is noticed
 //   labs/<id>/mistakes/*.glsl           the typical mistakes the grader also names
+//   labs/<id>/variants/*.glsl           correct_* and mistake_* as in tests/variants, kept in the
+//                                        step's own folder (an added lab needs no other)
 //   tests/exploits/<id>/*.glsl           shortcuts found by reading the grader
 // Every mistake and exploit has a line "// expect: WORDS": what the failure message must
 // contain, the mistake named as the student is to read it. A file of labs/<id>/mistakes is
@@ -54,11 +56,17 @@ std::vector<Variant> allVariants() {
                                  f.path().filename().string(), f.path()});
     }
     for (const auto& step : contractSteps()) {
-        fs::path dir = step.folder / "mistakes";
-        if (!fs::exists(dir)) continue;
-        for (const auto& f : fs::directory_iterator(dir))
-            if (f.path().extension() == ".glsl")
-                v.push_back({step.id, "mistake", f.path().filename().string(), f.path()});
+        for (const char* folder : {"mistakes", "variants"}) {
+            const fs::path dir = step.folder / folder;
+            if (!fs::exists(dir)) continue;
+            for (const auto& f : fs::directory_iterator(dir)) {
+                if (f.path().extension() != ".glsl") continue;
+                const std::string file = f.path().filename().string();
+                const bool mistake =
+                    std::string(folder) == "mistakes" || file.rfind("mistake_", 0) == 0;
+                v.push_back({step.id, mistake ? "mistake" : "correct", file, f.path()});
+            }
+        }
     }
     std::sort(v.begin(), v.end(), [](const Variant& a, const Variant& b) {
         return a.module + a.kind + a.file < b.module + b.kind + b.file;

@@ -96,8 +96,9 @@ std::vector<std::string> writeSiteSteps(const ModuleRegistry& modules, const Kit
         for (const auto& entry : fs::recursive_directory_iterator(m.sourceDir)) {
             const fs::path relative = fs::relative(entry.path(), m.sourceDir);
             const std::string first = relative.begin()->string();
-            if (withhold && (first == "solution.glsl" || first == "mistakes" ||
-                             first == "module.cpp" || first == "CMakeLists.txt"))
+            if (withhold &&
+                (first == "solution.glsl" || first == "mistakes" || first == "variants" ||
+                 first == "module.cpp" || first == "CMakeLists.txt"))
                 continue;
             if (entry.is_directory())
                 fs::create_directories(folder / relative);
