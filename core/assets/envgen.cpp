@@ -309,15 +309,7 @@ Image generateEnvironment(const std::string& name) {
 }
 
 Image generateWhiteEnvironment(int width) {
-    if (width < 16 || width % 2 != 0)
-        throw Error("generateWhiteEnvironment: width " + std::to_string(width) +
-                    " (even, at least 16)");
-    Image image;
-    image.width = width;
-    image.height = width / 2;
-    image.channels = 3;
-    image.pixels.assign(size_t(image.width) * size_t(image.height) * 3, 1.0f);
-    return image;
+    return equirectangular("white", width, [](const dvec3&) { return dvec3(1.0); });
 }
 
 Image brightTexels(const Image& environment, double overMedian) {
