@@ -206,12 +206,14 @@ TEST(Assignment, PartialCreditIsTheWeightsShareOfTheChecksPassedOnceOneShowsWork
 
 namespace {
 
-// Every example assignment of the repository: docs/autograder/assignment.json, those the
+// Every example assignment of the repository: docs/autograder/*.json, those the
 // tests and scripts grade by (as they write them), and every step with every category
 // weighted (robustness and the estimators' checks included).
 std::vector<Assignment> exampleAssignments(const Graded& g) {
-    std::vector<Assignment> out = {loadAssignment(
-        fs::path(PBRLAB_SOURCE_DIR) / "docs/autograder/assignment.json", stepIds(g.modules))};
+    std::vector<Assignment> out;
+    for (const char* file : {"assignment.json", "assignment-energy.json"})
+        out.push_back(loadAssignment(fs::path(PBRLAB_SOURCE_DIR) / "docs/autograder" / file,
+                                     stepIds(g.modules)));
     const std::vector<std::pair<std::string, std::string>> inline_ = {
         {"test_assignment.cpp",
          R"({"steps": ["ndotl", "ndf", "fresnel"], "points": {"ndotl": 2, "ndf": 3, "fresnel": 2},

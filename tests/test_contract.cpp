@@ -12,14 +12,15 @@
 using namespace pbrlab;
 namespace test = pbrlab::test;
 
-TEST(Contract, TwentyOneStepsInOrderWithUniqueIds) {
+TEST(Contract, TheThreeLabsStepsInOrderWithUniqueIds) {
+    // direct: 14 steps, ibl: 7, energy: 5 (the ids that start each lab are checked below).
     const auto& steps = contractSteps();
-    ASSERT_EQ(steps.size(), 21u);
+    ASSERT_EQ(steps.size(), 26u);
     std::set<std::string> ids;
     for (size_t i = 0; i < steps.size(); ++i) {
         EXPECT_EQ(steps[i].step, int(i + 1));
         EXPECT_TRUE(ids.insert(steps[i].id).second) << steps[i].id;
-        EXPECT_EQ(steps[i].lab, i < 14 ? "direct" : "ibl");
+        EXPECT_EQ(steps[i].lab, i < 14 ? "direct" : i < 21 ? "ibl" : "energy");
         EXPECT_TRUE(std::filesystem::exists(steps[i].folder / "solution.glsl")) << steps[i].id;
         if (i > 0) {
             EXPECT_LT(steps[i - 1].order, steps[i].order);
@@ -32,6 +33,8 @@ TEST(Contract, TwentyOneStepsInOrderWithUniqueIds) {
     }
     EXPECT_EQ(findContractStep("ndotl")->numbered(), "04-ndotl");
     EXPECT_EQ(findContractStep("ndotl")->folder.filename(), "ndotl");
+    EXPECT_EQ(findContractStep("hammersley")->step, 15);
+    EXPECT_EQ(findContractStep("furnace")->step, 22);
 }
 
 TEST(Contract, ClosureHoldsEarlierStepsOfTheLabAndWhatTheyCall) {
@@ -90,7 +93,7 @@ TEST(Contract, AStepFolderJoinsAtItsOrderKey) {
                   "function": "float lambertAgain(vec3 N, vec3 L)", "calls": ["ndotl"])j");
     const auto builtIn = std::filesystem::path(PBRLAB_SOURCE_DIR) / "labs";
     const std::vector<ContractStep> steps = readStepFolders({builtIn, extra.path});
-    ASSERT_EQ(steps.size(), 22u);
+    ASSERT_EQ(steps.size(), contractSteps().size() + 1);
     EXPECT_EQ(steps[3].id, "ndotl");
     EXPECT_EQ(steps[4].id, "lambert_again");
     EXPECT_EQ(steps[4].step, 5);
@@ -116,6 +119,11 @@ TEST(Contract, BrokenStepFoldersAreErrorsNamingTheFile) {
          "is also ndotl's"},
         {R"j("id": "x", "lab": "direct", "order": 45, "function": "float lambertCosine(vec3 N)")j",
          "function lambertCosine is already ndotl's"},
+        {R"j("id": "x", "lab": "direct", "order": 45, "function": "float f()", "hides": ["ndf"])j",
+         "hides 'ndf', which is no earlier step"},
+        {R"j("id": "x", "lab": "direct", "order": 115, "function": "float f()",
+             "hides": ["specular"])j",
+         "hides 'specular', which brdf calls"},
         {R"j("id": "x", "lab": "direct", "order": 45, "function": "float f()", "calls": ["nope"])j",
          "calls 'nope', which no step folder declares"},
         {R"j("id": "x", "lab": "direct", "order": 45, "function": "float f()", "calls": ["ndf"])j",

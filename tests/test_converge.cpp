@@ -26,12 +26,13 @@ TEST(Converge, BruteForceErrorFallsWithSamplesAndTheReportIsWritten) {
     o.out = dir.path;
     std::vector<ConvergeRow> rows = runConverge(paths, o);
     writeConvergeReport(rows, o.out);
-    std::vector<double> bruteForce;
+    std::vector<double> bruteForce, visibleNormals;
     std::optional<double> splitSum;  // absent unless the row is written
     for (const auto& r : rows) {
         EXPECT_TRUE(std::isfinite(r.rmse) && std::isfinite(r.maxError) && r.ms > 0) << r.setting;
         std::cout << r.method << " " << r.setting << " display rmse " << r.displayRmse << "\n";
         if (r.method == "brute_force") bruteForce.push_back(r.displayRmse);
+        if (r.method == "brute_force_vndf") visibleNormals.push_back(r.displayRmse);
         if (r.setting == "prefilter=256 fis=on") splitSum = r.displayRmse;
     }
     // Quick runs N = 1, 16, 256. In display units (linear RMSE is ruled by the few pixels
@@ -42,6 +43,9 @@ TEST(Converge, BruteForceErrorFallsWithSamplesAndTheReportIsWritten) {
     // (measured 0.066 and 0.045).
     ASSERT_EQ(bruteForce.size(), 3u);
     EXPECT_LT(bruteForce[2], bruteForce[0]);
+    // The same counts with visible-normal sampling (step vndf_specular): rows for each.
+    ASSERT_EQ(visibleNormals.size(), 3u);
+    EXPECT_LT(visibleNormals[2], visibleNormals[0]);
     ASSERT_TRUE(splitSum.has_value()) << "no row 'prefilter=256 fis=on'";
     EXPECT_LT(*splitSum, bruteForce[2]);
     EXPECT_TRUE(std::filesystem::exists(dir.path / "converge.csv"));

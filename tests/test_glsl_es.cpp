@@ -12,6 +12,7 @@
 #include "gl/context.h"
 #include "grading/grade_step.h"
 #include "render/renderer.h"
+#include "steps/contract.h"
 #include "steps/plugin_host.h"
 #include "test_support.h"
 #include "util/fs.h"
@@ -70,7 +71,7 @@ TEST(GlslEs, EveryStepsProgramsComputeTheSameInGlslEs300) {
         EXPECT_TRUE(sameValues(es, desktop));
         ++steps;
     }
-    EXPECT_EQ(steps, 21);
+    EXPECT_EQ(steps, int(contractSteps().size()));  // every step folder's module loaded
 }
 
 TEST(GlslEs, EveryPlantedMistakeCompilesInGlslEs300AsOnTheDesktop) {

@@ -84,14 +84,18 @@ TEST(SemanticMutants, EachFamilyAppliesWhereItFitsAndEveryMutantCompiles) {
     ModuleRegistry modules{PBRLAB_MODULE_DIR};
     LabRenderer renderer(paths);
     // Read from the reference solutions: uEnvironment, uIrradianceMap, uPrefilterMap and
-    // uBrdfLut are sampled in steps 17-19 and 21; sample counts and Hammersley's (i, n) are the
-    // integer parameters; only hammersley reverses bits; NUM_LIGHTS and the light arrays are in
-    // reflectance, textureSize(uEnvironment) in irradiance, uPrefilterMaxLod in split_sum.
+    // uBrdfLut are sampled in steps 17-19, 21 and the energy lab's (furnace, both
+    // multiscatter steps, vndf_specular); sample counts and Hammersley's (i, n) are the integer
+    // parameters; only hammersley reverses bits; NUM_LIGHTS and the light arrays are in
+    // reflectance, textureSize(uEnvironment) in irradiance, uPrefilterMaxLod in split_sum and
+    // multiscatter_ibl.
     const std::map<std::string, std::set<std::string>> expected = {
-        {"radiance", {"mc_specular", "irradiance", "prefilter", "split_sum"}},
-        {"count", {"hammersley", "mc_specular", "prefilter", "brdf_lut"}},
+        {"radiance",
+         {"mc_specular", "irradiance", "prefilter", "split_sum", "furnace", "multiscatter_ibl",
+          "multiscatter_direct", "vndf_specular"}},
+        {"count", {"hammersley", "mc_specular", "prefilter", "brdf_lut", "vndf_specular"}},
         {"bits", {"hammersley"}},
-        {"host", {"reflectance", "irradiance", "split_sum"}},
+        {"host", {"reflectance", "irradiance", "split_sum", "multiscatter_ibl"}},
     };
     std::map<std::string, std::set<std::string>> made;
     int compiled = 0;

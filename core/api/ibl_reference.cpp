@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -274,26 +275,16 @@ dvec3 standardError(const std::array<dvec3, kReplicates>& estimates, const dvec3
 
 }  // namespace
 
-Moments specularIBLMoments(const Environment& env, const dvec3& N, const dvec3& V, const dvec3& F0,
-                           double roughness, std::uint32_t m) {
-    // The same one-sample estimate as specularIBLReference, its first two moments.
-    const double NdotV = std::max(glm::dot(N, V), kIblMinNdotV);
-    const Replicates sets({N.x, N.y, N.z, V.x, V.y, V.z, F0.x, F0.y, F0.z, roughness}, m);
+Moments estimatorMoments(std::initializer_list<double> inputs, std::uint32_t m,
+                         const std::function<dvec3(const dvec2& xi)>& sample) {
+    const Replicates sets(inputs, m);
     const std::uint32_t n = sets.perSet() * kReplicates;
     dvec3 sum(0.0), sum2(0.0);
     std::array<dvec3, kReplicates> estimates{};
     for (std::uint32_t r = 0; r < kReplicates; ++r) {
         dvec3 setSum(0.0);
         for (std::uint32_t j = 0; j < sets.perSet(); ++j) {
-            const dvec3 H = importanceSampleGGX(sets.xi(r, j), N, roughness);
-            const double VdotH = glm::dot(V, H);
-            const dvec3 L = 2.0 * VdotH * H - V;
-            const double NdotL = glm::dot(N, L);
-            if (NdotL <= 0.0) continue;
-            const double NdotH = std::max(glm::dot(N, H), kIblMinNdotH);
-            const double VdotHc = std::max(VdotH, 0.0);
-            const dvec3 x = env.radiance(L) * fresnelSchlick(VdotHc, F0) *
-                            (geometrySmithIBL(NdotV, NdotL, roughness) * VdotHc / (NdotH * NdotV));
+            const dvec3 x = sample(sets.xi(r, j));
             setSum += x;
             sum2 += x * x;
         }
@@ -303,6 +294,24 @@ Moments specularIBLMoments(const Environment& env, const dvec3& N, const dvec3& 
     const dvec3 mean = sum / double(n);
     return {mean, glm::sqrt(glm::max(sum2 / double(n) - mean * mean, dvec3(0.0))),
             standardError(estimates, mean)};
+}
+
+Moments specularIBLMoments(const Environment& env, const dvec3& N, const dvec3& V, const dvec3& F0,
+                           double roughness, std::uint32_t m) {
+    // The same one-sample estimate as specularIBLReference, its first two moments.
+    const double NdotV = std::max(glm::dot(N, V), kIblMinNdotV);
+    return estimatorMoments(
+        {N.x, N.y, N.z, V.x, V.y, V.z, F0.x, F0.y, F0.z, roughness}, m, [&](const dvec2& xi) {
+            const dvec3 H = importanceSampleGGX(xi, N, roughness);
+            const double VdotH = glm::dot(V, H);
+            const dvec3 L = 2.0 * VdotH * H - V;
+            const double NdotL = glm::dot(N, L);
+            if (NdotL <= 0.0) return dvec3(0.0);
+            const double NdotH = std::max(glm::dot(N, H), kIblMinNdotH);
+            const double VdotHc = std::max(VdotH, 0.0);
+            return env.radiance(L) * fresnelSchlick(VdotHc, F0) *
+                   (geometrySmithIBL(NdotV, NdotL, roughness) * VdotHc / (NdotH * NdotV));
+        });
 }
 
 Moments prefilterMoments(const Environment& env, const dvec3& R, double roughness,

@@ -3,7 +3,8 @@
 // Each check has its file:
 //   estimator_band.cpp         the order of the checks; converged integrals, the band, finite
 //                              values, the scale, the quality report
-//   estimator_convergence.cpp  the band at the graded counts, the error's fall, the bias test
+//   estimator_convergence.cpp  the band at the graded counts, the error's fall, the bias test,
+//                              the noise budget
 //   estimator_counts.cpp       counts above the graded ones; the environment at another size
 //   sun.cpp                    an environment with a real sun
 //   estimator_picture.cpp      the lab's picture, with screen derivatives

@@ -236,9 +236,11 @@ void StepGrader::gradeEstimator(const Scene& scene) {
         for (const std::string& name : {e.environment, e.hdrEnvironment})
             if (!name.empty()) environments.push_back(name);
     if (environments.empty()) environments.push_back("");  // the scene's own (none read)
-    if (statisticsParts_ & Convergence)
+    if (statisticsParts_ & Convergence) {
         for (size_t k = 0; k < environments.size(); ++k)
             gradeConvergence(scene, environments[k], k == 0);
+        gradeNoise(scene);
+    }
     if (statisticsParts_ & Sun) gradeSun(scene);
     if (statisticsParts_ & Picture) gradePicture(scene);
     if (statisticsOnly_) return;

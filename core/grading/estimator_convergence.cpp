@@ -223,4 +223,56 @@ void StepGrader::biasTest(const std::vector<PointSet>& sets, int n,
     record(c);
 }
 
+// The noise budget (EstimatorSpec::noiseDomain): where the step's sampling is its lesson, the
+// student's squared errors against the noise of an estimator sampled as the reference is.
+void StepGrader::gradeNoise(const Scene& scene) {
+    const EstimatorSpec& e = *d_.estimator;
+    if (!e.noiseDomain || e.noiseCount <= 0) return;
+    Scene judged = scene;
+    if (!e.environment.empty() && (d_.needs & NeedsEnvironment)) judged.environment = e.environment;
+    const std::string onEnvironment =
+        (d_.needs & NeedsEnvironment) ? " (" + judged.environment + ")" : "";
+    const ParamValues defaults(d_.params);
+    const ReferenceContext context = referenceContext(renderer_, d_, judged, defaults, kGradingIbl);
+    std::vector<Surface> surfaces;
+    DomainRandom random(settings_.seed + 0x901e);
+    for (int i = 0; i < e.noisePoints; ++i) {
+        Surface s = e.noiseDomain(random);
+        s.covered = true;
+        surfaces.push_back(s);
+    }
+    Grid g = grid(std::move(surfaces));
+    stage("noise" + atCount(e, e.noiseCount) + onEnvironment);
+    const std::vector<Estimate> truth =
+        convergedIntegrals(addresses(g.surfaces), judged, context, e.truthSamples);
+    const RenderResult r =
+        renderPoints(paramsAt(d_, e.noiseCount), judged, g.surfaces, g.width, g.height);
+    double sum = 0;
+    int terms = 0;
+    for (size_t i = 0; i < g.surfaces.size() && i < truth.size(); ++i) {
+        if (!g.surfaces[i].covered) continue;
+        const glm::dvec3 noise = noiseAt(truth[i], e.noiseCount);
+        for (int c = 0; c < d_.components; ++c) {
+            const double v = r.value.pixels[i * 4 + size_t(c)], t = truth[i].mean[c];
+            if (!(noise[c] > 0)) continue;
+            const double z = std::isfinite(v) ? (v - t) / noise[c] : 1e300;
+            sum += std::min(z * z, 1e300);
+            ++terms;
+        }
+    }
+    CheckReport c;
+    c.name = "noise" + atCount(e, e.noiseCount) + onEnvironment;
+    c.kind = CheckKind::Convergence;
+    c.category = CheckCategory::Estimator;
+    c.measured = terms ? sum / terms : 0;
+    c.expected = "<= " + number(e.maxNoise);
+    c.passed = c.measured <= e.maxNoise;
+    c.detail = "mean squared error over " + std::to_string(terms) +
+               " values where the sampling matters, in units of the noise an estimator sampled "
+               "as the reference has (sigma^2 / n + error^2): " +
+               number(c.measured, 3) +
+               (c.passed ? "" : "; does it draw its samples from another density?");
+    record(c);
+}
+
 }  // namespace pbrlab::step_grading

@@ -96,7 +96,7 @@ CheckReport linearityReport(const ModuleDesc& d, const Grid& g, const std::strin
 }  // namespace
 
 void StepGrader::gradeLinearity(const Scene& scene) {
-    if (!(d_.needs & NeedsEnvironment)) return;
+    if (!(d_.needs & NeedsEnvironment) || !d_.linearInEnvironment) return;
     stage("linear in radiance");
     std::vector<Surface> inputs =
         d_.domain ? domainSurfaces(d_, settings_.seed + 0x11ea, kPoints) : probeSurfaces(d_.probe);

@@ -179,6 +179,7 @@ private:
                             const std::vector<int>& counts, const std::string& onEnvironment,
                             RelativeError& error);
     void biasTest(const std::vector<PointSet>& sets, int n, const std::string& onEnvironment);
+    void gradeNoise(const Scene& scene);
 
     // grading/estimator_counts.cpp
     void gradeHighCounts(const Scene& judged, const PointSet& probe, const PointSet& random);

@@ -181,13 +181,15 @@ Truth cpuTruth(const Measurements& m, const Method& splitSum, const Image& equir
     return truth;
 }
 
-// Brute force: every frame pays for every sample.
-void measureBruteForce(Measurements& m, const Method& bruteForce) {
+// Brute force: every frame pays for every sample. `method` names the rows: brute_force
+// (half vectors from D (N.H)) or brute_force_vndf (from the normals visible from V), at the
+// same counts.
+void measureBruteForce(Measurements& m, const Method& bruteForce, const std::string& method) {
     for (int n = 1; n <= m.o.maxBruteForce; n *= (m.o.quick ? 16 : 2)) {
         ParamValues params(bruteForce.desc.params);
         params.set("samples", glm::dvec3(n, 0, 0));
         RenderResult r = timedRender(m.renderer, m.request(bruteForce, params, m.o.ibl));
-        ConvergeRow row{"specular", "brute_force", "N=" + std::to_string(n), n, r.milliseconds};
+        ConvergeRow row{"specular", method, "N=" + std::to_string(n), n, r.milliseconds};
         m.keep(row, r.value, m.truth.specular);
     }
 }
@@ -272,13 +274,16 @@ std::vector<ConvergeRow> runConverge(const DataPaths& paths, const ConvergeOptio
 
     Method bruteForce(paths, "specular_brute_force",
                       {intParam("samples", 64, 1, 1 << 20, "Monte Carlo samples")});
+    Method visibleNormals(paths, "specular_visible_normals",
+                          {intParam("samples", 64, 1, 1 << 20, "Monte Carlo samples")});
     Method splitSum(paths, "specular_split_sum");
     Method convolution(paths, "diffuse_convolution");
     Method harmonics(paths, "diffuse_sh");
 
     Measurements m(o, scene, renderer);
     m.truth = cpuTruth(m, splitSum, equirect, environment);
-    measureBruteForce(m, bruteForce);
+    measureBruteForce(m, bruteForce, "brute_force");
+    measureBruteForce(m, visibleNormals, "brute_force_vndf");
     measureSplitSum(m, splitSum);
     // Diffuse: the irradiance cube against 9 spherical-harmonic coefficients.
     measureConvolution(m, convolution);
@@ -303,6 +308,7 @@ void writeConvergeReport(const std::vector<ConvergeRow>& rows, const fs::path& o
             if (keep(r)) dat << r.ms << " " << r.rmse << " \"" << r.setting << "\"\n";
     };
     series("brute_force", [](const ConvergeRow& r) { return r.method == "brute_force"; });
+    series("brute_force_vndf", [](const ConvergeRow& r) { return r.method == "brute_force_vndf"; });
     series("split_sum_fis_off", [](const ConvergeRow& r) {
         return r.method == "split_sum" && r.setting.find("fis=off") != std::string::npos;
     });
@@ -324,6 +330,8 @@ void writeConvergeReport(const std::vector<ConvergeRow>& rows, const fs::path& o
           "set key outside right\n"
           "plot 'brute_force.dat' using 1:2 with linespoints lw 2 title 'brute force, N = "
           "1..1024', \\\n"
+          "     'brute_force_vndf.dat' using 1:2 with linespoints lw 2 title 'brute force, "
+          "visible normals', \\\n"
           "     'split_sum_fis_off.dat' using 1:2 with points pt 7 ps 1.5 title 'split sum, "
           "prefilter samples', \\\n"
           "     'split_sum_fis_on.dat' using 1:2 with points pt 5 ps 1.5 title 'split sum, "

@@ -25,8 +25,9 @@ struct ConvergeOptions {
 };
 
 struct ConvergeRow {
-    std::string term;     // "specular" or "diffuse"
-    std::string method;   // brute_force, split_sum, convolution, spherical_harmonics
+    std::string term;  // "specular" or "diffuse"
+    // brute_force, brute_force_vndf, split_sum, convolution, spherical_harmonics
+    std::string method;
     std::string setting;  // what varies, e.g. "prefilter=256 lut=128 fis=off"
     int samples = 0;
     double ms = 0;                  // per frame: the view pass (glFinish + steady clock)

@@ -107,6 +107,7 @@ ContractStep readStep(const fs::path& file) {
         s.order = field("order").get<double>();
         s.function = field("function").get<std::string>();
         s.calls = j.value("calls", std::vector<std::string>());
+        s.hides = j.value("hides", std::vector<std::string>());
         s.provides = j.value("provides", std::vector<std::string>());
         if (j.contains("precompute")) s.precompute = readPrecompute(file, j.at("precompute"));
         if (s.precompute && std::find(s.provides.begin(), s.provides.end(),
@@ -141,6 +142,25 @@ ContractStep readStep(const fs::path& file) {
     s.withheld =
         !fs::exists(s.folder / "solution.glsl", ec) && fs::exists(s.folder / "starter.glsl", ec);
     return s;
+}
+
+// A hidden step is an earlier one, and nothing this step's programs link calls it: its own
+// calls, or any earlier step's reference solution.
+void checkHides(const std::vector<ContractStep>& steps) {
+    for (const ContractStep& s : steps)
+        for (const std::string& hidden : s.hides) {
+            const std::string file = (s.folder / "step.json").string();
+            auto found = std::find_if(steps.begin(), steps.end(),
+                                      [&](const ContractStep& t) { return t.id == hidden; });
+            if (found == steps.end() || found->order >= s.order)
+                throw Error(file + ": hides '" + hidden + "', which is no earlier step");
+            for (const ContractStep& t : steps) {
+                if (t.order > s.order || t.id == hidden) continue;
+                if (std::find(t.calls.begin(), t.calls.end(), hidden) != t.calls.end())
+                    throw Error(file + ": hides '" + hidden + "', which " + t.id +
+                                " calls (its program needs it)");
+            }
+        }
 }
 
 }  // namespace
@@ -186,6 +206,7 @@ std::vector<ContractStep> readStepFolders(const std::vector<fs::path>& roots) {
             if (functionName(steps[i].function) == functionName(steps[k].function))
                 throw Error((steps[i].folder / "step.json").string() + ": function " +
                             functionName(steps[i].function) + " is already " + steps[k].id + "'s");
+    checkHides(steps);
     // The programs concatenate the steps' files in order: a step may call earlier ones only.
     for (const ContractStep& s : steps)
         for (const std::string& callee : s.calls) {
@@ -251,7 +272,9 @@ std::string functionName(const std::string& signature) {
 std::vector<const ContractStep*> stepsVisibleFrom(const ContractStep& step) {
     std::vector<const ContractStep*> visible;
     for (const ContractStep& s : contractSteps())
-        if (s.step <= step.step) visible.push_back(&s);
+        if (s.step <= step.step &&
+            std::find(step.hides.begin(), step.hides.end(), s.id) == step.hides.end())
+            visible.push_back(&s);
     return visible;
 }
 
@@ -269,6 +292,13 @@ std::map<std::string, std::string> unreachableFrom(const ContractStep& step) {
         add(s.function, s);
         for (const ContractStep::Helper& h : s.helpers) add(h.function, s);
     }
+    for (const std::string& hidden : step.hides)
+        if (const ContractStep* s = findContractStep(hidden)) {
+            const std::string name = functionName(s->function);
+            names[name] = name + " (step " + std::to_string(s->step) + ", " + s->id +
+                          ") computes what " + step.id + " asks for another way; " + step.id +
+                          " cannot call it: write the step's own method";
+        }
     return names;
 }
 

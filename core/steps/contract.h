@@ -19,6 +19,10 @@ struct ContractStep {
     double order = 0;                // sorts the steps; inserting one changes no other
     std::string function;            // the GLSL signature
     std::vector<std::string> calls;  // ids its reference solution calls
+    // Earlier steps whose functions compute what this step asks for another way (step.json
+    // "hides"): not linked into this step's programs, and a file of this step that calls one is
+    // refused, naming it (vndf_specular hides mc_specular: the same integral, other samples).
+    std::vector<std::string> hides;
     // The host's precomputed maps (contract samplers) that hold this step's quantity: a view may
     // read one only when this step comes before its own.
     std::vector<std::string> provides;
@@ -86,11 +90,11 @@ std::string functionName(const std::string& signature);
 // What a step's file may call (docs/design.md, "Assignment contract"): the contract functions
 // of its own step and of every earlier step, and the helpers those steps introduce. Everything
 // else of the contract is not in its program. The steps a view program links, in step order:
-// `step` and every step before it.
+// `step` and every step before it but those it hides.
 std::vector<const ContractStep*> stepsVisibleFrom(const ContractStep& step);
-// The contract functions and helpers a file of `step` cannot call (those of later steps),
-// each with what to tell a student who calls one: "fresnelSchlickRoughness is introduced in
-// step 21 (split_sum); fresnel cannot call it".
+// The contract functions and helpers a file of `step` cannot call (those of later steps and of
+// the steps it hides), each with what to tell a student who calls one:
+// "fresnelSchlickRoughness is introduced in step 21 (split_sum); fresnel cannot call it".
 std::map<std::string, std::string> unreachableFrom(const ContractStep& step);
 
 const ContractStep* findContractStep(const std::string& id);

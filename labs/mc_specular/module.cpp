@@ -71,28 +71,7 @@ ModuleDesc describeModule() {
         return ref::specularIBLReference(
             env, s.normal, s.view, ref::baseReflectivity(s.albedo, s.metallic), s.roughness, n);
     };
-    // x: N·V from 0.05 to 1; y: roughness 0.05 to 1 (0 is an extreme input: there the
-    // floors on alpha and k legitimately differ between solutions), on an orange half-metal
-    // (F0 = 0.47, 0.30, 0.15: Fresnel and tint both show). N points straight down, so every
-    // sample reflects the ground (no sun, no sky): the plot shows the estimator, not the
-    // environment's detail. V turns in the yz-plane; at grazing V the mirror direction reaches
-    // the hazy horizon.
-    d.probe.xAxis = "N·V 0.05..1 (N down: the ground)";
-    d.probe.yAxis = "roughness 0.05..1";
-    d.probe.width = 65;
-    d.probe.height = 33;
-    d.probe.at = [](double x, double y) {
-        const double NdotV = 0.05 + 0.95 * x;
-        Surface s;
-        s.covered = true;
-        s.normal = {0, -1, 0};
-        s.view = {0, -NdotV, std::sqrt(1 - NdotV * NdotV)};
-        s.albedo = s.albedoTexel = {0.9, 0.55, 0.25};
-        s.metallic = 0.5;
-        s.roughness = 0.05 + 0.95 * y;
-        s.ao = 1;
-        return s;
-    };
+    d.probe = groundReflectionProbe();  // N·V along x, roughness along y, N down
     // Graded by convergence (README.md, "Grading"): on the soft sky, at 4, 64 and 1024
     // samples, within 5 sigma / sqrt(n) of the converged integral (sigma: the one-sample
     // spread of the reference's estimator), + 0.3% for what texel filtering leaves; the mean
@@ -114,17 +93,7 @@ ModuleDesc describeModule() {
     // reached 2.1% (mc_specular, one set of random numbers for the whole picture, docs/grading.md).
     e.systematic = {1e-3, 3e-3, 0, 0.04};
     d.estimator = e;
-    // N anywhere, V in its hemisphere (N.V 0.05 to 1), any material, roughness 0.05 to 1.
-    d.domain = [](DomainRandom& r) {
-        Surface s;
-        s.normal = r.direction();
-        s.view = r.around(s.normal, 0.05, 1);
-        s.albedo = s.albedoTexel = r.color();
-        s.metallic = r.uniform();
-        s.roughness = r.range(0.05, 1);
-        s.ao = 1;
-        return s;
-    };
+    d.domain = specularEstimatorDomain;  // N.V 0.05 to 1, roughness 0.05 to 1
     d.namedTerms = weightTerms();
     return d;
 }

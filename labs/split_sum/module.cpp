@@ -93,34 +93,8 @@ ModuleDesc describeModule() {
                                   s.emissive;
                        },
                        true}};
-    // x: N·V from 0 (grazing) to 1; y: roughness 0 to 1, on an orange half-metal (so both the
-    // diffuse and the specular term show). N = +z; V turns in the xz-plane.
-    d.probe.xAxis = "N·V 0..1";
-    d.probe.yAxis = "roughness 0..1";
-    d.probe.width = 65;
-    d.probe.height = 33;
-    d.probe.at = [](double x, double y) {
-        Surface s;
-        s.covered = true;
-        s.normal = {0, 0, 1};
-        s.view = {std::sqrt(1 - x * x), 0, x};
-        s.albedo = s.albedoTexel = {0.9, 0.55, 0.25};
-        s.metallic = 0.5;
-        s.roughness = y;
-        s.ao = 1;
-        return s;
-    };
-    // N anywhere, V in its hemisphere, any material, roughness 0 to 1, any ao.
-    d.domain = [](DomainRandom& r) {
-        Surface s;
-        s.normal = r.direction();
-        s.view = r.around(s.normal, 0, 1);
-        s.albedo = s.albedoTexel = r.color();
-        s.metallic = r.uniform();
-        s.roughness = r.uniform();
-        s.ao = r.uniform();
-        return s;
-    };
+    d.probe = ambientLightProbe();  // N·V along x, roughness along y, an orange half-metal
+    d.domain = ambientLightDomain;
     d.namedTerms = splitSumTerms();
     return d;
 }

@@ -13,6 +13,8 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
+#include <initializer_list>
 #include <vector>
 
 #include "pbrlab/cube_sampler.h"
@@ -74,6 +76,16 @@ struct ChiSquareTest {
     int dof = 0, valid = 0, invalid = 0;
 };
 ChiSquareTest ggxHalfVectorChiSquare(const std::vector<dvec3>& H, const dvec3& N, double roughness);
+
+// The same test against any density p(H) per steradian of directions around N, for samplers
+// whose distribution also depends on the azimuth (the visible normals seen from V): theta binned
+// as above by the GGX quantiles of `roughness`, phi measured from T (a unit vector
+// perpendicular to N, e.g. V's tangential direction) in 16 bins. Each bin's probability is
+// integrated from p on a 24 x 24 grid of midpoints (p may have a kink inside a bin), bins
+// expecting fewer than 5 samples are pooled, and samples where p is 0 (outside its support)
+// are invalid like the others.
+ChiSquareTest directionChiSquare(const std::vector<dvec3>& H, const dvec3& N, const dvec3& T,
+                                 double roughness, const std::function<double(const dvec3&)>& p);
 
 // Smith-Schlick-GGX for image-based lighting: k = alpha / 2 = roughness^2 / 2 (not the
 // direct-light (roughness + 1)^2 / 8 of step 6), alpha floored at kIblMinAlpha like D.
@@ -145,6 +157,11 @@ dvec3 specularIBLReference(const Environment& env, const dvec3& N, const dvec3& 
 struct Moments {
     dvec3 mean{0}, sigma{0}, error{0};
 };
+// The same measure for a one-sample estimator of a step's own, `sample(Xi)` with Xi in
+// [0, 1)^2, seeded by the point's `inputs` (a step's estimator of another integral, or of the
+// same one with another sampler).
+Moments estimatorMoments(std::initializer_list<double> inputs, std::uint32_t m,
+                         const std::function<dvec3(const dvec2& xi)>& sample);
 Moments specularIBLMoments(const Environment& env, const dvec3& N, const dvec3& V, const dvec3& F0,
                            double roughness, std::uint32_t m);
 // The ratio estimator sum L (N.l) / sum (N.l): sigma from the delta method,

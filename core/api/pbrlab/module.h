@@ -22,7 +22,7 @@
 namespace pbrlab {
 
 // Bump when ModuleDesc or anything it contains changes layout.
-constexpr int kModuleAbiVersion = 9;
+constexpr int kModuleAbiVersion = 10;
 
 // Everything a contract function may take, per pixel. The GPU fills the same fields in
 // GLSL (shaders/surface.glsl) from the G-buffer (scene) or from uploaded textures (probe), so
@@ -180,6 +180,82 @@ inline Probe viewCosineRoughnessProbe() {
         return s;
     };
     return p;
+}
+
+// The chart of the ambient-light steps (split_sum, multiscatter_ibl): N·V along x from 0
+// (grazing) to 1, roughness 0 to 1 along y, on an orange half-metal, so that both the diffuse
+// and the specular term show. N = +z; V turns in the xz-plane.
+inline Probe ambientLightProbe() {
+    Probe p;
+    p.xAxis = "N·V 0..1";
+    p.yAxis = "roughness 0..1";
+    p.width = 65;
+    p.height = 33;
+    p.at = [](double x, double y) {
+        Surface s;
+        s.covered = true;
+        s.normal = {0, 0, 1};
+        s.view = {std::sqrt(1 - x * x), 0, x};
+        s.albedo = s.albedoTexel = {0.9, 0.55, 0.25};
+        s.metallic = 0.5;
+        s.roughness = y;
+        s.ao = 1;
+        return s;
+    };
+    return p;
+}
+
+// The domain of the ambient-light steps: N anywhere, V in its hemisphere, any material,
+// roughness 0 to 1, any ao.
+inline Surface ambientLightDomain(DomainRandom& r) {
+    Surface s;
+    s.normal = r.direction();
+    s.view = r.around(s.normal, 0, 1);
+    s.albedo = s.albedoTexel = r.color();
+    s.metallic = r.uniform();
+    s.roughness = r.uniform();
+    s.ao = r.uniform();
+    return s;
+}
+
+// The chart of the specular estimators (mc_specular, vndf_specular): N·V from 0.05 to 1 along
+// x, roughness 0.05 to 1 along y (0 is an extreme input: there the floors on alpha and k
+// legitimately differ between solutions), on an orange half-metal (F0 = 0.47, 0.30, 0.15:
+// Fresnel and tint both show). N points straight down, so every sample reflects the ground (no
+// sun, no sky): the plot shows the estimator, not the environment's detail. V turns in the
+// yz-plane; at grazing V the mirror direction reaches the hazy horizon.
+inline Probe groundReflectionProbe() {
+    Probe p;
+    p.xAxis = "N·V 0.05..1 (N down: the ground)";
+    p.yAxis = "roughness 0.05..1";
+    p.width = 65;
+    p.height = 33;
+    p.at = [](double x, double y) {
+        const double NdotV = 0.05 + 0.95 * x;
+        Surface s;
+        s.covered = true;
+        s.normal = {0, -1, 0};
+        s.view = {0, -NdotV, std::sqrt(1 - NdotV * NdotV)};
+        s.albedo = s.albedoTexel = {0.9, 0.55, 0.25};
+        s.metallic = 0.5;
+        s.roughness = 0.05 + 0.95 * y;
+        s.ao = 1;
+        return s;
+    };
+    return p;
+}
+
+// The domain of the specular estimators: N anywhere, V in its hemisphere (N·V 0.05 to 1), any
+// material, roughness 0.05 to 1.
+inline Surface specularEstimatorDomain(DomainRandom& r) {
+    Surface s;
+    s.normal = r.direction();
+    s.view = r.around(s.normal, 0.05, 1);
+    s.albedo = s.albedoTexel = r.color();
+    s.metallic = r.uniform();
+    s.roughness = r.range(0.05, 1);
+    s.ao = 1;
+    return s;
 }
 
 // The domain of the steps that are functions of the whole lobe (specular, brdf): N anywhere;
@@ -424,6 +500,16 @@ struct EstimatorSpec {
     // The mean error at the smallest count must be at least this many times the mean error at
     // the largest: an estimator that ignores its sample count does not converge.
     double minimumFall = 3;
+    // A noise budget, for a step whose lesson is its sampling (visible normals): on
+    // `noisePoints` points drawn from `noiseDomain` (where the sampling matters: grazing view),
+    // at `noiseCount` samples, the mean over the points of error^2 / (sigma^2 / n + error^2),
+    // sigma this estimator's own one-sample spread, is at most `maxNoise`. A correct estimator
+    // of this kind (plain Monte Carlo or better) stays near 1 or below; one that draws from
+    // another density, however unbiased, carries its variance. Unset domain: no check.
+    DomainFn noiseDomain;
+    int noiseCount = 16;
+    int noisePoints = 256;
+    double maxNoise = 3;
     // > 0: the value may be off by a constant factor within this (a quadrature normalised by
     // its node count, as LearnOpenGL's is); the band then applies to the value divided by its
     // best-fit factor (the median ratio to the converged value), so an error that varies
@@ -464,6 +550,10 @@ struct ModuleDesc {
     unsigned needs = NeedsGeometry;  // SurfaceNeeds flags
     std::vector<std::string> uses;   // other contract ids the view calls
     bool skyBackground = false;      // draw the environment behind the scene (radiance views)
+    // With NeedsEnvironment: the values are radiance read from the environment, graded linear
+    // in it. false for a step that reads only a map independent of the environment's radiance
+    // (the BRDF LUT: the furnace's E = A + B).
+    bool linearInEnvironment = true;
     Tolerance tolerance;
     std::vector<Tolerance> componentTolerances;  // per component when not empty
     ReferenceFn reference;

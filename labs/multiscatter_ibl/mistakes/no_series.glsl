@@ -1,0 +1,16 @@
+// expect: 1 / (1 - Ems F_avg)
+// mistake: Fms = FssEss F_avg, one further bounce only: the series' sum 1 / (1 - Ems F_avg) is missing
+vec3 ambientIBLMultiscatter(vec3 N, vec3 V, vec3 albedo, float metallic, float roughness, float ao)
+{
+    float NdotV = max(dot(N, V), 0.0);
+    vec3 F0 = baseReflectivity(albedo, metallic);
+    vec2 AB = textureLod(uBrdfLut, vec2(NdotV, roughness), 0.0).rg;
+    vec3 FssEss = fresnelSchlickRoughness(NdotV, F0, roughness) * AB.x + AB.y;
+    float Ems = 1.0 - (AB.x + AB.y);
+    vec3 Favg = F0 + (1.0 - F0) / 21.0;
+    vec3 Fms = FssEss * Favg;
+    vec3 kD = albedo * (1.0 - metallic) * (1.0 - (FssEss + Fms * Ems));
+    vec3 irradiance = textureLod(uIrradianceMap, N, 0.0).rgb;
+    vec3 prefiltered = textureLod(uPrefilterMap, reflect(-V, N), roughness * uPrefilterMaxLod).rgb;
+    return (FssEss * prefiltered + (Fms * Ems + kD) * irradiance) * ao;
+}
