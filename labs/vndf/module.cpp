@@ -124,8 +124,11 @@ ModuleDesc describeModule() {
     d.needs = NeedsRoughness;
     d.scene = "sphere-grid";
     // What every correct sampler shares, whatever its mapping of Xi: |H| = 1, N.H >= 0 and
-    // V.H >= 0, so the reference is 0 and the band float rounding's (measured 6e-8 on |H|).
-    d.tolerance = {1e-4, 0, 0};
+    // V.H >= 0, so the reference is 0. The band is 0.03: at the disk's rim sqrt(1 - t1^2 - t2^2)
+    // turns the 2^-11 error GLSL allows sin and cos into up to 0.02 (measured 1.2e-7 here,
+    // 0.010 on 5 of 262144 pixels in the browser's SwiftShader, docs/web.md); the mistakes
+    // reach 0.84 (README.md).
+    d.tolerance = {3e-2, 0, 0};
     d.reference = [](const Surface&, const ReferenceContext&) { return glm::dvec3(0); };
     // x: Xi.x from 0 to 1, y: roughness 0.05 to 1, with Xi.y, N and V (N.V from 0.02 to 1) of
     // each pixel's own.
