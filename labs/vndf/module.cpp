@@ -34,6 +34,8 @@ double visibleNormalDensity(const glm::dvec3& N, const glm::dvec3& V, const glm:
     return smithG1(NdotV, alpha) * VdotH * D / NdotV;
 }
 
+constexpr double kRim = 0.03;  // the view's band: how far below the rim a sample may round
+
 // The distribution the contract asks for, tested on the student's own samples: a chi-square
 // test against D_V for views from normal incidence to grazing (N.V 1, 0.7, 0.3, 0.05), four
 // roughnesses and three normals (the frame's switch-over cone around +-z among them), 16384
@@ -83,9 +85,21 @@ std::vector<InvariantResult> visibleNormalInvariants(const Evaluator& evaluate) 
     int invalid = 0;
     std::string worstCase;
     for (size_t c = 0; c < cases.size(); ++c) {
-        const std::vector<glm::dvec3> samples(H.begin() + long(c) * kSamples,
-                                              H.begin() + long(c + 1) * kSamples);
         const Case& k = cases[c];
+        // Samples on the visible hemisphere's rim may fall up to kRim below N.H = 0 or V.H = 0
+        // where sin and cos are approximate (the view's band, docs/web.md): they are left out
+        // of the test; anything further is invalid.
+        std::vector<glm::dvec3> samples;
+        for (long i = long(c) * kSamples; i < long(c + 1) * kSamples; ++i) {
+            const glm::dvec3& h = H[size_t(i)];
+            const bool unit =
+                std::isfinite(h.x + h.y + h.z) && std::abs(glm::length(h) - 1) <= 1e-3;
+            const double NdotH = glm::dot(k.N, h), VdotH = glm::dot(k.V, h);
+            if (!unit || NdotH < -kRim || VdotH < -kRim)
+                ++invalid;
+            else if (NdotH > 0 && VdotH > 0)
+                samples.push_back(h);
+        }
         // phi measured from V's tangential direction (any direction at normal incidence).
         glm::dvec3 tangent = k.V - k.N * glm::dot(k.N, k.V);
         if (glm::length(tangent) < 1e-6) tangent = glm::cross(k.N, glm::dvec3(0.6, 0.8, 0));
@@ -109,7 +123,8 @@ std::vector<InvariantResult> visibleNormalInvariants(const Evaluator& evaluate) 
                  std::to_string(cases.size()) + " cases (" + worstCase + ")",
              smallest, expected, smallest >= perCase && invalid == 0,
              "the half vectors do not follow the distribution of visible normals"},
-            {"samples that are not unit vectors above the surface facing V (of " +
+            {"samples that are not unit vectors above the surface facing V (0.03 allowed at the "
+             "rim; of " +
                  std::to_string(cases.size() * kSamples) + ")",
              double(invalid), "0", invalid == 0,
              "H must be normalised, with N.H > 0 and V.H > 0: a visible microfacet faces the "
