@@ -40,15 +40,45 @@ constexpr double kRim = 0.03;  // the view's band: how far below the rim a sampl
 // roughnesses and three normals (the frame's switch-over cone around +-z among them), 16384
 // uniform Xi each, significance 1e-4 for the whole family (Sidak); and every sample a unit
 // vector above the surface that faces V.
+struct SamplerCase {
+    glm::dvec3 N, V;
+    double roughness;
+};
+
+// V at N.V = mu, turned about N to an azimuth drawn from `random` (each case its own).
+glm::dvec3 viewAtCosine(const glm::dvec3& N, double mu, DomainRandom& random) {
+    const glm::dvec3 axis = std::abs(N.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    const glm::dvec3 T = glm::normalize(axis - N * glm::dot(N, axis));
+    const glm::dvec3 B = glm::cross(N, T);
+    const double turn = 2 * ref::kPi * random.uniform();
+    return glm::dvec3(glm::vec3(glm::normalize(
+        N * mu + std::sqrt(1 - mu * mu) * (T * std::cos(turn) + B * std::sin(turn)))));
+}
+
+// The samples of one case that the chi-square test judges: unit vectors with N.H > 0 and
+// V.H > 0. Samples on the visible hemisphere's rim may fall up to kRim below N.H = 0 or
+// V.H = 0 where sin and cos are approximate (the view's band, docs/web.md): they are left
+// out; anything further, or not a unit vector, is counted in `invalid`.
+std::vector<glm::dvec3> judgedSamples(const glm::dvec3* H, int count, const SamplerCase& k,
+                                      int& invalid) {
+    std::vector<glm::dvec3> samples;
+    for (int i = 0; i < count; ++i) {
+        const glm::dvec3& h = H[i];
+        const bool unit = std::isfinite(h.x + h.y + h.z) && std::abs(glm::length(h) - 1) <= 1e-3;
+        const double NdotH = glm::dot(k.N, h), VdotH = glm::dot(k.V, h);
+        if (!unit || NdotH < -kRim || VdotH < -kRim)
+            ++invalid;
+        else if (NdotH > 0 && VdotH > 0)
+            samples.push_back(h);
+    }
+    return samples;
+}
+
 std::vector<InvariantResult> visibleNormalInvariants(const Evaluator& evaluate) {
     constexpr int kSamples = 16384;
     const glm::dvec3 normals[] = {{0, 0, 1}, {0.02, 0.03, -1}, {0.3, -0.5, 0.8}};
     const double cosines[] = {1, 0.7, 0.3, 0.05}, roughnesses[] = {0.1, 0.3, 0.6, 1.0};
-    struct Case {
-        glm::dvec3 N, V;
-        double roughness;
-    };
-    std::vector<Case> cases;
+    std::vector<SamplerCase> cases;
     std::vector<glm::dvec3> H;
     DomainRandom random(2026);
     for (const glm::dvec3& n : normals) {
@@ -57,14 +87,7 @@ std::vector<InvariantResult> visibleNormalInvariants(const Evaluator& evaluate) 
         for (double mu : cosines)
             for (double r : roughnesses) {
                 const glm::dvec3 N = glm::dvec3(glm::vec3(glm::normalize(n)));
-                // V at N.V = mu, turned about N to an azimuth of the case's own.
-                const glm::dvec3 axis =
-                    std::abs(N.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-                const glm::dvec3 T = glm::normalize(axis - N * glm::dot(N, axis));
-                const glm::dvec3 B = glm::cross(N, T);
-                const double turn = 2 * ref::kPi * random.uniform();
-                const glm::dvec3 V = glm::dvec3(glm::vec3(glm::normalize(
-                    N * mu + std::sqrt(1 - mu * mu) * (T * std::cos(turn) + B * std::sin(turn)))));
+                const glm::dvec3 V = viewAtCosine(N, mu, random);
                 cases.push_back({N, V, r});
                 for (int i = 0; i < kSamples; ++i) {
                     Surface s;
@@ -84,21 +107,9 @@ std::vector<InvariantResult> visibleNormalInvariants(const Evaluator& evaluate) 
     int invalid = 0;
     std::string worstCase;
     for (size_t c = 0; c < cases.size(); ++c) {
-        const Case& k = cases[c];
-        // Samples on the visible hemisphere's rim may fall up to kRim below N.H = 0 or V.H = 0
-        // where sin and cos are approximate (the view's band, docs/web.md): they are left out
-        // of the test; anything further is invalid.
-        std::vector<glm::dvec3> samples;
-        for (long i = long(c) * kSamples; i < long(c + 1) * kSamples; ++i) {
-            const glm::dvec3& h = H[size_t(i)];
-            const bool unit =
-                std::isfinite(h.x + h.y + h.z) && std::abs(glm::length(h) - 1) <= 1e-3;
-            const double NdotH = glm::dot(k.N, h), VdotH = glm::dot(k.V, h);
-            if (!unit || NdotH < -kRim || VdotH < -kRim)
-                ++invalid;
-            else if (NdotH > 0 && VdotH > 0)
-                samples.push_back(h);
-        }
+        const SamplerCase& k = cases[c];
+        const std::vector<glm::dvec3> samples =
+            judgedSamples(H.data() + c * kSamples, kSamples, k, invalid);
         // phi measured from V's tangential direction (any direction at normal incidence).
         glm::dvec3 tangent = k.V - k.N * glm::dot(k.N, k.V);
         if (glm::length(tangent) < 1e-6) tangent = glm::cross(k.N, glm::dvec3(0.6, 0.8, 0));
