@@ -32,6 +32,7 @@ const convergedDir = '/home/web_user/.cache/pbrlab/converged';
 const kept = new Set();  // the files of convergedDir that IndexedDB holds
 let cacheDb = null;      // (null: a site without a version, or a browser without storage)
 let cacheVersion = '';
+let restoredCount = 0;   // the files restoreCache read back
 function openCache(store, version) {
   return new Promise((resolve) => {
     if (!store || !version || version === 'unversioned' || typeof indexedDB === 'undefined')
@@ -76,12 +77,15 @@ async function restoreCache(store, version) {
     FS.writeFile(`${convergedDir}/${name}`, bytes);
     kept.add(name);
   }
+  restoredCount = kept.size;
   if (stale.length) await transaction('readwrite', (s) => stale.forEach((key) => s.delete(key)));
 }
+const convergedFiles = () => FS.analyzePath(convergedDir).exists
+    ? FS.readdir(convergedDir).filter((n) => n.endsWith('.bin')) : [];
 // After a grade: what it computed, kept.
 function keepCache() {
-  if (!cacheDb || !FS.analyzePath(convergedDir).exists) return;
-  const added = FS.readdir(convergedDir).filter((n) => n.endsWith('.bin') && !kept.has(n));
+  if (!cacheDb) return;
+  const added = convergedFiles().filter((n) => !kept.has(n));
   if (!added.length) return;
   transaction('readwrite', (s) => {
     for (const name of added) {
@@ -100,6 +104,7 @@ onmessage = async (event) => {
   if (testHang && Object.values(files).some((text) => text.includes('PBRLAB_TEST_HANG')))
     for (;;) {}
   const start = performance.now();
+  const before = new Set(convergedFiles());
   let report;
   try {
     if (FS.analyzePath('/work').exists) {
@@ -120,8 +125,13 @@ onmessage = async (event) => {
     postMessage({step, contextLost: true});
     return;
   }
+  // What the cache did for this grade (the site's tests check it, not the times): the
+  // converged integrals this grade computed (files it added), and how many this worker read
+  // back from IndexedDB when it started.
+  const converged = {computed: convergedFiles().filter((n) => !before.has(n)).length,
+                     restored: restoredCount};
   keepCache();
-  const answer = {step, report, ms: performance.now() - start};
+  const answer = {step, report, ms: performance.now() - start, converged};
   if (stats) {
     const address = Module.ccall('pbrlab_journal', 'number', [], []);
     answer.journal = UTF8ToString(address);
