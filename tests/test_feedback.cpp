@@ -497,3 +497,23 @@ TEST(Feedback, ADirectionAtAnotherLengthAndCurvesOfOneInputAreNamed) {
         }));
     EXPECT_TRUE(contains(falloff, "the light's colour / (1 + 0.09 d + 0.032 d^2)")) << falloff;
 }
+
+TEST(Feedback, AColourTheSameAtEveryPointIsNoCurvesVariable) {
+    // One albedo for every point, three different channels: three values, yet no variable. A
+    // student's constant colour fits a three-parameter curve of it exactly, so a curve's
+    // variable must take many values (input_fits.cpp, curveSamples).
+    ModuleDesc d = module(3);
+    d.domain = [](DomainRandom& r) {
+        Surface s;
+        s.normal = r.direction();
+        s.light = r.around(s.normal, 0.1, 1);
+        s.view = r.around(s.normal, 0, 1);
+        s.albedo = {0.9, 0.5, 0.2};
+        s.roughness = r.range(0.05, 1);
+        return s;
+    };
+    const std::string curve = nameCurve(inputs(
+        d, [](const Surface& s) { return s.albedo * ndotl(s); },
+        [](const Surface&) { return glm::dvec3(0.3, 0.25, 0.4); }));
+    EXPECT_FALSE(contains(curve, "albedo")) << curve;
+}

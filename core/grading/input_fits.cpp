@@ -448,7 +448,10 @@ std::vector<CurveInput> curveInputs(const ModuleDesc& module) {
     return inputs;
 }
 
-// An input that is the same at every point explains nothing as a curve's variable.
+// An input that takes one value at every point and channel explains nothing. A colour that is
+// the same at every point but differs between channels counts as varying: as a factor it
+// scales the channels apart (the albedo x a curve of N.L); as a curve's variable it takes
+// three values only, which curveSamples refuses.
 bool variesOverPoints(const FeedbackInputs& in, const Points& p, const CurveInput& x) {
     const int n = in.module->components;
     for (size_t i : p.index)
