@@ -85,64 +85,96 @@ EnvironmentBins binEnvironment(const Image& equirect, int n) {
     struct Sums {
         glm::dvec3 power{0.0}, mean{0.0};
         double grey = 0, second[6] = {};
+        void add(const glm::dvec3& d, double weight) {
+            grey += weight;
+            mean += weight * d;
+            const double dd[6] = {d.x * d.x, d.y * d.y, d.z * d.z, d.x * d.y, d.y * d.z, d.x * d.z};
+            for (int k = 0; k < 6; ++k) second[k] += weight * dd[k];
+        }
     };
-    std::vector<Sums> bins(static_cast<size_t>(count));
+    std::vector<Sums> bins(static_cast<size_t>(count)), sphere(static_cast<size_t>(count));
     for (int y = 0; y < H; ++y) {
         const double t = ref::kPi * (y + 0.5) / H, st = std::sin(t), ct = std::cos(t);
         const double omega =
             2.0 * ref::kPi / W * (std::cos(ref::kPi * y / H) - std::cos(ref::kPi * (y + 1) / H));
         for (int x = 0; x < W; ++x) {
             const glm::dvec3 d(st * sinPhi[size_t(x)], ct, -st * cosPhi[size_t(x)]);
-            Sums& b = bins[size_t(binOf(d, n))];
+            const int bin = binOf(d, n);
             const glm::dvec3 p = ref::equirectTexel(equirect, x, y) * omega;
-            const double g = std::max((p.x + p.y + p.z) / 3.0, 0.0);
-            b.power += p;
-            b.grey += g;
-            b.mean += g * d;
-            const double dd[6] = {d.x * d.x, d.y * d.y, d.z * d.z, d.x * d.y, d.y * d.z, d.x * d.z};
-            for (int k = 0; k < 6; ++k) b.second[k] += g * dd[k];
+            bins[size_t(bin)].power += p;
+            bins[size_t(bin)].add(d, std::max((p.x + p.y + p.z) / 3.0, 0.0));
+            sphere[size_t(bin)].add(d, omega);
         }
     }
     EnvironmentBins out;
     out.packs.resize(size_t(count + 3) / 4, EnvironmentBins::Pack{});
-    for (int i = 0; i < count; ++i) {
-        const Sums& b = bins[size_t(i)];
-        EnvironmentBins::Pack& p = out.packs[size_t(i) / 4];
-        const int lane = i % 4;
+    out.sphere.resize(out.packs.size(), EnvironmentBins::SpherePack{});
+    // The moments of a bin's directions, normalised by their weight, into lane `lane`.
+    auto moments = [](const Sums& b, Float4(&mean)[3], Float4(&second)[6], int lane) {
         const double g = b.grey > 0.0 ? 1.0 / b.grey : 0.0;
-        for (int k = 0; k < 3; ++k) {
-            p.power[k][lane] = float(b.power[k]);
-            p.mean[k][lane] = float(b.mean[k] * g);
-        }
-        for (int k = 0; k < 6; ++k) p.second[k][lane] = float(b.second[k] * g);
+        for (int k = 0; k < 3; ++k) mean[k][lane] = float(b.mean[k] * g);
+        for (int k = 0; k < 6; ++k) second[k][lane] = float(b.second[k] * g);
+    };
+    for (int i = 0; i < count; ++i) {
+        EnvironmentBins::Pack& p = out.packs[size_t(i) / 4];
+        EnvironmentBins::SpherePack& q = out.sphere[size_t(i) / 4];
+        const int lane = i % 4;
+        for (int k = 0; k < 3; ++k) p.power[k][lane] = float(bins[size_t(i)].power[k]);
+        moments(bins[size_t(i)], p.mean, p.second, lane);
+        q.solidAngle[lane] = float(sphere[size_t(i)].grey);
+        moments(sphere[size_t(i)], q.mean, q.second, lane);
     }
     return out;
 }
 
-// The integral over the sphere of the prefilter weight c / u^2, u = 1 + b (1 + c),
-// b = (alpha^2 - 1) / 2 (see convolveBins): 2 pi integral_0^1 c / (A + b c)^2 dc with
-// A = 1 + b, in closed form (1 / b^2) (ln((A + b) / A) + A / (A + b) - 1), or its Taylor
-// series near alpha^2 = 1 where that cancels. pi at alpha = 1 (the cosine).
-double lobeIntegral(double alpha2) {
-    const double b = 0.5 * (alpha2 - 1.0), A = 1.0 + b;
-    const double integral = std::abs(b) < 1e-3
-                                ? 0.5 - 5.0 / 3.0 * b + 17.0 / 4.0 * b * b
-                                : (std::log((A + b) / A) + A / (A + b) - 1.0) / (b * b);
-    return 2.0 * ref::kPi * integral;
+namespace {
+
+// Karis' prefilter weight, expanded to second order over a bin (see convolveBins), for four
+// bins: their mean direction's cosine to R and their R^T S R.
+struct BinWeight {
+    float b;
+    Float4 operator()(Float4 c, Float4 RSR) const {
+        const Float4 zero = {0, 0, 0, 0};
+        const Float4 variance = RSR - c * c;
+        const Float4 inv = 1.0f / (1.0f + b * (1.0f + c));
+        const Float4 w = c * inv * inv;
+        const Float4 w2 = (6.0f * b * b * c * inv - 4.0f * b) * inv * inv * inv;
+        const Float4 k = w + 0.5f * w2 * (variance > 0.0f ? variance : zero);
+        return c > 0.0f && k > 0.0f ? k : zero;
+    }
+};
+
+// R's products for R^T S R with S = (xx yy zz xy yz xz): the off-diagonal ones doubled.
+struct Quadratic {
+    float r[6];
+    explicit Quadratic(const glm::vec3& R)
+        : r{R.x * R.x, R.y * R.y, R.z * R.z, 2 * R.x * R.y, 2 * R.y * R.z, 2 * R.x * R.z} {}
+    Float4 operator()(const Float4 (&s)[6]) const {
+        return r[0] * s[0] + r[1] * s[1] + r[2] * s[2] + r[3] * s[3] + r[4] * s[4] + r[5] * s[5];
+    }
+};
+
+float laneSum(Float4 v) {
+    return v[0] + v[1] + v[2] + v[3];
 }
 
+}  // namespace
+
 // One cube map level of the environment convolved with the prefilter's lobe, from its bins.
-// The prefiltered value at R is  sum over l of L(l) w(R.l) / integral of w  with the weight
-// of Karis' estimator, w(c) = c D(h) (N = V = R, (N.h)^2 = (1 + c) / 2), up to a constant
-// c / u^2, u = 1 + b (1 + c), b = (alpha^2 - 1) / 2. At roughness 1 (alpha^2 = 1) the weight
-// is the cosine and the result is E / pi: the irradiance map is this convolution too.
-// A bin stands for its texels through their moments: expanding w around c = R.m to second
-// order, it adds  P (w(c) + w''(c) Var(R.d) / 2),  Var(R.d) = R^T S R - c^2.  That is exact
-// for the cosine, and a small bright sun inside a bin stays exactly where it is (m is its
-// direction); bins below R's horizon (c <= 0) add nothing. Accuracy in docs/ibl.md.
+// The prefiltered value at R is  sum over l of L(l) w(R.l) / sum over l of w(R.l)  with the
+// weight of Karis' estimator, w(c) = c D(h) (N = V = R, (N.h)^2 = (1 + c) / 2), up to a
+// constant: c / u^2, u = 1 + b (1 + c), b = (alpha^2 - 1) / 2. At roughness 1 (alpha^2 = 1)
+// the weight is the cosine and the result is E / pi: the irradiance map is this convolution
+// too. A bin stands for its texels through their moments: expanding w around c = R.m to
+// second order, it adds  P (w(c) + w''(c) Var(R.d) / 2),  Var(R.d) = R^T S R - c^2. That is
+// exact for the cosine, and a small bright sun inside a bin stays exactly where it is (m is
+// its direction); bins below R's horizon (c <= 0) add nothing. The divisor is the same sum
+// over the bins of a constant environment (EnvironmentBins::sphere), not the lobe's exact
+// integral: where the expansion is off (a lobe narrower than a bin), numerator and divisor
+// are off alike, and a constant environment stays constant. Accuracy in docs/ibl.md.
 std::vector<Image> convolveBins(const EnvironmentBins& bins, int size, double roughness) {
     const double a = roughness * roughness, alpha2 = std::max(a * a, 1e-7);
-    const float b = float(0.5 * (alpha2 - 1.0)), scale = float(1.0 / lobeIntegral(alpha2));
+    const BinWeight weight{float(0.5 * (alpha2 - 1.0))};
     std::vector<Image> faces(6);
     for (Image& im : faces) {
         im.width = im.height = size;
@@ -154,24 +186,21 @@ std::vector<Image> convolveBins(const EnvironmentBins& bins, int size, double ro
         const Float4 zero = {0, 0, 0, 0};
         for (int x = 0; x < size; ++x) {
             const glm::vec3 R(cubeTexelDirection(face, x, y, size));
-            const float xx = R.x * R.x, yy = R.y * R.y, zz = R.z * R.z;
-            const float xy = 2 * R.x * R.y, yz = 2 * R.y * R.z, xz = 2 * R.x * R.z;
-            Float4 sum[3] = {zero, zero, zero};
-            for (const EnvironmentBins::Pack& p : bins.packs) {
+            const Quadratic quadratic(R);
+            Float4 sum[3] = {zero, zero, zero}, divisor = zero;
+            for (size_t i = 0; i < bins.packs.size(); ++i) {
+                const EnvironmentBins::Pack& p = bins.packs[i];
                 const Float4 c = R.x * p.mean[0] + R.y * p.mean[1] + R.z * p.mean[2];
-                const Float4 RSR = xx * p.second[0] + yy * p.second[1] + zz * p.second[2] +
-                                   xy * p.second[3] + yz * p.second[4] + xz * p.second[5];
-                const Float4 variance = RSR - c * c;
-                const Float4 inv = 1.0f / (1.0f + b * (1.0f + c));
-                const Float4 w = c * inv * inv;
-                const Float4 w2 = (6.0f * b * b * c * inv - 4.0f * b) * inv * inv * inv;
-                Float4 k = w + 0.5f * w2 * (variance > 0.0f ? variance : zero);
-                k = c > 0.0f && k > 0.0f ? k : zero;
+                const Float4 k = weight(c, quadratic(p.second));
                 for (int ch = 0; ch < 3; ++ch) sum[ch] += p.power[ch] * k;
+                const EnvironmentBins::SpherePack& q = bins.sphere[i];
+                const Float4 cq = R.x * q.mean[0] + R.y * q.mean[1] + R.z * q.mean[2];
+                divisor += q.solidAngle * weight(cq, quadratic(q.second));
             }
+            // The bins around R weigh more than 0: the divisor is never 0.
+            const float scale = 1.0f / laneSum(divisor);
             for (int ch = 0; ch < 3; ++ch)
-                faces[size_t(face)].at(x, y, ch) =
-                    (sum[ch][0] + sum[ch][1] + sum[ch][2] + sum[ch][3]) * scale;
+                faces[size_t(face)].at(x, y, ch) = laneSum(sum[ch]) * scale;
         }
     });
     return faces;

@@ -17,11 +17,18 @@ typedef float Float4 __attribute__((vector_size(16)));
 // PrefilterMethod::Bins): every texel of the equirectangular image adds its power, L times its
 // exact solid angle, to the bin its centre falls in; per bin, the grey power weighs the mean
 // direction m and the mean of d d^T. Stored four bins to a pack, one component per Float4.
+// With them the same bins of a constant environment of radiance 1 at the image's own sampling
+// (the sphere's solid angle, mean direction and d d^T per bin): what the convolution divides
+// by, so that a constant environment gives itself at every roughness.
 struct EnvironmentBins {
     struct Pack {
         Float4 power[3], mean[3], second[6];  // second: xx yy zz xy yz xz
     };
+    struct SpherePack {
+        Float4 solidAngle, mean[3], second[6];
+    };
     std::vector<Pack> packs;
+    std::vector<SpherePack> sphere;  // as many as packs
 };
 
 // The environment in bins of a cube of n x n texels a face.

@@ -11,7 +11,7 @@ namespace pbrlab {
 
 // Names what the CPU code computes (cube resampling, irradiance bins) in the cache keys: bump it
 // when ibl/cpu_maps.cpp changes what it writes.
-inline constexpr const char* kCpuMapsVersion = "cpu-maps-1";
+inline constexpr const char* kCpuMapsVersion = "cpu-maps-2";
 
 // levels x faces RGBA32F images (faces: 6, or 1 for the LUT), as read back. False when the
 // file could not be written or read whole (a cache miss, never an error).
