@@ -25,7 +25,8 @@ edits=(
     "brdf_lut||samples=1024"
 )
 
-field() { sed -n "s/.*$1 \([0-9.]*\) ms.*/\1/p" | head -1; }
+# The first figure named $1 (sed quits there: no pipe for pipefail to see broken).
+field() { sed -n "/$1 [0-9.]* ms/{s/.*$1 \([0-9.]*\) ms.*/\1/p;q;}"; }
 
 echo "| step, edit | run | frames while it ran | median | longest | while none ran: longest |"
 echo "|---|---|---|---|---|---|"

@@ -226,14 +226,17 @@ try {
   // 4. The page's grader against the desktop's: every planted mistake and written variant of
   // the steps asked for (--grade-steps), graded by both; the verdicts must agree. The default
   // adds to ndf the two steps whose files reach what GLSL leaves undefined (pow of a negative
-  // base in fresnel, a light read past NUM_LIGHTS in reflectance): the programs define it.
-  const gradeSteps = (args['grade-steps'] ?? 'ndf,fresnel,reflectance').split(',');
+  // base in fresnel, a light read past NUM_LIGHTS in reflectance): the programs define it; and
+  // vndf, whose samples on the visible hemisphere's rim the page's approximate sin and cos
+  // push below it (its chi-square test allows that band: labs/vndf/module.cpp).
+  const gradeSteps = (args['grade-steps'] ?? 'ndf,fresnel,reflectance,vndf').split(',');
   figures.grader = {files: 0, ms: [], announced: 0};
   const announced = [];  // files whose grade said it fails, yet did not
   await page.evaluate(`window.sweeper = new Worker('grader_worker.js'); true`);
   const sweep = [];  // [step, file]
   for (const id of gradeSteps)
-    for (const dir of [path.join(root, 'labs', id, 'mistakes'), path.join(root, 'tests/variants', id)])
+    for (const dir of [path.join(root, 'labs', id, 'mistakes'), path.join(root, 'labs', id, 'variants'),
+                       path.join(root, 'tests/variants', id)])
       if (fs.existsSync(dir))
         for (const f of fs.readdirSync(dir).sort()) sweep.push([id, path.join(dir, f)]);
   let journal = '';  // what the worker did in the whole sweep (its answer to the last file)
