@@ -132,6 +132,12 @@ private:
     void gradeCase(const std::string& name, GradeCase::Inputs inputs, const Scene& scene,
                    const ParamValues& params, CheckCategory sceneCategory = CheckCategory::Scenes);
     void gradeValues(const Scene& scene);
+    // `scene`, or for a step that reads the environment, when the scene's environment is the
+    // same in every direction (the white furnace), the scene under the estimators' sky
+    // (EstimatorSpec::environment): a constant environment tells no map lookup from another
+    // (its direction, its mip level), so the random inputs and the host's map sizes are
+    // judged there. The scene's own picture stays the scene's.
+    Scene detailedScene(const Scene& scene);
     // What the host provides graded over what the host can produce: NUM_LIGHTS from 1 to the
     // most lights a scene may hold, the maps' sizes and mip count (uPrefilterMaxLod) at the ends
     // of the sizes the host makes.

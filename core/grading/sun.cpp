@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string_view>
 
 #include "assets/envgen.h"
 #include "grading/estimator.h"
@@ -77,6 +78,12 @@ std::vector<Surface> sunFacingSurfaces(const ModuleDesc& d, std::uint64_t seed, 
     return out;
 }
 
+namespace {
+// sunCause's one diagnosis of a rule rather than of a shape: a function that limits bright
+// light is right wherever no light is bright, so no comparison on other inputs finds it.
+constexpr std::string_view kBrightLightRule = "treats bright light differently";
+}  // namespace
+
 std::string sunCause(const Image& value, const std::vector<Surface>& points, const Band& band,
                      int components, bool rightWithoutSun) {
     int low = 0, high = 0, judged = 0;
@@ -113,8 +120,8 @@ std::string sunCause(const Image& value, const std::vector<Surface>& points, con
     // coarse for the sun misses it at most points and over-counts it at a few.
     const double few = 0.05 * (low + high);
     if (high <= few)
-        return "treats bright light differently: " + without + "too low at " + std::to_string(low) +
-               where + " (median " + number(median, 3) +
+        return std::string(kBrightLightRule) + ": " + without + "too low at " +
+               std::to_string(low) + where + " (median " + number(median, 3) +
                " x the converged integral there): is bright light clamped, dropped or limited "
                "relative to the rest (a firefly filter)?";
     if (low <= few)
@@ -154,12 +161,17 @@ void StepGrader::gradeSunValues(const Scene& scene) {
     ValuesRun run = runValues("random inputs facing the sun (" + judged.environment + ")",
                               CheckCategory::Random, judged, ParamValues(d_.params), &g.surfaces,
                               g.width, g.height, nullptr);
+    // The shape of the error goes first in the check's detail. It is the mistake's name only
+    // when it is the bright-light rule: a value too high or off both ways where the sun is in
+    // view is a mistake of the maps' use that the sun shows best (the multiple-scattering term
+    // lit by the prefiltered map: on a smooth sky the two maps nearly agree), and the typical
+    // mistakes and mutants, drawn on these points under this sun, name it.
     if (!run.report.passed)
         if (const std::string cause =
                 sunCause(run.value, run.surfaces, run.band, d_.components, cleanBefore);
             !cause.empty()) {
             run.report.detail = cause + "; " + run.report.detail;
-            if (cleanBefore) run.cause = cause;
+            if (cleanBefore && cause.starts_with(kBrightLightRule)) run.cause = cause;
         }
     run.tier = ValuesRun::Tier::LabUse;
     keep(std::move(run));

@@ -370,11 +370,30 @@ void StepGrader::gradeCase(const std::string& name, GradeCase::Inputs inputs, co
     }
 }
 
+Scene StepGrader::detailedScene(const Scene& scene) {
+    if (!(d_.needs & NeedsEnvironment)) return scene;
+    const auto& level = renderer_.environmentInputs(scene, kGradingIbl, false).environment.mips();
+    if (level.empty()) return scene;
+    const float first = level[0][0].at(0, 0, 0);
+    for (const Image& face : level[0])
+        for (int y = 0; y < face.height; ++y)
+            for (int x = 0; x < face.width; ++x)
+                for (int c = 0; c < 3; ++c)
+                    if (face.at(x, y, c) != first) return scene;
+    Scene detailed = scene;
+    detailed.environment = EstimatorSpec{}.environment;
+    return detailed;
+}
+
 void StepGrader::gradeValues(const Scene& scene) {
     const ParamValues defaults(d_.params);
+    const Scene detailed = detailedScene(scene);
     gradeCase("probe", GradeCase::Inputs::Probe, scene, defaults);
     gradeCase("scene " + scene.file.stem().string(), GradeCase::Inputs::Scene, scene, defaults);
-    gradeCase("random inputs", GradeCase::Inputs::Domain, scene, defaults);
+    gradeCase(detailed.environment == scene.environment
+                  ? "random inputs"
+                  : "random inputs (" + detailed.environment + ")",
+              GradeCase::Inputs::Domain, detailed, defaults);
     for (const GradeCase& c : d_.cases) {
         const Scene s = c.scene.empty() ? scene : loadScene(paths_.scene(c.scene));
         gradeCase(
@@ -399,7 +418,8 @@ void StepGrader::gradeValues(const Scene& scene) {
             }
             gradeCase("probe with " + assignment, GradeCase::Inputs::Probe, scene, params);
             gradeCase("scene with " + assignment, GradeCase::Inputs::Scene, scene, params);
-            gradeCase("random inputs with " + assignment, GradeCase::Inputs::Domain, scene, params);
+            gradeCase("random inputs with " + assignment, GradeCase::Inputs::Domain, detailed,
+                      params);
         }
     // The reference's view or the student's (a student's sum may read the lights itself).
     if (readsSceneLights(renderer_, m_, {}, 3) || readsSceneLights(renderer_, m_, source_, 3)) {
@@ -408,7 +428,7 @@ void StepGrader::gradeValues(const Scene& scene) {
         gradeCase("random inputs with three coloured lights", GradeCase::Inputs::Domain, lit,
                   defaults);
     }
-    gradeHostValues(scene);
+    gradeHostValues(detailed);
 }
 
 bool StepGrader::codeQueriesTextureSize() const {
