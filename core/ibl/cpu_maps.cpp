@@ -82,14 +82,16 @@ EnvironmentBins binEnvironment(const Image& equirect, int n) {
         sinPhi[size_t(x)] = std::sin(phi);
         cosPhi[size_t(x)] = std::cos(phi);
     }
+    // A bin's power and its directions' moments under a weight: the grey power for the
+    // environment's bins, the solid angle for the sphere's.
     struct Sums {
         glm::dvec3 power{0.0}, mean{0.0};
-        double grey = 0, second[6] = {};
-        void add(const glm::dvec3& d, double weight) {
-            grey += weight;
-            mean += weight * d;
+        double weight = 0, second[6] = {};
+        void add(const glm::dvec3& d, double w) {
+            weight += w;
+            mean += w * d;
             const double dd[6] = {d.x * d.x, d.y * d.y, d.z * d.z, d.x * d.y, d.y * d.z, d.x * d.z};
-            for (int k = 0; k < 6; ++k) second[k] += weight * dd[k];
+            for (int k = 0; k < 6; ++k) second[k] += w * dd[k];
         }
     };
     std::vector<Sums> bins(static_cast<size_t>(count)), sphere(static_cast<size_t>(count));
@@ -111,7 +113,7 @@ EnvironmentBins binEnvironment(const Image& equirect, int n) {
     out.sphere.resize(out.packs.size(), EnvironmentBins::SpherePack{});
     // The moments of a bin's directions, normalised by their weight, into lane `lane`.
     auto moments = [](const Sums& b, Float4(&mean)[3], Float4(&second)[6], int lane) {
-        const double g = b.grey > 0.0 ? 1.0 / b.grey : 0.0;
+        const double g = b.weight > 0.0 ? 1.0 / b.weight : 0.0;
         for (int k = 0; k < 3; ++k) mean[k][lane] = float(b.mean[k] * g);
         for (int k = 0; k < 6; ++k) second[k][lane] = float(b.second[k] * g);
     };
@@ -121,7 +123,7 @@ EnvironmentBins binEnvironment(const Image& equirect, int n) {
         const int lane = i % 4;
         for (int k = 0; k < 3; ++k) p.power[k][lane] = float(bins[size_t(i)].power[k]);
         moments(bins[size_t(i)], p.mean, p.second, lane);
-        q.solidAngle[lane] = float(sphere[size_t(i)].grey);
+        q.solidAngle[lane] = float(sphere[size_t(i)].weight);
         moments(sphere[size_t(i)], q.mean, q.second, lane);
     }
     return out;

@@ -261,7 +261,7 @@ std::unique_ptr<IblMaps> IblPrecompute::buildEnvironment(const EquirectSource& e
 }
 
 // What the passes of one buildDerived share, made on first use: the source cube the GPU
-// passes read, and the environment's bins in uniform buffers.
+// passes read, and the environment's bins (the CPU convolution's input).
 struct IblPrecompute::Inputs {
     const EquirectSource& equirect;
     const IblMaps& maps;
