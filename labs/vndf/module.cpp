@@ -150,8 +150,8 @@ ModuleDesc describeModule() {
     d.scene = "sphere-grid";
     // What every correct sampler shares, whatever its mapping of Xi: |H| = 1, N.H >= 0 and
     // V.H >= 0, so the reference is 0. The band is 0.03: at the disk's rim sqrt(1 - t1^2 - t2^2)
-    // turns the 2^-11 error GLSL allows sin and cos into up to 0.02 (measured 1.2e-7 here,
-    // 0.010 on 5 of 262144 pixels in the browser's SwiftShader, docs/web.md); the mistakes
+    // turns the 2^-11 error GLSL allows sin and cos into up to 0.02 (measured 1.2e-7 on the
+    // desktop, 0.010 on 5 of 262144 pixels in the browser's SwiftShader, docs/web.md); the mistakes
     // reach 0.84 (README.md).
     d.tolerance = {3e-2, 0, 0};
     d.reference = [](const Surface&, const ReferenceContext&) { return glm::dvec3(0); };
